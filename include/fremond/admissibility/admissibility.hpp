@@ -1,0 +1,19 @@
+#pragma once
+/// @file Computes the admissibility certificate (SPEC §4) of any law's answer.
+#include "fremond/admissibility/admissibility_report.hpp"
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond {
+
+/// Checks (15) in sum and per contact, (16)-(17) for Frémond's reaction, (19) for its dissipative
+/// part, the Fenchel–Young gap of every potential with a known conjugate, and non-penetration, on
+/// the velocities and percussions in `result`. Only reads `result`.
+template <int MaxDofs, int MaxContacts>
+AdmissibilityReportT<MaxContacts> check_admissibility(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const ImpactResultT<MaxDofs, MaxContacts>& result, const SolverOptions& options = {});
+
+}  // namespace fremond

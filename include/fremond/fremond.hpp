@@ -1,0 +1,18 @@
+#pragma once
+/// @file Everything a user of the library needs, in one include.
+#include "fremond/admissibility/admissibility.hpp"
+#include "fremond/core/error.hpp"
+#include "fremond/core/types.hpp"
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/laws/residual.hpp"
+#include "fremond/potentials/absolute_value.hpp"
+#include "fremond/potentials/callable_potential.hpp"
+#include "fremond/potentials/conformance.hpp"
+#include "fremond/potentials/deadzone_power.hpp"
+#include "fremond/potentials/indicator.hpp"
+#include "fremond/potentials/potential.hpp"
+#include "fremond/potentials/power.hpp"
+#include "fremond/potentials/registry.hpp"
+#include "fremond/potentials/sum.hpp"
+#include "fremond/solvers/solve_impact.hpp"

@@ -1,0 +1,114 @@
+#pragma once
+/// @file The impact problem in contact space, restricted to the contacts that take part (SPEC §1).
+///
+/// Rows are ordered [normal rows of the active contacts, then their tangential rows]. G = Wᵀ M⁻¹ W
+/// is formed from a Cholesky factor of M; it may be singular and is never inverted.
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/impact_result.hpp"
+
+namespace fremond::detail {
+
+template <int MaxDofs, int MaxContacts>
+struct ContactSpaceT {
+  static constexpr int kMaxRows = times2(MaxContacts);
+  using Rows = VecT<kMaxRows>;
+  using RowMat = MatT<kMaxRows, kMaxRows>;
+  using Jac = MatT<MaxDofs, kMaxRows>;
+  using Index = Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, MaxContacts, 1>;
+
+  int dofs = 0;
+  int contacts = 0;       ///< all contacts of the problem
+  int active = 0;         ///< contacts that take part (D_NA ≤ 0)
+  bool tangential = false;
+  Index index;            ///< active → problem contact index
+  Jac W;                  ///< n × rows
+  Jac MinvW;              ///< M⁻¹ W
+  RowMat G;               ///< Delassus matrix of the active rows
+  Rows D_A;               ///< contact velocities before, active rows
+  double v_scale = 0.0;   ///< max |D_A| over the active rows, floored to the smallest normal
+  Eigen::LLT<MatT<MaxDofs, MaxDofs>> llt;
+
+  int rows() const { return tangential ? 2 * active : active; }
+  int normal_row(int i) const { return i; }
+  int tangential_row(int i) const { return active + i; }
+};
+
+/// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
+template <int MaxDofs, int MaxContacts>
+void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
+                         ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  const int n = pb.dofs(), c = pb.contacts();
+  cs.dofs = n;
+  cs.contacts = c;
+  cs.tangential = with_tangential && pb.has_tangential();
+  cs.llt.compute(pb.M);
+  cs.index.resize(c);
+  int a = 0;
+  for (int i = 0; i < c; ++i) {
+    const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
+    const double dn = pb.W_N.col(i).dot(pb.qdot_A) + w;
+    if (dn <= 0.0) cs.index(a++) = i;
+  }
+  cs.active = a;
+  cs.index.conservativeResize(a);
+  const int r = cs.rows();
+  cs.W.resize(n, r);
+  cs.D_A.resize(r);
+  for (int k = 0; k < a; ++k) {
+    const int i = cs.index(k);
+    cs.W.col(k) = pb.W_N.col(i);
+    cs.D_A(k) = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (cs.tangential) {
+      cs.W.col(a + k) = pb.W_T.col(i);
+      cs.D_A(a + k) = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+    }
+  }
+  cs.MinvW = cs.llt.solve(cs.W);
+  cs.G.noalias() = cs.W.transpose() * cs.MinvW;
+  cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+  cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
+  if (!(cs.v_scale > std::numeric_limits<double>::min())) cs.v_scale = std::numeric_limits<double>::min();
+}
+
+/// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
+/// (size rows()). Contacts that do not take part get zero percussion.
+template <int MaxDofs, int MaxContacts>
+void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                      const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                      const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
+                      ImpactResultT<MaxDofs, MaxContacts>& out) {
+  const int c = cs.contacts;
+  out.qdot_E = pb.qdot_A;
+  if (cs.rows() > 0) out.qdot_E.noalias() += cs.MinvW * P;
+  out.P_N.setZero(c);
+  out.P_T.setZero(c);
+  for (int k = 0; k < cs.active; ++k) {
+    out.P_N(cs.index(k)) = P(k);
+    if (cs.tangential) out.P_T(cs.index(k)) = P(cs.active + k);
+  }
+  out.D_NA.resize(c);
+  out.D_NE.resize(c);
+  out.D_TA.setZero(c);
+  out.D_TE.setZero(c);
+  out.takes_part.setZero(c);
+  for (int i = 0; i < c; ++i) {
+    const double wn = pb.w_N.size() ? pb.w_N(i) : 0.0;
+    out.D_NA(i) = pb.W_N.col(i).dot(pb.qdot_A) + wn;
+    out.D_NE(i) = pb.W_N.col(i).dot(out.qdot_E) + wn;
+    out.takes_part(i) = out.D_NA(i) <= 0.0 ? 1 : 0;
+    if (pb.has_tangential()) {
+      const double wt = pb.w_T.size() ? pb.w_T(i) : 0.0;
+      out.D_TA(i) = pb.W_T.col(i).dot(pb.qdot_A) + wt;
+      out.D_TE(i) = pb.W_T.col(i).dot(out.qdot_E) + wt;
+    }
+  }
+  // T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from velocities.
+  const auto dq = (out.qdot_E - pb.qdot_A).eval();
+  out.energy_change = 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
+}
+
+}  // namespace fremond::detail

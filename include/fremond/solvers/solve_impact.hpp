@@ -1,0 +1,28 @@
+#pragma once
+/// @file The one entry point for every law: validate → trivial → closed form → Newton → proximal →
+/// NLopt, then the admissibility certificate (SPEC §4) on the answer.
+#include <vector>
+
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond {
+
+/// Solves one impact. Throws InvalidArgument for an invalid problem, law or options; a solver that
+/// does not converge says so in result.solver.status (never an exception). For small problems
+/// (SmallImpactProblem) the solve allocates nothing on the heap, except for potentials whose prox is
+/// computed through the NLopt fallback.
+template <int MaxDofs, int MaxContacts>
+ImpactResultT<MaxDofs, MaxContacts> solve_impact(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
+                                                 const ImpactLaw& law,
+                                                 const SolverOptions& options = {});
+
+/// Every solution found: for laws with friction on up to 3 contacts (and Frémond + Coulomb on one
+/// contact, exactly) by enumerating contact modes; otherwise the single answer of solve_impact.
+/// Each result has `unique` and `solutions_found` set. An empty list means no solution exists.
+std::vector<ImpactResult> solve_impact_all(const ImpactProblem& problem, const ImpactLaw& law,
+                                           const SolverOptions& options = {});
+
+}  // namespace fremond

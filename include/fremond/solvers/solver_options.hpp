@@ -1,0 +1,35 @@
+#pragma once
+/// @file Options of the impact solvers. The solver never writes into them.
+#include <string>
+
+#include "fremond/solvers/solver_status.hpp"
+
+namespace fremond {
+
+struct SolverOptions {
+  /// Method: `automatic` picks the cheapest exact method the law and its potentials allow
+  /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt).
+  SolverMethod method = SolverMethod::automatic;
+  /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
+  /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none. Range [1e-16, 1e-2].
+  double tolerance = 1e-13;
+  /// Newton iterations (semismooth, scalar). Range ≥ 1.
+  int max_iterations = 100;
+  /// Proximal iterations. Range ≥ 1.
+  int max_proximal_iterations = 200000;
+  /// NLopt function evaluations. Range ≥ 1.
+  int max_nlopt_evaluations = 200000;
+  /// Admissibility tolerance, relative to the kinetic energy before the impact: an inequality
+  /// X ≥ 0 is taken as violated when X < −admissibility_tolerance · max(T_A, tiny). Range [0, 1).
+  double admissibility_tolerance = 1e-9;
+  /// Find every solution a mode enumeration can (small problems with friction) and set `unique`
+  /// from it. Costs a few more solves; off leaves `unique` as the solver's cheap sufficient test.
+  bool check_uniqueness = true;
+
+  /// True when every option is within its range; otherwise false with the reason in *why.
+  bool is_valid(std::string* why = nullptr) const;
+  /// Throws InvalidArgument naming the option when !is_valid().
+  void validate() const;
+};
+
+}  // namespace fremond

@@ -1,0 +1,50 @@
+#pragma once
+/// @file Enumerations of the solver report, each with to_string / from_string (CLI, bindings).
+#include <string_view>
+
+namespace fremond {
+
+/// How a solve ended. Every value is documented by the test that sets it.
+enum class SolverStatus {
+  not_run,         ///< the default: nothing was solved.
+  converged,       ///< the law's residual (laws/residual.hpp) ≤ tolerance × velocity scale.
+  max_iterations,  ///< the iteration budget ran out with the residual above tolerance.
+  stalled,         ///< no further decrease of the residual was possible in floating point and
+                   ///< the residual is above tolerance.
+  no_solution,     ///< the law has no solution for these data (e.g. Painlevé-type Coulomb cases).
+  failed,          ///< numerical breakdown (non-finite values); the answer is not usable.
+  unsupported,     ///< the chosen method cannot solve this law with these potentials.
+};
+
+/// Which method produced the answer.
+enum class SolverMethod {
+  automatic,          ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
+  trivial,            ///< no contact takes part (all D_NA > 0): no percussion.
+  closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
+  scalar_newton,      ///< one decoupled contact: one scalar root per mode.
+  mode_enumeration,   ///< every contact mode tried (small problems; finds all solutions).
+  lemke,              ///< lexicographic Lemke on the law's LCP (classical laws).
+  semismooth_newton,  ///< Newton on the prox-based (natural-map) residual, with a line search.
+  proximal,           ///< accelerated proximal-gradient iteration in contact space.
+  nlopt,              ///< NLopt on the velocity-space minimisation (value and subgradient only).
+};
+
+/// Which stopping criterion fired.
+enum class StopCriterion {
+  none,        ///< not stopped (not run).
+  exact,       ///< a closed form or a finite enumeration: no iteration to stop.
+  residual,    ///< ‖R‖∞ ≤ tolerance × velocity scale.
+  step,        ///< the step became smaller than rounding; residual checked after.
+  iterations,  ///< the iteration budget.
+  nlopt,       ///< NLopt's own criterion (its code is kept in the report).
+};
+
+std::string_view to_string(SolverStatus s);
+std::string_view to_string(SolverMethod m);
+std::string_view to_string(StopCriterion c);
+/// Each throws InvalidArgument naming the text and the accepted values.
+SolverStatus solver_status_from_string(std::string_view s);
+SolverMethod solver_method_from_string(std::string_view s);
+StopCriterion stop_criterion_from_string(std::string_view s);
+
+}  // namespace fremond

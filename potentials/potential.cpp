@@ -1,0 +1,108 @@
+// The non-virtual interface of Potential: argument checks, and the generic prox by bisection.
+#include "fremond/potentials/potential.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "fremond/core/error.hpp"
+#include "fremond/potentials/detail/validate.hpp"
+
+namespace fremond {
+
+Interval Potential::subdifferential(double z) const { return do_subdifferential(z); }
+
+double Potential::prox(double x, double tau, double* dprox) const {
+  if (!(tau > 0.0) || !std::isfinite(tau))
+    throw InvalidArgument("tau", "the prox step must be positive and finite, got " + detail::format_number(tau));
+  if (std::isnan(x)) throw InvalidArgument("x", "the prox argument is NaN");
+  const auto caps = do_capabilities();
+  if (!caps.prox && !caps.subdifferential)
+    throw InvalidArgument(std::string(name()),
+                          "this potential gives neither a prox nor its subdifferential");
+  return do_prox(x, tau, dprox);
+}
+
+double Potential::conjugate(double s) const {
+  if (!do_capabilities().conjugate)
+    throw InvalidArgument(std::string(name()), "the conjugate of this potential is not known");
+  return do_conjugate(s);
+}
+
+double Potential::fenchel_young_gap(double z, double s) const {
+  if (!do_capabilities().conjugate) return std::numeric_limits<double>::quiet_NaN();
+  const double fz = do_value(z);
+  const double fs = do_conjugate(s);
+  if (std::isinf(fz) || std::isinf(fs)) return std::numeric_limits<double>::infinity();
+  return fz + fs - s * z;
+}
+
+double Potential::do_conjugate(double) const {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// prox_{τφ}(x) is the unique y with 0 ∈ y − x + τ∂φ(y). The map y ↦ y − x + τ∂φ(y) is strictly
+// increasing (set-valued), so bisection on the sign of its interval finds y to the last bit. The
+// bracket grows geometrically from x: the root lies between x and the point where the subgradient
+// changes sign, i.e. inside [x − τ|g(x)| − 1, x + τ|g(x)| + 1] widened until it brackets.
+double Potential::do_prox(double x, double tau, double* dprox) const {
+  auto sign_at = [&](double y) {  // −1: y below the root, +1: above, 0: y is the root
+    const Interval sd = do_subdifferential(y);
+    if (sd.is_empty()) {
+      // Outside the domain: the root lies on the side where φ is finite.
+      const double d = 1.0 + std::fabs(y);
+      return std::isfinite(do_value(y + d)) ? -1 : 1;
+    }
+    const double lo = y - x + tau * sd.lo;
+    const double hi = y - x + tau * sd.hi;
+    if (hi < 0.0) return -1;
+    if (lo > 0.0) return 1;
+    return 0;
+  };
+  double step = 1.0 + std::fabs(x);
+  double a = x, b = x;
+  int sa = sign_at(a);
+  if (sa == 0) {
+    if (dprox) *dprox = 1.0;  // conservative element of the derivative
+    return x;
+  }
+  // Expand in the direction of the root.
+  for (int i = 0; i < 2100; ++i) {
+    b = (sa < 0) ? a + step : a - step;
+    const int sb = sign_at(b);
+    if (sb == 0) {
+      if (dprox) *dprox = 1.0;
+      return b;
+    }
+    if (sb != sa) break;
+    a = b;
+    step *= 2.0;
+    if (!std::isfinite(step)) break;
+  }
+  double lo = std::fmin(a, b), hi = std::fmax(a, b);
+  for (int i = 0; i < 2200 && hi > lo; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const int sm = sign_at(mid);
+    if (sm == 0) {
+      lo = hi = mid;
+      break;
+    }
+    if (sm < 0) lo = mid; else hi = mid;
+  }
+  const double y = 0.5 * (lo + hi);
+  if (dprox) {
+    // dprox = 1/(1 + τφ''(y)) where φ is twice differentiable; 0 at a kink (a set-valued ∂φ(y)).
+    const Interval sd = do_subdifferential(y);
+    const double scale = 1e-12 * (1.0 + std::fabs(sd.hi) + std::fabs(sd.lo));
+    if (sd.is_empty() || sd.hi - sd.lo > scale) {
+      *dprox = 0.0;
+    } else {
+      const double h = 1e-6 * (1.0 + std::fabs(y));
+      const double curv = (do_subgradient(y + h) - do_subgradient(y - h)) / (2.0 * h);
+      *dprox = (std::isfinite(curv) && curv >= 0.0) ? 1.0 / (1.0 + tau * curv) : 0.0;
+    }
+  }
+  return y;
+}
+
+}  // namespace fremond

@@ -1,0 +1,14 @@
+#pragma once
+// The subcommands of `fremond`; each lives in its own file and registers itself on the app.
+#include <CLI/CLI.hpp>
+
+namespace fremond::cli {
+
+/// `fremond impact FILE|-` (SPEC §7).
+void add_impact_command(CLI::App& app);
+/// `fremond simulate SCENE.json --out DIR` and `--preset paper-bar`.
+void add_simulate_command(CLI::App& app);
+/// `fremond curve`: the data of Figs. 8 and 9.
+void add_curve_command(CLI::App& app);
+
+}  // namespace fremond::cli

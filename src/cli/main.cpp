@@ -1,0 +1,22 @@
+// fremond: impact laws of rigid bodies from the command line.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"fremond: impact laws of rigid bodies (Newton, Poisson, Coulomb, Frémond)"};
+  app.require_subcommand(1);
+  fremond::cli::add_impact_command(app);
+  fremond::cli::add_simulate_command(app);
+  fremond::cli::add_curve_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fremond: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

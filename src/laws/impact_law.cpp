@@ -1,0 +1,128 @@
+#include "fremond/laws/impact_law.hpp"
+
+#include "fremond/core/error.hpp"
+#include "fremond/potentials/detail/validate.hpp"
+
+namespace fremond {
+
+ImpactLaw ImpactLaw::newton(PerContact e) {
+  ImpactLaw l;
+  l.type = LawType::newton;
+  l.e = std::move(e);
+  return l;
+}
+ImpactLaw ImpactLaw::poisson(PerContact e) {
+  ImpactLaw l = newton(std::move(e));
+  l.type = LawType::poisson;
+  return l;
+}
+ImpactLaw ImpactLaw::newton_coulomb(PerContact e, PerContact mu) {
+  ImpactLaw l = newton(std::move(e));
+  l.type = LawType::newton_coulomb;
+  l.mu = std::move(mu);
+  return l;
+}
+ImpactLaw ImpactLaw::poisson_coulomb(PerContact e, PerContact mu) {
+  ImpactLaw l = newton_coulomb(std::move(e), std::move(mu));
+  l.type = LawType::poisson_coulomb;
+  return l;
+}
+ImpactLaw ImpactLaw::fremond(PerContactPotential normal) {
+  ImpactLaw l;
+  l.type = LawType::fremond;
+  l.normal = std::move(normal);
+  return l;
+}
+ImpactLaw ImpactLaw::fremond(PerContactPotential normal, PerContactPotential tangential) {
+  ImpactLaw l = fremond(std::move(normal));
+  l.tangential = TangentialLaw::potential;
+  l.tangential_potential = std::move(tangential);
+  return l;
+}
+ImpactLaw ImpactLaw::fremond_coulomb(PerContactPotential normal, PerContact mu) {
+  ImpactLaw l = fremond(std::move(normal));
+  l.tangential = TangentialLaw::coulomb;
+  l.mu = std::move(mu);
+  return l;
+}
+
+bool ImpactLaw::has_friction() const {
+  switch (type) {
+    case LawType::newton_coulomb:
+    case LawType::poisson_coulomb:
+      return true;
+    case LawType::fremond:
+      return tangential != TangentialLaw::none;
+    default:
+      return false;
+  }
+}
+
+namespace {
+void check_count(const char* name, std::size_t size, int contacts) {
+  if (size == 1 || static_cast<int>(size) == contacts) return;
+  throw InvalidArgument(name, "needs one value or one per contact (" + std::to_string(contacts) +
+                                  "), got " + std::to_string(size));
+}
+}  // namespace
+
+void ImpactLaw::validate(int contacts) const {
+  const bool classical = type != LawType::fremond;
+  if (classical) {
+    check_count("law.e", e.values.size(), contacts);
+    for (std::size_t i = 0; i < e.values.size(); ++i)
+      detail::require_in_unit_interval(
+          e.values.size() == 1 ? "law.e" : "law.e[" + std::to_string(i) + "]", e.values[i]);
+  }
+  const bool uses_mu = type == LawType::newton_coulomb || type == LawType::poisson_coulomb ||
+                       (type == LawType::fremond && tangential == TangentialLaw::coulomb);
+  if (uses_mu) {
+    check_count("law.mu", mu.values.size(), contacts);
+    for (std::size_t i = 0; i < mu.values.size(); ++i)
+      detail::require_finite_at_least(
+          mu.values.size() == 1 ? "law.mu" : "law.mu[" + std::to_string(i) + "]", mu.values[i], 0.0);
+  }
+  if (type == LawType::fremond) {
+    if (normal.empty()) throw InvalidArgument("law.normal", "Frémond's law needs a normal potential");
+    check_count("law.normal", normal.potentials.size(), contacts);
+    for (const auto& p : normal.potentials)
+      if (!p) throw InvalidArgument("law.normal", "a potential is missing (null)");
+    if (tangential == TangentialLaw::potential) {
+      if (tangential_potential.empty())
+        throw InvalidArgument("law.tangential", "the tangential law needs a potential");
+      check_count("law.tangential", tangential_potential.potentials.size(), contacts);
+      for (const auto& p : tangential_potential.potentials)
+        if (!p) throw InvalidArgument("law.tangential", "a potential is missing (null)");
+    }
+  }
+}
+
+std::string ImpactLaw::describe() const {
+  auto list = [](const PerContact& v) {
+    std::string s;
+    for (double x : v.values) s += (s.empty() ? "" : ", ") + detail::format_number(x);
+    return v.values.size() == 1 ? s : "[" + s + "]";
+  };
+  auto pots = [](const PerContactPotential& v) {
+    std::string s;
+    for (const auto& p : v.potentials) s += (s.empty() ? "" : ", ") + p->describe();
+    return v.potentials.size() == 1 ? s : "[" + s + "]";
+  };
+  std::string out(to_string(type));
+  switch (type) {
+    case LawType::newton:
+    case LawType::poisson:
+      return out + "(e=" + list(e) + ")";
+    case LawType::newton_coulomb:
+    case LawType::poisson_coulomb:
+      return out + "(e=" + list(e) + ", mu=" + list(mu) + ")";
+    case LawType::fremond:
+      out += "(normal=" + pots(normal);
+      if (tangential == TangentialLaw::potential) out += ", tangential=" + pots(tangential_potential);
+      if (tangential == TangentialLaw::coulomb) out += ", tangential=coulomb(mu=" + list(mu) + ")";
+      return out + ")";
+  }
+  return out;
+}
+
+}  // namespace fremond

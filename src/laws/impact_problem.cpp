@@ -1,0 +1,111 @@
+#include "fremond/laws/impact_problem.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <string>
+
+#include "fremond/core/error.hpp"
+#include "fremond/potentials/detail/validate.hpp"
+
+namespace fremond {
+
+namespace {
+template <class Derived>
+void require_all_finite(const char* name, const Eigen::MatrixBase<Derived>& m) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      if (!std::isfinite(m(i, j)))
+        throw InvalidArgument(std::string(name) + "[" + std::to_string(i) +
+                                  (m.cols() > 1 ? "][" + std::to_string(j) : "") + "]",
+                              "must be a finite number, got " + detail::format_number(m(i, j)));
+}
+std::string dims(Eigen::Index r, Eigen::Index c) {
+  return std::to_string(r) + "x" + std::to_string(c);
+}
+}  // namespace
+
+template <int N, int C>
+void validate(const ImpactProblemT<N, C>& pb) {
+  const auto n = pb.M.rows();
+  if (n == 0) throw InvalidArgument("M", "the mass matrix is empty");
+  if (pb.M.cols() != n) throw InvalidArgument("M", "must be square, got " + dims(n, pb.M.cols()));
+  require_all_finite("M", pb.M);
+  const double scale = pb.M.cwiseAbs().maxCoeff();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = i + 1; j < n; ++j)
+      if (std::fabs(pb.M(i, j) - pb.M(j, i)) > 1e-12 * scale)
+        throw InvalidArgument("M", "must be symmetric; M[" + std::to_string(i) + "][" +
+                                       std::to_string(j) + "] = " + detail::format_number(pb.M(i, j)) +
+                                       " but M[" + std::to_string(j) + "][" + std::to_string(i) +
+                                       "] = " + detail::format_number(pb.M(j, i)));
+  Eigen::LLT<MatT<N, N>> llt(pb.M);
+  bool spd = llt.info() == Eigen::Success;
+  if (spd) {  // a positive pivot that is rounding noise is not positive definite either
+    const auto d = llt.matrixLLT().diagonal();
+    spd = d.minCoeff() > 1e-12 * std::sqrt(scale);
+  }
+  if (!spd) throw InvalidArgument("M", "must be positive definite (Cholesky factorisation failed)");
+  if (pb.W_N.rows() != n)
+    throw InvalidArgument("W_N", "must have " + std::to_string(n) + " rows (one per degree of "
+                                 "freedom), got " + dims(pb.W_N.rows(), pb.W_N.cols()));
+  const auto c = pb.W_N.cols();
+  require_all_finite("W_N", pb.W_N);
+  if (pb.W_T.size() != 0 || pb.W_T.cols() != 0) {
+    if (pb.W_T.rows() != n || pb.W_T.cols() != c)
+      throw InvalidArgument("W_T", "must be " + dims(n, c) + " like W_N, got " +
+                                       dims(pb.W_T.rows(), pb.W_T.cols()));
+    require_all_finite("W_T", pb.W_T);
+  }
+  if (pb.w_N.size() != 0 && pb.w_N.size() != c)
+    throw InvalidArgument("w_N", "must have " + std::to_string(c) + " entries (one per contact), got " +
+                                     std::to_string(pb.w_N.size()));
+  require_all_finite("w_N", pb.w_N);
+  if (pb.w_T.size() != 0 && pb.w_T.size() != c)
+    throw InvalidArgument("w_T", "must have " + std::to_string(c) + " entries (one per contact), got " +
+                                     std::to_string(pb.w_T.size()));
+  if (pb.w_T.size() != 0 && pb.W_T.cols() == 0)
+    throw InvalidArgument("w_T", "given without W_T");
+  require_all_finite("w_T", pb.w_T);
+  if (pb.qdot_A.size() != n)
+    throw InvalidArgument("qdot_A", "must have " + std::to_string(n) + " entries, got " +
+                                        std::to_string(pb.qdot_A.size()));
+  require_all_finite("qdot_A", pb.qdot_A);
+}
+
+template void validate(const ImpactProblemT<Dynamic, Dynamic>&);
+template void validate(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
+
+bool fits_small(const ImpactProblem& pb) {
+  return pb.M.rows() <= kSmallDofs && pb.M.cols() <= kSmallDofs && pb.W_N.rows() <= kSmallDofs &&
+         pb.W_N.cols() <= kSmallContacts && pb.W_T.rows() <= kSmallDofs &&
+         pb.W_T.cols() <= kSmallContacts && pb.w_N.size() <= kSmallContacts &&
+         pb.w_T.size() <= kSmallContacts && pb.qdot_A.size() <= kSmallDofs;
+}
+
+SmallImpactProblem to_small(const ImpactProblem& pb) {
+  if (!fits_small(pb))
+    throw InvalidArgument("problem", "does not fit the small form (at most " +
+                                         std::to_string(kSmallDofs) + " degrees of freedom and " +
+                                         std::to_string(kSmallContacts) + " contacts)");
+  SmallImpactProblem s;
+  s.M = pb.M;
+  s.W_N = pb.W_N;
+  s.W_T = pb.W_T;
+  s.w_N = pb.w_N;
+  s.w_T = pb.w_T;
+  s.qdot_A = pb.qdot_A;
+  return s;
+}
+
+ImpactProblem to_dynamic(const SmallImpactProblem& s) {
+  ImpactProblem pb;
+  pb.M = s.M;
+  pb.W_N = s.W_N;
+  pb.W_T = s.W_T;
+  pb.w_N = s.w_N;
+  pb.w_T = s.w_T;
+  pb.qdot_A = s.qdot_A;
+  return pb;
+}
+
+}  // namespace fremond

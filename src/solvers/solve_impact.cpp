@@ -1,0 +1,39 @@
+// The driver (SPEC §2, §4): validate → trivial → law-specific chain → admissibility.
+#include "fremond/solvers/solve_impact.hpp"
+
+#include "fremond/admissibility/admissibility.hpp"
+#include "fremond/solvers/detail/classical.hpp"
+#include "fremond/solvers/detail/contact_space.hpp"
+
+namespace fremond {
+
+template <int N, int C>
+ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                 const SolverOptions& options) {
+  validate(pb);
+  law.validate(pb.contacts());
+  options.validate();
+  ImpactResultT<N, C> out;
+  detail::ContactSpaceT<N, C> cs;
+  build_contact_space(pb, law.has_friction(), cs);
+  if (law.type == LawType::fremond) {
+    out.solver.status = SolverStatus::unsupported;
+    out.solver.message = "Frémond's law is not implemented yet";
+  } else {
+    detail::solve_classical(pb, cs, law, options, out);
+  }
+  out.admissibility = check_admissibility(pb, law, out, options);
+  return out;
+}
+
+template ImpactResultT<Dynamic, Dynamic> solve_impact(const ImpactProblemT<Dynamic, Dynamic>&,
+                                                      const ImpactLaw&, const SolverOptions&);
+template ImpactResultT<kSmallDofs, kSmallContacts> solve_impact(
+    const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&, const SolverOptions&);
+
+std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const ImpactLaw& law,
+                                           const SolverOptions& options) {
+  return {solve_impact(pb, law, options)};
+}
+
+}  // namespace fremond
