@@ -33,7 +33,17 @@ template ImpactResultT<kSmallDofs, kSmallContacts> solve_impact(
 
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const ImpactLaw& law,
                                            const SolverOptions& options) {
-  return {solve_impact(pb, law, options)};
+  validate(pb);
+  law.validate(pb.contacts());
+  options.validate();
+  std::vector<ImpactResult> all;
+  if (law.type == LawType::fremond) {
+    all.push_back(solve_impact(pb, law, options));
+  } else {
+    all = detail::solve_classical_all(pb, law, options);
+    for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
+  }
+  return all;
 }
 
 }  // namespace fremond

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages fremond needs that are missing on this machine (idempotent).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libnlopt-dev libnlopt-cxx-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-pybind11 python3-numpy python3-matplotlib python3-pil
+  python3-nbclient python3-nbformat python3-ipykernel
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
