@@ -1,0 +1,186 @@
+// The impact-problem file of SPEC §7: reader and result writer.
+#include "fremond/io/problem_file.hpp"
+
+#include <cmath>
+#include <istream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "detail/json_law.hpp"
+#include "fremond/core/error.hpp"
+#include "fremond/core/types.hpp"
+
+namespace fremond::io {
+
+namespace {
+
+using detail::json;
+
+std::string dims(Eigen::Index r, Eigen::Index c) {
+  return std::to_string(r) + "x" + std::to_string(c);
+}
+
+// validate(problem) takes an empty w_N, w_T or W_T as "not given"; in a file the key itself says
+// whether it was given, so a present key of the wrong size is refused rather than read as absent.
+void check_given_sizes(const ImpactProblem& pb, const json& doc) {
+  const auto n = pb.M.rows(), c = pb.W_N.cols();
+  if (doc.contains("W_T") && (pb.W_T.rows() != n || pb.W_T.cols() != c))
+    throw InvalidArgument(
+        "W_T", "must be " + dims(n, c) + " like W_N, got " + dims(pb.W_T.rows(), pb.W_T.cols()));
+  for (const char* key : {"w_N", "w_T"}) {
+    const auto size = std::string(key) == "w_N" ? pb.w_N.size() : pb.w_T.size();
+    if (doc.contains(key) && size != c)
+      throw InvalidArgument(key, "must have " + std::to_string(c) +
+                                     " entries (one per contact), got " + std::to_string(size));
+  }
+}
+
+}  // namespace
+
+ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry) {
+  const json doc = detail::parse_json(json_text, "problem");
+  detail::require_object(doc, "problem");
+  // Unknown keys before anything else: a misspelt optional key (say "w_n") must not leave its
+  // default in place silently (SPEC §7).
+  detail::check_keys(doc, "", {"M", "W_N", "W_T", "w_N", "w_T", "qdot_A", "law"},
+                     "the impact-problem file");
+  for (const char* key : {"M", "W_N", "qdot_A", "law"}) detail::required_key(doc, "", key);
+
+  ProblemFile out;
+  ImpactProblem& pb = out.problem;
+  pb.M = detail::matrix_from_json(doc["M"], "M");
+  pb.W_N = detail::matrix_from_json(doc["W_N"], "W_N");
+  if (const json* j = detail::optional_key(doc, "W_T"))
+    pb.W_T = detail::matrix_from_json(*j, "W_T");
+  else
+    pb.W_T.resize(pb.W_N.rows(), 0);  // frictionless: no tangential rows (SPEC §7)
+  if (const json* j = detail::optional_key(doc, "w_N"))
+    pb.w_N = detail::vector_from_json(*j, "w_N");
+  if (const json* j = detail::optional_key(doc, "w_T"))
+    pb.w_T = detail::vector_from_json(*j, "w_T");
+  pb.qdot_A = detail::vector_from_json(doc["qdot_A"], "qdot_A");
+  validate(pb);  // sizes, symmetry, positive definiteness; messages name M, W_N, ...
+  check_given_sizes(pb, doc);
+  // Fixed obstacles by default (SPEC §1: w_N, w_T are zero for a fixed obstacle); stored explicitly
+  // so that every user of the problem sees c entries.
+  if (pb.w_N.size() == 0) pb.w_N.setZero(pb.W_N.cols());
+  if (pb.w_T.size() == 0 && pb.has_tangential()) pb.w_T.setZero(pb.W_N.cols());
+
+  out.law = detail::law_from_json(doc["law"], pb.contacts(), registry, "law");
+  return out;
+}
+
+ProblemFile read_problem_file(std::istream& in, const PotentialRegistry& registry) {
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InvalidArgument("problem", "could not read the input");
+  return parse_problem_file(text, registry);
+}
+
+namespace {
+
+using ojson = nlohmann::ordered_json;  // keeps the order of SPEC §7 in the output
+
+// JSON has no NaN or infinity: a value that is not finite (a residual that was never computed,
+// a failed solve) is null, so that any JSON reader accepts the output.
+ojson number(double v) {
+  return std::isfinite(v) ? ojson(v) : ojson(nullptr);
+}
+
+template <class Derived>
+ojson numbers(const Eigen::MatrixBase<Derived>& v) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(number(static_cast<double>(v(i))));
+  return a;
+}
+
+template <class Derived>
+ojson flags(const Eigen::MatrixBase<Derived>& v) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v(i) != 0);
+  return a;
+}
+
+template <int C>
+ojson admissibility_json(const AdmissibilityReportT<C>& a) {
+  ojson j;
+  j["total"] = number(a.total);
+  j["per_contact"] = numbers(a.per_contact);
+  j["reaction"] = number(a.reaction);
+  j["dissipation"] = number(a.dissipation);
+  j["complementarity"] = number(a.complementarity);
+  j["penetration"] = number(a.penetration);
+  j["fenchel_young_gap"] = number(a.fenchel_young_gap);
+  j["tolerance"] = number(a.tolerance);
+  j["admissible"] = a.admissible;
+  j["failed"] = std::string(to_string(a.failed));
+  j["failed_contact"] = a.failed_contact;
+  j["violation"] = number(a.violation);
+  j["energy_change"] = number(a.energy_change);
+  j["kinetic_energy_A"] = number(a.kinetic_energy_A);
+  return j;
+}
+
+ojson solver_json(const SolverReport& s) {
+  ojson j;
+  j["method"] = std::string(to_string(s.method));
+  j["status"] = std::string(to_string(s.status));
+  j["criterion"] = std::string(to_string(s.criterion));
+  j["iterations"] = s.iterations;
+  j["residual"] = number(s.residual);
+  j["message"] = std::string(s.message);
+  j["native_code"] = s.native_code;
+  j["fallbacks"] = s.fallbacks;
+  return j;
+}
+
+template <int N, int C>
+ojson result_json(const ImpactResultT<N, C>& r) {
+  ojson j;
+  j["qdot_E"] = numbers(r.qdot_E);
+  j["P_N"] = numbers(r.P_N);
+  j["P_T"] = numbers(r.P_T);
+  j["D_NA"] = numbers(r.D_NA);
+  j["D_TA"] = numbers(r.D_TA);
+  j["D_NE"] = numbers(r.D_NE);
+  j["D_TE"] = numbers(r.D_TE);
+  j["P_N_reaction"] = numbers(r.P_N_reaction);
+  j["takes_part"] = flags(r.takes_part);
+  j["energy_change"] = number(r.energy_change);
+  if (r.has_phases) {  // Poisson: the end of compression (SPEC §2)
+    j["P_NC"] = numbers(r.P_NC);
+    j["P_TC"] = numbers(r.P_TC);
+    j["D_NC"] = numbers(r.D_NC);
+    j["D_TC"] = numbers(r.D_TC);
+  }
+  j["unique"] = r.unique;
+  j["solutions_found"] = r.solutions_found;
+  j["admissibility"] = admissibility_json(r.admissibility);
+  j["solver"] = solver_json(r.solver);
+  return j;
+}
+
+// Invalid UTF-8 can only come from a user's potential name or message; replace it rather than
+// throw while printing a result.
+std::string dump(const ojson& j, int indent) {
+  return j.dump(indent < 0 ? -1 : indent, ' ', false, ojson::error_handler_t::replace);
+}
+
+}  // namespace
+
+template <int N, int C>
+std::string result_to_json(const ImpactResultT<N, C>& result, int indent) {
+  return dump(result_json(result), indent);
+}
+
+template std::string result_to_json(const ImpactResultT<Dynamic, Dynamic>&, int);
+template std::string result_to_json(const ImpactResultT<kSmallDofs, kSmallContacts>&, int);
+
+std::string solutions_to_json(const std::vector<ImpactResult>& solutions, int indent) {
+  ojson j;
+  j["count"] = solutions.size();
+  j["solutions"] = ojson::array();
+  for (const auto& r : solutions) j["solutions"].push_back(result_json(r));
+  return dump(j, indent);
+}
+
+}  // namespace fremond::io
