@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""Siconos / fremond time ratios from Google Benchmark's JSON output.
+
+Run the benchmarks with JSON output, then this script on every file:
+
+    build/bench/siconos_numerics_bench --benchmark_out=siconos.json --benchmark_out_format=json
+    build/bench/classical_bench --benchmark_out=ours.json --benchmark_out_format=json
+    /usr/bin/python3 bench/compare.py siconos.json ours.json
+
+Benchmarks are paired by their label, "problem=... law=..." (bench_label() in bench/problems.hpp):
+every benchmark whose name starts with BM_Siconos_ is compared with every other benchmark of the same
+label. The ratio is Siconos's CPU time over ours (> 1: we are faster). Where both report a
+`us_per_step` counter (time stepping), that is compared instead of the time of a whole run. Uses the
+standard library only.
+"""
+import argparse
+import json
+import sys
+from collections import defaultdict
+
+UNIT_NS = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
+
+
+def load(paths):
+    """Every benchmark run (not aggregates other than the mean) from the given JSON files."""
+    runs = []
+    for path in paths:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        for b in data.get("benchmarks", []):
+            if b.get("error_occurred"):
+                continue
+            if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "mean":
+                continue
+            runs.append(b)
+    return runs
+
+
+def cost(b):
+    """(value, unit) used for the comparison: µs per step if given, else CPU ns per iteration."""
+    if "us_per_step" in b:
+        return float(b["us_per_step"]), "us/step"
+    return float(b["cpu_time"]) * UNIT_NS[b.get("time_unit", "ns")], "ns"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("json", nargs="+", help="Google Benchmark JSON output files")
+    args = parser.parse_args(argv)
+
+    by_label = defaultdict(lambda: ([], []))
+    for b in load(args.json):
+        label = b.get("label", "")
+        if not label.startswith("problem="):
+            continue
+        siconos = b["name"].startswith("BM_Siconos_")
+        by_label[label][0 if siconos else 1].append(b)
+
+    rows = []
+    for label in sorted(by_label):
+        theirs, ours = by_label[label]
+        for s in theirs:
+            for o in ours:
+                (sv, su), (ov, ou) = cost(s), cost(o)
+                if su != ou or ov <= 0:
+                    continue
+                rows.append((label, s["name"], sv, o["name"], ov, su, sv / ov))
+    if not rows:
+        print("no pairs: no Siconos benchmark shares a label with one of ours "
+              "(was the benchmark built with Siconos? see the CMake message)")
+        return 1
+    w1 = max(len(r[1]) for r in rows)
+    w3 = max(len(r[3]) for r in rows)
+    print(f"{'Siconos':<{w1}}  {'time':>12}  {'fremond':<{w3}}  {'time':>12}  ratio")
+    current = None
+    for label, sn, sv, on, ov, unit, ratio in rows:
+        if label != current:
+            print(f"# {label}")
+            current = label
+        print(f"{sn:<{w1}}  {sv:>9.4g} {unit:<3}  {on:<{w3}}  {ov:>9.4g} {unit:<3}  {ratio:6.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
