@@ -10,12 +10,14 @@ namespace fremond {
 
 namespace {
 
-// Fenchel–Young gap of φ at (z, s), scaled by the size of its terms; 0 when unknown.
-double scaled_gap(const Potential& phi, double z, double s) {
+// Fenchel–Young gap of φ at (z, s), scaled by the size of its terms and by `energy`, the impact's
+// energy scale (|P|·|D_A|), so that terms that are rounding noise near z = 0 or s = 0 do not
+// count as a gap; 0 when the conjugate is unknown.
+double scaled_gap(const Potential& phi, double z, double s, double energy) {
   if (!phi.capabilities().conjugate) return 0.0;
   const double fz = phi.value(z), fs = phi.conjugate(s);
   if (!std::isfinite(fz) || !std::isfinite(fs)) return std::numeric_limits<double>::infinity();
-  const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + 1e-300;
+  const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
   return std::max(0.0, fz + fs - s * z) / scale;
 }
 
@@ -39,6 +41,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     if (r.takes_part(i)) v_scale = std::max({v_scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
 
   rep.per_contact.setZero(c);
+  double p_scale = 0.0;
+  for (int i = 0; i < c; ++i) p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
+  const double energy = 1e-3 * p_scale * v_scale;  // gaps below 1e-3·rel of this are noise
   const bool fremond = law.type == LawType::fremond;
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
@@ -62,15 +67,15 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       compl_viol = std::max({compl_viol, std::max(0.0, -Pr) / pscale,
                              std::fabs(Pr * r.D_NE(i)) / (pscale * v_scale)});
-      fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr)));
+      fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy));
       if (law.tangential == TangentialLaw::potential)
-        fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i)));
+        fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy));
       if (law.tangential == TangentialLaw::coulomb) {
         // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
         // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
         const double b = law.mu[i] * std::fabs(r.P_N(i));
         const double s = -r.P_T(i);
-        const double scale = b * std::fabs(zT) + std::fabs(s * zT) + 1e-300;
+        const double scale = b * std::fabs(zT) + std::fabs(s * zT) + energy + 1e-300;
         const double over = std::fabs(s) - b;
         if (over > 1e-12 * (b + std::fabs(s)))
           fy = std::max(fy, over / (b + std::fabs(s)));

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "fremond/solvers/detail/classical.hpp"
+#include "../solvers/detail/fremond.hpp"
 
 namespace fremond {
 
@@ -10,7 +11,7 @@ template <int N, int C>
 double law_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                     const ImpactResultT<N, C>& r) {
   if (law.type != LawType::fremond) return detail::classical_residual(pb, law, r);
-  return std::numeric_limits<double>::quiet_NaN();
+  return detail::fremond_residual(pb, law, r);
 }
 
 template double law_residual(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,

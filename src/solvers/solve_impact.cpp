@@ -4,6 +4,7 @@
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
+#include "detail/fremond.hpp"
 
 namespace fremond {
 
@@ -15,10 +16,11 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   options.validate();
   ImpactResultT<N, C> out;
   detail::ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.has_friction(), cs);
+  // Frémond's law has tangential rows whenever it has a tangential law (it may be "none").
+  build_contact_space(pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none
+                                                       : law.has_friction(), cs);
   if (law.type == LawType::fremond) {
-    out.solver.status = SolverStatus::unsupported;
-    out.solver.message = "Frémond's law is not implemented yet";
+    detail::solve_fremond(pb, cs, law, options, out);
   } else {
     detail::solve_classical(pb, cs, law, options, out);
   }
@@ -38,7 +40,8 @@ std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const Impact
   options.validate();
   std::vector<ImpactResult> all;
   if (law.type == LawType::fremond) {
-    all.push_back(solve_impact(pb, law, options));
+    all = detail::solve_fremond_all(pb, law, options);
+    for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
   } else {
     all = detail::solve_classical_all(pb, law, options);
     for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);

@@ -13,6 +13,9 @@ struct SolverOptions {
   /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
   /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none. Range [1e-16, 1e-2].
   double tolerance = 1e-13;
+  /// Relative residual accepted from the NLopt fallback (SLSQP on the velocity-space problem), which
+  /// cannot reach Newton's tolerance on non-smooth potentials. Range [tolerance, 1e-2].
+  double nlopt_tolerance = 1e-9;
   /// Newton iterations (semismooth, scalar). Range ≥ 1.
   int max_iterations = 100;
   /// Proximal iterations. Range ≥ 1.

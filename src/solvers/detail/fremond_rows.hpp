@@ -1,0 +1,142 @@
+#pragma once
+// Frémond's law row by row in contact space (SPEC §2-3), shared by every Frémond solver and by
+// law_residual: one residual for the law.
+//
+// With z = D_A + G P/2 (the mean velocity, paper eq. 21) each row j obeys −P_j ∈ ∂ψ_j(z_j):
+//  - normal rows: ψ = φ_N + I_{[D_NA/2, ∞)}; the indicator is the reaction N_{R+}(D_NE) (eq. 16)
+//    written on z since D_NE = 2 z_N − D_NA. In one dimension prox_{τψ} = max(prox_{τφ_N}, D_NA/2).
+//  - tangential rows: ψ = φ_T (viscous, eq. 25), or b|·| with b = μ|P_N| (Coulomb on the mean
+//    tangential velocity, quasi-variational: b depends on the answer).
+// The inclusion is equivalent to the natural-map equation R_j = z_j − prox_{τ_j ψ_j}(z_j − τ_j P_j)
+// = 0 for any τ_j > 0. We take τ_j = G_jj/2, the row's own compliance: for a decoupled row the
+// map P ↦ z − τP is then constant and the equation is solved by one prox.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/detail/contact_space.hpp"
+
+namespace fremond::detail {
+
+template <int N, int C>
+struct FremondRowsT {
+  using CS = ContactSpaceT<N, C>;
+  using Rows = typename CS::Rows;
+
+  const CS* cs = nullptr;
+  const ImpactLaw* law = nullptr;
+  Rows tau;  ///< prox step per row
+  bool coulomb = false;
+  bool all_prox = true;  ///< every potential has a prox (else those rows use subgradients)
+
+  void init(const CS& space, const ImpactLaw& l) {
+    cs = &space;
+    law = &l;
+    coulomb = l.tangential == TangentialLaw::coulomb && space.tangential;
+    all_prox = true;
+    for (const auto& p : l.normal.potentials) all_prox = all_prox && p->capabilities().prox;
+    if (l.tangential == TangentialLaw::potential)
+      for (const auto& p : l.tangential_potential.potentials)
+        all_prox = all_prox && p->capabilities().prox;
+    const int r = space.rows();
+    tau.resize(r);
+    double gmax = 0.0;
+    for (int j = 0; j < r; ++j) gmax = std::max(gmax, space.G(j, j));
+    const double fallback = gmax > 0.0 ? 0.5 * gmax : 1.0;
+    for (int j = 0; j < r; ++j) {
+      const double g = space.G(j, j);
+      tau(j) = g > 1e-14 * gmax ? 0.5 * g : fallback;
+    }
+  }
+
+  int active() const { return cs->active; }
+  bool is_normal(int j) const { return j < cs->active; }
+  int contact(int j) const { return cs->index(is_normal(j) ? j : j - cs->active); }
+  /// Lower bound of a normal row: z_N ≥ D_NA/2 ⇔ D_NE ≥ 0.
+  double lower_bound(int j) const { return 0.5 * cs->D_A(j); }
+
+  /// prox_{τ_j ψ_j}(x) with the row's own step τ_j; see prox_with_step.
+  double prox(int j, double x, double b, double* d = nullptr, double* dydb = nullptr) const {
+    return prox_with_step(j, x, b, tau(j), d, dydb);
+  }
+
+  /// prox_{t ψ_j}(x); `d` receives ∂y/∂x, `dydb` (Coulomb rows) ∂y/∂b; b is μ|P_N| for Coulomb.
+  double prox_with_step(int j, double x, double b, double t, double* d = nullptr,
+                        double* dydb = nullptr) const {
+    if (dydb) *dydb = 0.0;
+    if (!std::isfinite(x) || !std::isfinite(b)) {  // a diverging iterate: report, never throw
+      if (d) *d = 0.0;
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    if (is_normal(j)) {
+      const double y = law->normal[contact(j)].prox(x, t, d);
+      const double lb = lower_bound(j);
+      if (y < lb) {
+        if (d) *d = 0.0;
+        return lb;
+      }
+      return y;
+    }
+    if (coulomb) {
+      const double th = t * b;  // soft thresholding at τb
+      if (std::fabs(x) <= th) {
+        if (d) *d = 0.0;
+        return 0.0;
+      }
+      if (d) *d = 1.0;
+      if (dydb) *dydb = -t * (x > 0.0 ? 1.0 : -1.0);
+      return x - std::copysign(th, x);
+    }
+    return law->tangential_potential[contact(j)].prox(x, t, d);
+  }
+
+  /// The Coulomb bound of tangential row j from the normal percussions P.
+  double bound(int j, const Rows& P) const {
+    if (!coulomb || is_normal(j)) return 0.0;
+    return law->mu[contact(j)] * std::fabs(P(j - cs->active));
+  }
+
+  /// z = D_A + G P / 2.
+  void mean_velocity(const Rows& P, Rows& z) const { z.noalias() = cs->D_A + 0.5 * (cs->G * P); }
+
+  /// R = z − prox(z − τP); returns ‖R‖∞.
+  double residual(const Rows& P, Rows& z, Rows& R) const {
+    mean_velocity(P, z);
+    const int r = cs->rows();
+    R.resize(r);
+    double m = 0.0;
+    for (int j = 0; j < r; ++j) {
+      R(j) = row_residual(j, z(j), P);
+      if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
+      m = std::max(m, std::fabs(R(j)));
+    }
+    return m;
+  }
+
+  bool row_has_prox(int j) const {
+    if (is_normal(j)) return law->normal[contact(j)].capabilities().prox;
+    if (coulomb) return true;
+    return law->tangential_potential[contact(j)].capabilities().prox;
+  }
+
+  /// One row of R. Where the potential has no prox (value and subgradient only), the equivalent
+  /// smooth-case residual: τ(P_j + φ'(z_j)) on a free row, and the min-function
+  /// min(τ P_reac, z_N − D_NA/2) with P_reac = P_N + φ'(z_N) on a normal row (eq. 16).
+  double row_residual(int j, double zj, const Rows& P) const {
+    if (all_prox || row_has_prox(j)) return zj - prox(j, zj - tau(j) * P(j), bound(j, P));
+    if (is_normal(j)) {
+      const double s = P(j) + law->normal[contact(j)].subgradient(zj);
+      return std::min(tau(j) * s, zj - lower_bound(j));
+    }
+    return tau(j) * (P(j) + law->tangential_potential[contact(j)].subgradient(zj));
+  }
+
+  /// The scale below which the residual cannot be evaluated: rounding in z = D_A + G P/2.
+  double rounding_floor(const Rows& P) const {
+    const double s = (cs->D_A.cwiseAbs() + 0.5 * (cs->G.cwiseAbs() * P.cwiseAbs())).maxCoeff();
+    return 16.0 * std::numeric_limits<double>::epsilon() * s;
+  }
+};
+
+}  // namespace fremond::detail

@@ -1,0 +1,501 @@
+// Frémond's law (SPEC §2; paper §5): the method chain, the exact methods for one or decoupled
+// contacts, the split of the normal percussion into reaction and dissipative parts, and uniqueness.
+#include <Eigen/QR>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "detail/fremond.hpp"
+#include "fremond/admissibility/admissibility.hpp"
+#include "fremond/potentials/power.hpp"
+
+namespace fremond::detail {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+template <int N, int C>
+using Rows = typename FremondRowsT<N, C>::Rows;
+
+/// True when no row is coupled to another (G diagonal): each row is then one prox.
+template <int N, int C>
+bool decoupled(const ContactSpaceT<N, C>& cs) {
+  const int r = cs.rows();
+  const double scale = cs.G.cwiseAbs().maxCoeff();
+  for (int j = 0; j < r; ++j)
+    for (int k = 0; k < r; ++k)
+      if (j != k && std::fabs(cs.G(j, k)) > 4 * kEps * scale) return false;
+  return true;
+}
+
+/// Whether every potential of the law offers a prox (else only NLopt applies).
+bool law_has_prox(const ImpactLaw& law) {
+  for (const auto& p : law.normal.potentials)
+    if (!p->capabilities().prox) return false;
+  if (law.tangential == TangentialLaw::potential)
+    for (const auto& p : law.tangential_potential.potentials)
+      if (!p->capabilities().prox) return false;
+  return true;
+}
+
+bool law_is_quadratic(const ImpactLaw& law) {
+  for (const auto& p : law.normal.potentials)
+    if (!p->capabilities().quadratic) return false;
+  if (law.tangential == TangentialLaw::potential)
+    for (const auto& p : law.tangential_potential.potentials)
+      if (!p->capabilities().quadratic) return false;
+  return true;
+}
+
+/// Decoupled rows: P_j = 2(z_j − D_A,j)/G_jj with z_j = prox_{τ_j ψ_j}(D_A,j), τ_j = G_jj/2 (the
+/// equation z = D_A + G_jj P/2, −P ∈ ∂ψ(z) is z = prox_{(G_jj/2)ψ}(D_A)). Normal rows first: the
+/// Coulomb bound of a tangential row needs its P_N. A row with G_jj = 0 cannot change its velocity:
+/// P_j = −(least subgradient of ψ at D_A), and a normal row with D_NA < 0 has no solution.
+template <int N, int C>
+MethodOutcome solve_decoupled(const FremondRowsT<N, C>& rows, Rows<N, C>& P) {
+  const auto& cs = *rows.cs;
+  const int r = cs.rows();
+  MethodOutcome o;
+  P.setZero(r);
+  const double gmax = cs.G.diagonal().maxCoeff();
+  for (int j = 0; j < r; ++j) {
+    const double g = cs.G(j, j);
+    const double D = cs.D_A(j);
+    if (g > 1e-14 * gmax) {
+      const double z = rows.prox(j, D, rows.bound(j, P));
+      P(j) = 2.0 * (z - D) / g;
+    } else if (rows.is_normal(j)) {
+      if (D < 0.0) {
+        o.status = SolverStatus::no_solution;
+        o.message = "a contact that takes part has no normal direction (W_N column is zero)";
+        return o;
+      }
+      P(j) = -rows.law->normal[rows.contact(j)].subgradient(D);
+    } else if (rows.coulomb) {
+      P(j) = D == 0.0 ? 0.0 : -std::copysign(rows.bound(j, P), D);
+    } else {
+      P(j) = -rows.law->tangential_potential[rows.contact(j)].subgradient(D);
+    }
+  }
+  o.status = SolverStatus::converged;
+  o.criterion = StopCriterion::exact;
+  o.message = "decoupled rows: one exact prox per row";
+  Rows<N, C> z, R;
+  o.residual = rows.residual(P, z, R);
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One contact with Coulomb friction: every mode (stick, slide ±, with P_N of either sign) reduces
+// to one scalar normal problem  z = D̃ + g P/2,  −P ∈ ∂ψ(z),  ψ = φ_N + I_{[D_NA/2, ∞)}.
+// With g > 0 it has exactly one solution, z = prox_{(g/2)ψ}(D̃). With g ≤ 0 (μ|G_NT| > G_NN, the
+// Painlevé-type case of SPEC §2) it may have none or several: for a power law f(z) = φ'(z) −
+// a(z − D̃), a = 2/|g|, is monotone between the points where φ''(z) = a, so all roots are found
+// by bisection on at most three monotone pieces.
+
+struct ScalarRoots {
+  std::array<double, 4> z{};
+  int count = 0;
+  bool exhaustive = true;  ///< false when a degenerate case leaves a continuum of solutions
+  void add(double v) {
+    for (int i = 0; i < count; ++i)
+      if (std::fabs(z[i] - v) <= 8 * kEps * (std::fabs(v) + std::fabs(z[i]))) return;
+    if (count < 4) z[count++] = v;
+  }
+};
+
+double bisect_root(const PowerPotential& phi, double a, double Dt, double lo, double hi) {
+  auto f = [&](double z) { return phi.subgradient(z) - a * (z - Dt); };
+  double flo = f(lo);
+  for (int i = 0; i < 2000; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    const double fm = f(mid);
+    if (fm == 0.0) return mid;
+    if ((fm < 0.0) == (flo < 0.0)) {
+      lo = mid;
+      flo = fm;
+    } else {
+      hi = mid;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// Solutions z of the scalar normal problem; `phi` may be null (then only g > 0 is handled).
+ScalarRoots scalar_normal(const Potential& normal, const PowerPotential* phi, double Dt, double g,
+                          double lb, double gscale) {
+  ScalarRoots out;
+  if (g > 1e-14 * gscale) {
+    const double y = normal.prox(Dt, 0.5 * g);
+    out.add(std::max(y, lb));
+    return out;
+  }
+  if (std::fabs(g) <= 1e-14 * gscale) {  // z = D̃ cannot move
+    if (Dt > lb) out.add(Dt);
+    if (Dt == lb) {
+      out.add(Dt);
+      out.exhaustive = false;  // any reaction ≥ 0 will do
+    }
+    return out;
+  }
+  if (!phi) {
+    out.exhaustive = false;
+    return out;
+  }
+  const double a = 2.0 / std::fabs(g);
+  auto f = [&](double z) { return phi->subgradient(z) - a * (z - Dt); };
+  // Root at the bound (reaction active): a(lb − D̃) ∈ ∂ψ(lb) = (−∞, φ'(lb)].
+  if (a * (lb - Dt) <= phi->subgradient(lb)) out.add(lb);
+  // Interior roots z > lb, piece by piece.
+  std::array<double, 4> cuts{};
+  int nc = 0;
+  cuts[nc++] = lb;
+  const double k = phi->k(), p = phi->p();
+  if (k > 0.0 && p != 2.0) {
+    const double zs = std::pow(a / (k * (p - 1.0)), 1.0 / (p - 2.0));
+    if (std::isfinite(zs)) {
+      if (-zs > lb) cuts[nc++] = -zs;
+      if (zs > lb) cuts[nc++] = zs;
+    }
+  }
+  std::sort(cuts.begin(), cuts.begin() + nc);
+  // The unbounded last piece: walk out until f has its limiting sign.
+  double limit_sign;
+  if (k == 0.0 || p < 2.0) limit_sign = -1.0;
+  else if (p > 2.0) limit_sign = 1.0;
+  else limit_sign = (k > a) ? 1.0 : (k < a ? -1.0 : (a * Dt > 0 ? 1.0 : -1.0));
+  double hi = std::max({1.0, std::fabs(lb), std::fabs(Dt), cuts[nc - 1] + 1.0});
+  for (int i = 0; i < 2100 && (f(hi) > 0.0 ? 1.0 : -1.0) != limit_sign; ++i) hi *= 2.0;
+  for (int i = 0; i < nc; ++i) {
+    const double lo = cuts[i];
+    const double up = (i + 1 < nc) ? cuts[i + 1] : hi;
+    const double flo = f(lo), fup = f(up);
+    if (flo == 0.0 && lo > lb) out.add(lo);
+    if (fup == 0.0) out.add(up);
+    if ((flo < 0.0 && fup > 0.0) || (flo > 0.0 && fup < 0.0)) out.add(bisect_root(*phi, a, Dt, lo, up));
+  }
+  return out;
+}
+
+struct ContactSolution {
+  double PN, PT;
+};
+
+/// All solutions of Frémond + Coulomb for one active contact (rows N, T).
+template <int N, int C>
+int one_contact_coulomb_modes(const FremondRowsT<N, C>& rows, std::array<ContactSolution, 16>& sols,
+                              bool* exhaustive) {
+  const auto& cs = *rows.cs;
+  const int i = rows.contact(0);
+  const Potential& normal = rows.law->normal[i];
+  const auto* phi = dynamic_cast<const PowerPotential*>(&normal);
+  const double mu = rows.law->mu[i];
+  const double gN = cs.G(0, 0), gNT = cs.G(0, 1), gT = cs.G(1, 1);
+  const double DN = cs.D_A(0), DT = cs.D_A(1);
+  const double lb = 0.5 * DN;
+  const double gscale = std::max(gN, gT);
+  int n = 0;
+  *exhaustive = true;
+  auto push = [&](double PN, double PT) {
+    const double scale = std::fabs(PN) + std::fabs(PT) + 1e-300;
+    for (int s = 0; s < n; ++s)
+      if (std::fabs(sols[s].PN - PN) + std::fabs(sols[s].PT - PT) <= 1e-12 * scale) return;
+    if (n < 16) sols[n++] = {PN, PT};
+  };
+  const double tol = 1e-12;
+  // Stick: z_T = 0 ⇒ P_T = −(2 D_T + G_NT P_N)/G_TT; Schur complement on the normal row.
+  if (gT > 1e-14 * gscale) {
+    const double Dt = DN - gNT * DT / gT;
+    const double g = gN - gNT * gNT / gT;
+    const ScalarRoots roots = scalar_normal(normal, phi, Dt, g, lb, gscale);
+    *exhaustive = *exhaustive && roots.exhaustive;
+    for (int r = 0; r < roots.count; ++r) {
+      const double PN = std::fabs(g) > 1e-14 * gscale ? 2.0 * (roots.z[r] - Dt) / g
+                                                      : -normal.subgradient(roots.z[r]);
+      const double PT = -(2.0 * DT + gNT * PN) / gT;
+      if (std::fabs(PT) <= mu * std::fabs(PN) * (1.0 + tol)) push(PN, PT);
+    }
+  } else if (DT == 0.0) {
+    *exhaustive = false;
+  }
+  // Slide with sign s of z_T, and σ the sign of P_N: P_T = −s μ|P_N| = c P_N, c = −sσμ.
+  for (double s : {1.0, -1.0}) {
+    for (double sigma : {1.0, -1.0}) {
+      const double c = -s * sigma * mu;
+      const double g = gN + gNT * c;
+      const ScalarRoots roots = scalar_normal(normal, phi, DN, g, lb, gscale);
+      *exhaustive = *exhaustive && roots.exhaustive;
+      for (int r = 0; r < roots.count; ++r) {
+        const double PN = std::fabs(g) > 1e-14 * gscale ? 2.0 * (roots.z[r] - DN) / g
+                                                        : -normal.subgradient(roots.z[r]);
+        if (PN * sigma < 0.0) continue;
+        const double PT = c * PN;
+        const double zT = DT + 0.5 * (gNT * PN + gT * PT);
+        if (zT * s > 0.0) push(PN, PT);
+      }
+    }
+  }
+  return n;
+}
+
+/// Splits the normal percussion: P_reac = max(0, P_N + φ_N'(z_N)) where the reaction can act
+/// (z_N at its bound D_NA/2, i.e. D_NE = 0), else 0 (eq. 16).
+template <int N, int C>
+void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                    ImpactResultT<N, C>& out) {
+  const auto& cs = *rows.cs;
+  out.P_N_reaction.setZero(cs.contacts);
+  Rows<N, C> z;
+  rows.mean_velocity(P, z);
+  for (int k = 0; k < cs.active; ++k) {
+    const double lb = rows.lower_bound(k);
+    const double slack = 64 * kEps * (std::fabs(lb) + std::fabs(z(k))) + std::numeric_limits<double>::min();
+    if (z(k) <= lb + slack) {
+      const double s = rows.law->normal[rows.contact(k)].subgradient(z(k));
+      out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + s);
+    }
+  }
+}
+
+/// The percussion is determined by the velocities except on rows whose ∂ψ is set-valued (an
+/// active reaction, a sticking Coulomb contact, a kink of a potential); P is unique iff the
+/// columns of W for those rows are independent.
+template <int N, int C>
+bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                       const ImpactResultT<N, C>& out) {
+  const auto& cs = *rows.cs;
+  const int r = cs.rows();
+  Rows<N, C> z;
+  rows.mean_velocity(P, z);
+  MatT<N, ContactSpaceT<N, C>::kMaxRows> Ws(cs.dofs, r);
+  int m = 0;
+  for (int j = 0; j < r; ++j) {
+    bool set_valued;
+    const double zs = 64 * kEps * cs.v_scale;
+    if (rows.is_normal(j)) {
+      set_valued = out.P_N_reaction(rows.contact(j)) > 0.0 ||
+                   rows.law->normal[rows.contact(j)].subdifferential(z(j)).hi -
+                           rows.law->normal[rows.contact(j)].subdifferential(z(j)).lo >
+                       0.0;
+    } else if (rows.coulomb) {
+      set_valued = std::fabs(z(j)) <= zs && rows.bound(j, P) > 0.0;
+    } else {
+      const Interval sd = rows.law->tangential_potential[rows.contact(j)].subdifferential(z(j));
+      set_valued = sd.hi - sd.lo > 0.0;
+    }
+    if (set_valued) Ws.col(m++) = cs.W.col(j);
+  }
+  if (m <= 1) return m == 0 || Ws.col(0).squaredNorm() > 0.0;
+  Ws.conservativeResize(cs.dofs, m);
+  Eigen::ColPivHouseholderQR<MatT<N, ContactSpaceT<N, C>::kMaxRows>> qr(Ws);
+  qr.setThreshold(1e-10);
+  return qr.rank() == m;
+}
+
+template <int N, int C>
+void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, ImpactResultT<N, C>& out) {
+  out.solver.method = m;
+  out.solver.status = o.status;
+  out.solver.criterion = o.criterion;
+  out.solver.iterations = o.iterations;
+  out.solver.message = o.message;
+  out.solver.native_code = o.native_code;
+  out.solver.residual = o.residual / v_scale;
+}
+
+}  // namespace
+
+template <int N, int C>
+void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                   const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+  FremondRowsT<N, C> rows;
+  rows.init(cs, law);
+  Rows<N, C> P = Rows<N, C>::Zero(cs.rows());
+  const SolverMethod want = opt.method;
+  auto finish = [&](const MethodOutcome& o, SolverMethod m) {
+    write_outcome(o, m, cs.v_scale, out);
+    scatter_solution(pb, cs, P, out);
+    split_reaction(rows, P, out);
+    if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
+      out.unique = percussion_unique(rows, P, out);
+  };
+
+  if (cs.active == 0) {
+    MethodOutcome o;
+    o.status = SolverStatus::converged;
+    o.criterion = StopCriterion::exact;
+    o.message = "no contact takes part (every D_NA > 0): no percussion";
+    finish(o, SolverMethod::trivial);
+    return;
+  }
+  const bool has_prox = law_has_prox(law);
+  const bool automatic = want == SolverMethod::automatic;
+  auto unsupported = [&](const char* why) {
+    MethodOutcome o;
+    o.status = SolverStatus::unsupported;
+    o.message = why;
+    finish(o, want);
+  };
+  if (!has_prox && !automatic && want != SolverMethod::nlopt)
+    return unsupported("a potential of the law has no prox: only the NLopt method applies");
+
+  // 1. Exact methods: decoupled rows, or one contact with Coulomb by mode enumeration.
+  const bool is_decoupled = decoupled(cs);
+  if (has_prox && is_decoupled &&
+      (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton)) {
+    const auto o = solve_decoupled(rows, P);
+    finish(o, law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+    return;
+  }
+  if (has_prox && cs.active == 1 && rows.coulomb &&
+      (automatic || want == SolverMethod::mode_enumeration)) {
+    std::array<ContactSolution, 16> sols;
+    bool exhaustive = true;
+    const int n = one_contact_coulomb_modes(rows, sols, &exhaustive);
+    if (n > 0 || exhaustive) {
+      MethodOutcome o;
+      o.criterion = StopCriterion::exact;
+      if (n == 0) {
+        o.status = SolverStatus::no_solution;
+        o.message = "Frémond + Coulomb has no solution for these data (mu|G_NT| > G_NN)";
+        finish(o, SolverMethod::mode_enumeration);
+        out.unique = false;
+        return;
+      }
+      // Several solutions: return the one that dissipates most (the least T_E).
+      int best = 0;
+      double best_e = std::numeric_limits<double>::infinity();
+      for (int s = 0; s < n; ++s) {
+        const double zN = cs.D_A(0) + 0.5 * (cs.G(0, 0) * sols[s].PN + cs.G(0, 1) * sols[s].PT);
+        const double zT = cs.D_A(1) + 0.5 * (cs.G(1, 0) * sols[s].PN + cs.G(1, 1) * sols[s].PT);
+        const double e = sols[s].PN * zN + sols[s].PT * zT;  // T_E − T_A, eq. 9
+        if (e < best_e) {
+          best_e = e;
+          best = s;
+        }
+      }
+      P(0) = sols[best].PN;
+      P(1) = sols[best].PT;
+      Rows<N, C> z, R;
+      o.residual = rows.residual(P, z, R);
+      o.status = SolverStatus::converged;
+      o.message = n == 1 ? "one contact with Coulomb: every mode tried, one solution"
+                         : "one contact with Coulomb: several solutions; the most dissipative one";
+      out.solutions_found = n;
+      out.unique = (n == 1) && exhaustive;
+      finish(o, SolverMethod::mode_enumeration);
+      if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, out);
+      return;
+    }
+  }
+  if (!automatic && (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
+                     want == SolverMethod::mode_enumeration))
+    return unsupported("the requested exact method does not apply to this problem");
+  if (!automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial))
+    return unsupported("the requested method is not one of Frémond's law");
+
+  // 2. Semismooth Newton from the decoupled guess, 3. proximal iterations, 4. NLopt.
+  int tried = 0;
+  if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
+    Rows<N, C> P0 = P;
+    solve_decoupled(rows, P0);  // a guess: each row as if alone
+    if (!P0.allFinite()) P0.setZero();
+    P = P0;
+    const auto o = semismooth_newton(rows, P, opt);
+    if (o.status == SolverStatus::converged || !automatic) {
+      finish(o, SolverMethod::semismooth_newton);
+      out.solver.fallbacks = tried;
+      return;
+    }
+    ++tried;
+    P = P0;
+  }
+  if (has_prox && (automatic || want == SolverMethod::proximal)) {
+    const auto o = proximal_iterations(rows, P, opt);
+    if (o.status == SolverStatus::converged || !automatic) {
+      finish(o, SolverMethod::proximal);
+      out.solver.fallbacks = tried;
+      return;
+    }
+    ++tried;
+  }
+  const auto o = nlopt_velocity_space(pb, rows, P, opt);
+  finish(o, SolverMethod::nlopt);
+  out.solver.fallbacks = tried;
+}
+
+template <int N, int C>
+double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                        const ImpactResultT<N, C>& r) {
+  ContactSpaceT<N, C> cs;
+  build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
+  FremondRowsT<N, C> rows;
+  rows.init(cs, law);
+  Rows<N, C> P(cs.rows()), z, R;
+  for (int k = 0; k < cs.active; ++k) {
+    P(k) = r.P_N(cs.index(k));
+    if (cs.tangential) P(cs.active + k) = r.P_T(cs.index(k));
+  }
+  // Percussions on contacts that do not take part must be zero.
+  double off = 0.0;
+  for (int i = 0; i < cs.contacts; ++i)
+    if (!(r.D_NA.size() > i && r.D_NA(i) <= 0.0) && cs.active < cs.contacts) {
+      bool active = false;
+      for (int k = 0; k < cs.active; ++k) active = active || cs.index(k) == i;
+      if (!active) off = std::max({off, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
+    }
+  const double res = cs.rows() ? rows.residual(P, z, R) : 0.0;
+  const double gmax = cs.rows() ? cs.G.diagonal().maxCoeff() : 0.0;
+  return std::max(res, off * gmax) / cs.v_scale;
+}
+
+std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const ImpactLaw& law,
+                                            const SolverOptions& opt) {
+  ContactSpaceT<Dynamic, Dynamic> cs;
+  build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
+  FremondRowsT<Dynamic, Dynamic> rows;
+  rows.init(cs, law);
+  std::vector<ImpactResult> all;
+  if (cs.active == 1 && rows.coulomb && law_has_prox(law) && !decoupled(cs)) {
+    std::array<ContactSolution, 16> sols;
+    bool exhaustive = true;
+    const int n = one_contact_coulomb_modes(rows, sols, &exhaustive);
+    for (int s = 0; s < n; ++s) {
+      ImpactResult r;
+      Rows<Dynamic, Dynamic> P(2), z, R;
+      P << sols[s].PN, sols[s].PT;
+      MethodOutcome o;
+      o.status = SolverStatus::converged;
+      o.criterion = StopCriterion::exact;
+      o.message = "one contact with Coulomb: every mode tried";
+      o.residual = rows.residual(P, z, R);
+      write_outcome(o, SolverMethod::mode_enumeration, cs.v_scale, r);
+      scatter_solution(pb, cs, P, r);
+      split_reaction(rows, P, r);
+      r.unique = n == 1 && exhaustive;
+      r.solutions_found = n;
+      all.push_back(std::move(r));
+    }
+    if (n > 0 || exhaustive) return all;
+  }
+  ImpactResult r;
+  solve_fremond(pb, cs, law, opt, r);
+  if (r.solver.status == SolverStatus::no_solution) return {};
+  r.solutions_found = 1;
+  all.push_back(std::move(r));
+  return all;
+}
+
+#define FREMOND_INSTANTIATE(N, C)                                                                  \
+  template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,            \
+                              const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&);      \
+  template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,                 \
+                                   const ImpactResultT<N, C>&);
+FREMOND_INSTANTIATE(Dynamic, Dynamic)
+FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
+#undef FREMOND_INSTANTIATE
+
+}  // namespace fremond::detail

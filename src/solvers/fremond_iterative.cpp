@@ -1,0 +1,174 @@
+// The iterative solvers of Frémond's law in contact space: semismooth Newton with a line search,
+// and accelerated proximal iterations. Both solve R(P) = z − prox_{τψ}(z − τP) = 0 (fremond_rows).
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "detail/fremond.hpp"
+
+namespace fremond::detail {
+
+namespace {
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+}
+
+// Newton's step solves J ΔP = −R with J = (I − D) G/2 + D T (+ the Coulomb coupling ∂R_T/∂P_N),
+// D = diag(∂prox/∂x) ∈ [0,1], T = diag(τ). J is singular where the law leaves P undetermined (a flat
+// bar sticking with both ends: two identical rows); then a Levenberg–Marquardt step
+// (JᵀJ + λI)ΔP = −JᵀR with λ = ‖R‖ keeps fast local convergence (Yamashita–Fukushima).
+template <int N, int C>
+MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename FremondRowsT<N, C>::Rows& P,
+                                const SolverOptions& opt) {
+  using Rows = typename FremondRowsT<N, C>::Rows;
+  using RowMat = typename ContactSpaceT<N, C>::RowMat;
+  const auto& cs = *rows.cs;
+  const int r = cs.rows(), a = cs.active;
+  MethodOutcome o;
+  Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r);
+  RowMat J(r, r);
+  double nr = rows.residual(P, z, R);
+  const double target = opt.tolerance * cs.v_scale;
+  for (int it = 0;; ++it) {
+    o.iterations = it;
+    o.residual = nr;
+    if (!std::isfinite(nr)) {
+      o.status = SolverStatus::failed;
+      o.message = "semismooth Newton: the residual is not finite";
+      return o;
+    }
+    if (nr <= std::max(target, rows.rounding_floor(P))) {
+      o.status = SolverStatus::converged;
+      o.criterion = StopCriterion::residual;
+      o.message = "semismooth Newton converged";
+      return o;
+    }
+    if (it >= opt.max_iterations) {
+      o.status = SolverStatus::max_iterations;
+      o.criterion = StopCriterion::iterations;
+      o.message = "semismooth Newton: iteration budget exhausted";
+      return o;
+    }
+    // Generalized Jacobian.
+    for (int j = 0; j < r; ++j) {
+      double d = 0.0, dydb = 0.0;
+      rows.prox(j, z(j) - rows.tau(j) * P(j), rows.bound(j, P), &d, &dydb);
+      J.row(j) = (0.5 * (1.0 - d)) * cs.G.row(j);
+      J(j, j) += d * rows.tau(j);
+      if (dydb != 0.0) {
+        const int k = j - a;  // the normal row of the same contact
+        J(j, k) -= dydb * rows.law->mu[rows.contact(j)] * (P(k) >= 0.0 ? 1.0 : -1.0);
+      }
+    }
+    Eigen::PartialPivLU<RowMat> lu(J);
+    bool ok = lu.rcond() > 1e-12;
+    if (ok) {
+      dP = lu.solve(-R);
+      ok = dP.allFinite();
+    }
+    if (!ok) {
+      RowMat A = J.transpose() * J;
+      const double lambda = std::max(nr, kEps * A.diagonal().maxCoeff());
+      A.diagonal().array() += lambda;
+      dP = A.llt().solve(-(J.transpose() * R));
+    }
+    // Armijo backtracking on θ = ½‖R‖².
+    const double theta0 = 0.5 * R.squaredNorm();
+    double t = 1.0, nrt = nr;
+    bool accepted = false;
+    for (int ls = 0; ls < 50; ++ls) {
+      Pt = P + t * dP;
+      nrt = rows.residual(Pt, zt, Rt);
+      if (0.5 * Rt.squaredNorm() <= (1.0 - 1e-4 * t) * theta0) {
+        accepted = true;
+        break;
+      }
+      t *= 0.5;
+    }
+    if (!accepted) {
+      o.status = SolverStatus::stalled;
+      o.criterion = StopCriterion::step;
+      o.message = "semismooth Newton: the line search found no decrease";
+      return o;
+    }
+    P = Pt;
+    z = zt;
+    R = Rt;
+    nr = nrt;
+  }
+}
+
+// Proximal iterations by splitting: a projected Gauss–Seidel sweep over the rows, each row solved
+// exactly by its own prox with the others fixed (the nonsmooth Gauss–Seidel of Moreau and Jean, as in
+// Siconos's NSGS). With x_j = z_j − G_jj P_j/2 the row alone reads z_j = x_j + G_jj P_j/2,
+// −P_j ∈ ∂ψ_j(z_j), so z_j = prox_{τ_j ψ_j}(x_j) with τ_j = G_jj/2 and P_j = (z_j − x_j)/τ_j.
+// Normal rows come first in each sweep, so a Coulomb row sees the bound μ|P_N| of the same sweep.
+// It needs only the prox, works with a singular G, and converges linearly where Newton may not
+// (a poor start, kinks everywhere); its cost per sweep is O(rows²).
+template <int N, int C>
+MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
+                                  typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
+  using Rows = typename FremondRowsT<N, C>::Rows;
+  const auto& cs = *rows.cs;
+  const int r = cs.rows();
+  MethodOutcome o;
+  Rows z(r), R(r);
+  rows.mean_velocity(P, z);
+  const double gmax = cs.G.diagonal().maxCoeff();
+  const double target = opt.tolerance * cs.v_scale;
+  double best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
+  for (int it = 1; it <= opt.max_proximal_iterations; ++it) {
+    for (int j = 0; j < r; ++j) {
+      const double g = cs.G(j, j);
+      if (!(g > 1e-14 * gmax)) continue;  // a row that cannot move keeps its percussion
+      const double x = z(j) - 0.5 * g * P(j);
+      const double zj = rows.prox(j, x, rows.bound(j, P));
+      const double dPj = (zj - x) / rows.tau(j) - P(j);
+      if (dPj != 0.0) {
+        P(j) += dPj;
+        z.noalias() += (0.5 * dPj) * cs.G.col(j);
+      }
+    }
+    const double nr = rows.residual(P, z, R);
+    o.iterations = it;
+    o.residual = nr;
+    if (!std::isfinite(nr)) {
+      o.status = SolverStatus::failed;
+      o.message = "proximal iterations: the iterates diverged";
+      return o;
+    }
+    if (nr <= std::max(target, rows.rounding_floor(P))) {
+      o.status = SolverStatus::converged;
+      o.criterion = StopCriterion::residual;
+      o.message = "proximal iterations converged";
+      return o;
+    }
+    // Stagnation: no new best residual for many sweeps (rounding reached, or a cycle).
+    if (nr < 0.999 * best) {
+      best = nr;
+      since_best = 0;
+    } else if (++since_best > 1000) {
+      o.status = SolverStatus::stalled;
+      o.criterion = StopCriterion::step;
+      o.message = "proximal iterations: no progress in 1000 sweeps";
+      return o;
+    }
+  }
+  o.status = SolverStatus::max_iterations;
+  o.criterion = StopCriterion::iterations;
+  o.message = "proximal iterations: iteration budget exhausted";
+  return o;
+}
+
+#define FREMOND_INSTANTIATE(N, C)                                                                  \
+  template MethodOutcome semismooth_newton(const FremondRowsT<N, C>&,                             \
+                                           FremondRowsT<N, C>::Rows&, const SolverOptions&);      \
+  template MethodOutcome proximal_iterations(const FremondRowsT<N, C>&,                           \
+                                             FremondRowsT<N, C>::Rows&, const SolverOptions&);
+FREMOND_INSTANTIATE(Dynamic, Dynamic)
+FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
+#undef FREMOND_INSTANTIATE
+
+}  // namespace fremond::detail
