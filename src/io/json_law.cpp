@@ -67,48 +67,45 @@ class PathTrackingBuilder final : public nlohmann::json_sax<json> {
   bool number_float(number_float_t v, const string_t&) override { return add(json(v)); }
   bool string(string_t& v) override { return add(json(std::move(v))); }
   bool binary(binary_t& v) override { return add(json(json::binary_t(std::move(v)))); }
-  bool start_object(std::size_t) override {
-    json* o = slot();
-    *o = json::object();
-    frames_.push_back({o, {}, {}});
-    return true;
-  }
+  bool start_object(std::size_t) override { return open(json::object()); }
   bool key(string_t& k) override {
     Frame& f = frames_.back();
     if (!f.keys.insert(k).second) {
-      fail(key_path(path(/*include_last=*/false), k), "duplicate key (given more than once)");
+      fail(key_path(container_path(), k), "duplicate key (given more than once)");
       return false;
     }
     f.key = k;
+    f.value_read = false;
     return true;
   }
-  bool end_object() override {
-    frames_.pop_back();
-    return true;
-  }
-  bool start_array(std::size_t) override {
-    json* a = slot();
-    *a = json::array();
-    frames_.push_back({a, {}, {}});
-    return true;
-  }
-  bool end_array() override {
-    frames_.pop_back();
-    return true;
-  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(json::array()); }
+  bool end_array() override { return close(); }
+
   bool parse_error(std::size_t, const std::string& token, const json::exception& ex) override {
-    const std::string at = path(/*include_last=*/true);
+    std::string at = container_path();
+    std::string after;
+    if (!frames_.empty()) {
+      const Frame& f = frames_.back();
+      if (f.value->is_array()) {
+        at = index_path(at, f.value->size());  // the next element
+      } else if (!f.keys.empty()) {
+        if (f.value_read)  // between two members: say where, without blaming the last key
+          after = " (after the value of \"" + f.key + "\")";
+        else
+          at = key_path(at, f.key);
+      }
+    }
+    const std::string name = at.empty() ? root_name_ : at;
     if (ex.id == 406) {  // out_of_range.406: a number beyond the range of a double
-      fail(at.empty() ? root_name_ : at,
-           "must be a finite number, got " + token + " (out of the range of a double)");
+      fail(name, "must be a finite number, got " + token + " (out of the range of a double)");
       return false;
     }
     // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep line, column and reason.
     std::string what = ex.what();
-    if (const auto close = what.find("] ");
-        what.rfind("[json.exception", 0) == 0 && close != what.npos)
-      what = what.substr(close + 2);
-    fail(at.empty() ? root_name_ : at, "not valid JSON: " + what);
+    if (const auto end = what.find("] "); what.rfind("[json.exception", 0) == 0 && end != what.npos)
+      what = what.substr(end + 2);
+    fail(name, "not valid JSON: " + what + after);
     return false;
   }
 
@@ -118,7 +115,8 @@ class PathTrackingBuilder final : public nlohmann::json_sax<json> {
  private:
   struct Frame {
     json* value;
-    std::string key;  // objects: the key whose value is being read
+    std::string key;          // objects: the last key read
+    bool value_read = false;  // objects: the value of `key` is complete
     std::set<std::string> keys;
   };
 
@@ -134,23 +132,30 @@ class PathTrackingBuilder final : public nlohmann::json_sax<json> {
   }
   bool add(json v) {
     *slot() = std::move(v);
+    value_done();
     return true;
   }
-  // The key being read: `a.b[2]`. With include_last = false, the innermost object's key is left
-  // out (for a duplicate key, whose own name is appended by the caller).
-  std::string path(bool include_last) const {
-    std::string p;
-    for (std::size_t i = 0; i < frames_.size(); ++i) {
+  bool open(json empty) {
+    json* v = slot();
+    *v = std::move(empty);
+    frames_.push_back({v, {}, false, {}});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    value_done();
+    return true;
+  }
+  void value_done() {
+    if (!frames_.empty()) frames_.back().value_read = true;
+  }
+  // The path of the innermost container: `a.b[2]` (each outer container's current member).
+  // A document that is a list has no key: its elements are named `root[i]`.
+  std::string container_path() const {
+    std::string p = !frames_.empty() && frames_[0].value->is_array() ? root_name_ : "";
+    for (std::size_t i = 0; i + 1 < frames_.size(); ++i) {
       const Frame& f = frames_[i];
-      const bool last = i + 1 == frames_.size();
-      if (f.value->is_object()) {
-        if (last && !include_last) break;
-        if (!f.key.empty() || !f.keys.empty()) p = key_path(p, f.key);
-      } else {
-        // Inner frames: the element under construction is the last one; the innermost frame:
-        // the next one.
-        p = index_path(p, last ? f.value->size() : f.value->size() - 1);
-      }
+      p = f.value->is_object() ? key_path(p, f.key) : index_path(p, f.value->size() - 1);
     }
     return p;
   }

@@ -22,11 +22,16 @@ std::string dims(Eigen::Index r, Eigen::Index c) {
 
 // validate(problem) takes an empty w_N, w_T or W_T as "not given"; in a file the key itself says
 // whether it was given, so a present key of the wrong size is refused rather than read as absent.
-void check_given_sizes(const ImpactProblem& pb, const json& doc) {
-  const auto n = pb.M.rows(), c = pb.W_N.cols();
-  if (doc.contains("W_T") && (pb.W_T.rows() != n || pb.W_T.cols() != c))
+// W_T is checked against W_N before validate() (which would otherwise blame w_T for a W_T given
+// empty), but only once W_N has the rows of M, so that the first message names the first mistake.
+void check_given_W_T(const ImpactProblem& pb, const json& doc) {
+  const auto n = pb.W_N.rows(), c = pb.W_N.cols();
+  if (doc.contains("W_T") && n == pb.M.rows() && (pb.W_T.rows() != n || pb.W_T.cols() != c))
     throw InvalidArgument(
         "W_T", "must be " + dims(n, c) + " like W_N, got " + dims(pb.W_T.rows(), pb.W_T.cols()));
+}
+void check_given_w(const ImpactProblem& pb, const json& doc) {
+  const auto c = pb.W_N.cols();
   for (const char* key : {"w_N", "w_T"}) {
     const auto size = std::string(key) == "w_N" ? pb.w_N.size() : pb.w_T.size();
     if (doc.contains(key) && size != c)
@@ -59,8 +64,9 @@ ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegist
   if (const json* j = detail::optional_key(doc, "w_T"))
     pb.w_T = detail::vector_from_json(*j, "w_T");
   pb.qdot_A = detail::vector_from_json(doc["qdot_A"], "qdot_A");
+  check_given_W_T(pb, doc);
   validate(pb);  // sizes, symmetry, positive definiteness; messages name M, W_N, ...
-  check_given_sizes(pb, doc);
+  check_given_w(pb, doc);
   // Fixed obstacles by default (SPEC §1: w_N, w_T are zero for a fixed obstacle); stored explicitly
   // so that every user of the problem sees c entries.
   if (pb.w_N.size() == 0) pb.w_N.setZero(pb.W_N.cols());
@@ -143,7 +149,12 @@ ojson result_json(const ImpactResultT<N, C>& r) {
   j["D_TA"] = numbers(r.D_TA);
   j["D_NE"] = numbers(r.D_NE);
   j["D_TE"] = numbers(r.D_TE);
-  j["P_N_reaction"] = numbers(r.P_N_reaction);
+  // The reaction part is Frémond's; for the other laws it is zero (impact_result.hpp), which a
+  // solver may leave unsized: print the zeros, so that every per-contact list has c entries.
+  if (r.P_N_reaction.size() == 0 && r.P_N.size() != 0)
+    j["P_N_reaction"] = numbers(Eigen::VectorXd::Zero(r.P_N.size()));
+  else
+    j["P_N_reaction"] = numbers(r.P_N_reaction);
   j["takes_part"] = flags(r.takes_part);
   j["energy_change"] = number(r.energy_change);
   if (r.has_phases) {  // Poisson: the end of compression (SPEC §2)
