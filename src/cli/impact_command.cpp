@@ -101,8 +101,7 @@ void run(const ImpactArguments& args) {
     const auto all = solve_impact_all(file.problem, file.law, options);
     print(io::solutions_to_json(all, indent));
     if (all.empty()) {
-      std::fprintf(stderr,
-                   "fremond impact: no solution: the law %s has no solution for these data\n",
+      std::fprintf(stderr, "fremond impact: the law has no solution for these data (%s)\n",
                    file.law.describe().c_str());
       exit_with(kExitNoSolution);
     }
@@ -119,7 +118,7 @@ void run(const ImpactArguments& args) {
   const auto result = solve_impact(file.problem, file.law, options);
   print(io::result_to_json(result, indent));
   if (result.solver.status == SolverStatus::no_solution) {
-    std::fprintf(stderr, "fremond impact: no solution: %s\n",
+    std::fprintf(stderr, "fremond impact: the law has no solution for these data (%s)\n",
                  std::string(result.solver.message).c_str());
     exit_with(kExitNoSolution);
   }
