@@ -1,0 +1,179 @@
+// The public LCP solver (solvers/lemke.hpp) against hand solutions and a brute-force enumeration of
+// complementary bases.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "fremond/core/error.hpp"
+#include "fremond/solvers/lemke.hpp"
+
+namespace fremond {
+namespace {
+
+// Every solution of LCP(M, q) found by trying each complementary basis: z_S = −M_SS⁻¹ q_S, the
+// other z zero, kept when z ≥ 0 and w = Mz + q ≥ 0. Independent of Lemke's pivoting.
+std::vector<VectorX> brute_force(const MatrixX& M, const VectorX& q) {
+  const int n = static_cast<int>(q.size());
+  std::vector<VectorX> all;
+  const double tol = 1e-9 * (1.0 + q.cwiseAbs().maxCoeff());
+  for (int set = 0; set < (1 << n); ++set) {
+    std::vector<int> s;
+    for (int i = 0; i < n; ++i)
+      if (set & (1 << i)) s.push_back(i);
+    const int k = static_cast<int>(s.size());
+    MatrixX Ms(k, k);
+    VectorX qs(k);
+    for (int i = 0; i < k; ++i) {
+      qs(i) = q(s[i]);
+      for (int j = 0; j < k; ++j) Ms(i, j) = M(s[i], s[j]);
+    }
+    VectorX z = VectorX::Zero(n);
+    if (k) {
+      Eigen::FullPivLU<MatrixX> lu(Ms);
+      if (lu.rank() < k) continue;
+      const VectorX zs = lu.solve(-qs);
+      for (int i = 0; i < k; ++i) z(s[i]) = zs(i);
+    }
+    const VectorX w = M * z + q;
+    if (z.minCoeff() < -tol || w.minCoeff() < -tol) continue;
+    bool seen = false;
+    for (const auto& y : all) seen = seen || (y - z).cwiseAbs().maxCoeff() < 1e-7;
+    if (!seen) all.push_back(z);
+  }
+  return all;
+}
+
+TEST(Lemke, SolvesATwoByTwoByHand) {
+  // 2 z1 + z2 = 5, z1 + 2 z2 = 6 with both z > 0: z = (4/3, 7/3), w = 0.
+  MatrixX M(2, 2);
+  M << 2, 1, 1, 2;
+  const VectorX q = Eigen::Vector2d(-5, -6);
+  const LcpResult r = solve_lcp(M, q);
+  ASSERT_EQ(r.status, LcpStatus::solved);
+  EXPECT_NEAR(r.z(0), 4.0 / 3.0, 1e-14);
+  EXPECT_NEAR(r.z(1), 7.0 / 3.0, 1e-14);
+  EXPECT_NEAR(r.w.cwiseAbs().maxCoeff(), 0.0, 1e-14);
+  EXPECT_LE(r.residual, 1e-15);
+}
+
+TEST(Lemke, OneVariableOpensWhenTheOtherPushesIt) {
+  // M = [[1, 2], [0, 1]], q = (−1, 1): z2 = 0 (w2 = 1 > 0), z1 = 1, w = (0, 1).
+  MatrixX M(2, 2);
+  M << 1, 2, 0, 1;
+  const LcpResult r = solve_lcp(M, VectorX(Eigen::Vector2d(-1, 1)));
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.z(0), 1.0, 1e-15);
+  EXPECT_EQ(r.z(1), 0.0);
+  EXPECT_NEAR(r.w(1), 1.0, 1e-15);
+}
+
+TEST(Lemke, NonNegativeQNeedsNoPivot) {
+  const MatrixX M = MatrixX::Identity(3, 3);
+  const LcpResult r = solve_lcp(M, VectorX(Eigen::Vector3d(1, 0, 2)));
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.pivots, 0);
+  EXPECT_EQ(r.z.cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(Lemke, PMatricesMatchTheBruteForceSolution) {
+  // M with a positive definite symmetric part is a P-matrix: exactly one solution for every q.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + trial % 8;
+    MatrixX A(n, n), S(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        A(i, j) = u(rng);
+        S(i, j) = u(rng);
+      }
+    const MatrixX M = A * A.transpose() + 0.05 * MatrixX::Identity(n, n) + (S - S.transpose());
+    VectorX q(n);
+    for (int i = 0; i < n; ++i) q(i) = 3 * u(rng);
+    const auto ref = brute_force(M, q);
+    ASSERT_EQ(ref.size(), 1u) << "trial " << trial;
+    const LcpResult r = solve_lcp(M, q);
+    ASSERT_TRUE(r.ok()) << "trial " << trial << ": " << to_string(r.status);
+    EXPECT_LE((r.z - ref[0]).cwiseAbs().maxCoeff(), 1e-10 * (1 + ref[0].cwiseAbs().maxCoeff()))
+        << "trial " << trial;
+    EXPECT_LE(r.residual, 1e-13) << "trial " << trial;
+  }
+}
+
+TEST(Lemke, DegenerateSingularProblemsDoNotCycle) {
+  // M = B Bᵀ with B n×k, k < n (singular, positive semidefinite), small integers so that ratios tie
+  // exactly; q = w* − M z* with z*, w* ≥ 0, complementary, and both zero on some indices (degenerate
+  // at the solution). A solution exists, so lexicographic Lemke must find one in few pivots.
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> small(-2, 2), pick(0, 2);
+  int degenerate_seen = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = 2 + trial % 7, k = 1 + trial % (n - 1);
+    MatrixX B(n, k);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < k; ++j) B(i, j) = small(rng);
+    const MatrixX M = B * B.transpose();
+    VectorX zs = VectorX::Zero(n), ws = VectorX::Zero(n);
+    int both_zero = 0;
+    for (int i = 0; i < n; ++i) {
+      const int c = pick(rng);
+      if (c == 0) zs(i) = 1 + pick(rng);
+      else if (c == 1) ws(i) = 1 + pick(rng);
+      else ++both_zero;
+    }
+    degenerate_seen += both_zero > 0;
+    const VectorX q = ws - M * zs;
+    const LcpResult r = solve_lcp(M, q);
+    ASSERT_TRUE(r.ok()) << "trial " << trial << ": " << to_string(r.status);
+    EXPECT_LE(r.residual, 1e-12) << "trial " << trial;
+    EXPECT_LE(r.pivots, 4 * n + 2) << "trial " << trial;
+    // Symmetric PSD: w is the same at every solution.
+    EXPECT_LE((r.w - ws).cwiseAbs().maxCoeff(), 1e-9) << "trial " << trial;
+  }
+  EXPECT_GT(degenerate_seen, 100);
+}
+
+TEST(Lemke, InfeasiblePsdProblemEndsOnASecondaryRay) {
+  // z1 − z2 ≥ 1 and z2 − z1 ≥ 1 cannot both hold.
+  MatrixX M(2, 2);
+  M << 1, -1, -1, 1;
+  const LcpResult r = solve_lcp(M, VectorX(Eigen::Vector2d(-1, -1)));
+  EXPECT_EQ(r.status, LcpStatus::secondary_ray);
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(Lemke, SmallAndDynamicAgree) {
+  MatT<kSmallLcp, kSmallLcp> Ms(3, 3);
+  Ms << 2, -1, 0, -1, 2, -1, 0, -1, 2;
+  VecT<kSmallLcp> qs(3);
+  qs << -1, 3, -3;
+  const SmallLcpResult a = solve_lcp(Ms, qs);
+  const LcpResult b = solve_lcp(MatrixX(Ms), VectorX(qs));
+  ASSERT_TRUE(a.ok());
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(VectorX(a.z), b.z);
+  EXPECT_EQ(a.pivots, b.pivots);
+  // Hand check: z2 = 0 (w2 = 3 − z1 − z3 = 1 > 0), 2 z1 = 1, 2 z3 = 3.
+  EXPECT_NEAR(a.z(0), 0.5, 1e-15);
+  EXPECT_NEAR(a.z(2), 1.5, 1e-15);
+}
+
+TEST(Lemke, RefusesBadInput) {
+  EXPECT_THROW(solve_lcp(MatrixX(2, 3), VectorX(2)), InvalidArgument);
+  MatrixX M = MatrixX::Identity(2, 2);
+  M(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(solve_lcp(M, VectorX(Eigen::Vector2d(-1, 1))), InvalidArgument);
+  LemkeOptions bad;
+  bad.max_pivots = 0;
+  EXPECT_THROW(solve_lcp(MatrixX(MatrixX::Identity(1, 1)), VectorX(VectorX::Ones(1)), bad),
+               InvalidArgument);
+  EXPECT_EQ(lcp_status_from_string("secondary_ray"), LcpStatus::secondary_ray);
+  EXPECT_THROW(lcp_status_from_string("nope"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace fremond
