@@ -1,0 +1,103 @@
+// The one residual of the classical laws (laws/residual.hpp), used by the solvers to report and by
+// the tests to check: the natural map of each complementarity and of Coulomb's law, in velocity
+// units, at velocities recomputed from the percussions in the result.
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fremond/solvers/detail/classical.hpp"
+
+namespace fremond::detail {
+
+namespace {
+
+// min(w, g·x): zero exactly when 0 ≤ x ⊥ w ≥ 0 (g converts a percussion to a velocity).
+double complementarity(double w, double x, double g) { return std::min(w, g * x); }
+
+// Coulomb's natural map on (t, v) with bound b: g·(t − clamp(t − v/g, −b, b)); zero exactly when
+// |t| ≤ b, v = 0 where |t| < b, t = −b sign(v) where v ≠ 0. A negative bound is clipped (the
+// normal residual reports the negative percussion).
+double coulomb(double t, double v, double b, double g) {
+  b = std::max(0.0, b);
+  return g * (t - std::clamp(t - v / g, -b, b));
+}
+
+}  // namespace
+
+template <int N, int C>
+double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                          const ImpactResultT<N, C>& r) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const int n = pb.dofs(), c = pb.contacts();
+  const bool tangential = pb.has_tangential();
+  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool friction = law.type == LawType::newton_coulomb || law.type == LawType::poisson_coulomb;
+  if (r.P_N.size() != c || r.P_T.size() != c) return inf;
+  if (poisson && (!r.has_phases || r.P_NC.size() != c || r.P_TC.size() != c)) return inf;
+
+  Eigen::LLT<MatT<N, N>> llt(pb.M);
+  auto wn = [&](int i) { return pb.w_N.size() ? pb.w_N(i) : 0.0; };
+  auto wt = [&](int i) { return pb.w_T.size() ? pb.w_T(i) : 0.0; };
+  // Velocities after the percussions (PN, PT), from the problem data only.
+  auto velocity = [&](const VecT<C>& PN, const VecT<C>& PT) {
+    VecT<N> f = pb.W_N * PN;
+    if (tangential) f.noalias() += pb.W_T * PT;
+    VecT<N> q = pb.qdot_A;
+    q += llt.solve(f);
+    return q;
+  };
+  const VecT<N> qE = velocity(r.P_N, r.P_T);
+  VecT<N> qC(n);
+  if (poisson) qC = velocity(r.P_NC, r.P_TC);
+
+  double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
+  for (int i = 0; i < c; ++i) {
+    const double dna = pb.W_N.col(i).dot(pb.qdot_A) + wn(i);
+    const double dta = tangential ? pb.W_T.col(i).dot(pb.qdot_A) + wt(i) : 0.0;
+    const double gn_raw = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
+    const double gn = gn_raw > 0 ? gn_raw : 1.0;
+    double gt = 1.0;
+    if (tangential) {
+      const double g = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
+      gt = g > 0 ? g : 1.0;
+    }
+    auto keep = [&](double x) { worst = std::max(worst, std::isnan(x) ? inf : std::fabs(x)); };
+    if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
+      keep(gn * r.P_N(i));
+      keep(gt * r.P_T(i));
+      if (poisson) {
+        keep(gn * r.P_NC(i));
+        keep(gt * r.P_TC(i));
+      }
+      continue;
+    }
+    v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
+    const double e = law.e[i], mu = friction ? law.mu[i] : 0.0;
+    const double dne = pb.W_N.col(i).dot(qE) + wn(i);
+    const double dte = tangential ? pb.W_T.col(i).dot(qE) + wt(i) : 0.0;
+    if (!poisson) {
+      keep(complementarity(dne + e * dna, r.P_N(i), gn));  // eq. 5 as a complementarity
+      if (tangential) keep(coulomb(r.P_T(i), dte, mu * r.P_N(i), gt));
+      continue;
+    }
+    // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
+    const double dnc = pb.W_N.col(i).dot(qC) + wn(i);
+    const double dtc = tangential ? pb.W_T.col(i).dot(qC) + wt(i) : 0.0;
+    keep(complementarity(dnc, r.P_NC(i), gn));
+    if (tangential) keep(coulomb(r.P_TC(i), dtc, mu * r.P_NC(i), gt));
+    const double pne = r.P_N(i) - r.P_NC(i), pte = r.P_T(i) - r.P_TC(i);
+    keep(complementarity(dne, pne - e * r.P_NC(i), gn));
+    if (tangential) keep(coulomb(pte, dte, mu * pne, gt));
+  }
+  return worst / v_scale;
+}
+
+#define FREMOND_INSTANTIATE(N, C)                                                               \
+  template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
+                                     const ImpactResultT<N, C>&);
+FREMOND_INSTANTIATE(Dynamic, Dynamic)
+FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
+#undef FREMOND_INSTANTIATE
+
+}  // namespace fremond::detail

@@ -1,0 +1,505 @@
+#pragma once
+// One phase of a classical impact law in contact space (SPEC §2), and the exact methods that solve
+// it: the closed form for one contact, the LCP by lexicographic Lemke, the enumeration of contact
+// modes, and the choice of the minimum-norm percussion when G is singular.
+//
+// Every classical law is one or two phases of the same form. Unknowns: normal percussions x ≥ 0
+// and tangential percussions t on the a contacts that take part; velocities
+//
+//     w = G_NN x + G_NT t + q_N,     0 ≤ x ⊥ w ≥ 0,
+//     v = G_TN x + G_TT t + q_T,     Coulomb on (t, v) with bound β = μ∘x + b0,
+//
+// i.e. |t_i| ≤ β_i, v_i = 0 where |t_i| < β_i, t_i = −β_i sign(v_i) where v_i ≠ 0.
+//  - Newton (eq. 5):   q = ((1 + e)∘D_NA, D_TA), b0 = 0; then P = (x, t), w = D_NE + e D_NA.
+//  - Poisson, compression: q = D_A, b0 = 0; then P_C = (x, t), D_C = D_A + G P_C.
+//  - Poisson, expansion: x = ΔP, q = D_C + G (e∘P_NC, 0), b0 = μ∘e∘P_NC; then
+//    P_E = (e∘P_NC + ΔP, t) (SPEC table: P_NE = e P_NC + ΔP, bound μ P_NE).
+// Without friction rows (or with zero bounds everywhere) t = 0 and the phase is LCP(G_NN, q_N).
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "fremond/core/types.hpp"
+#include "fremond/solvers/lemke.hpp"
+#include "lemke.hpp"
+
+namespace fremond::detail::classical {
+
+constexpr int times(int m, int k) { return m == Dynamic ? Dynamic : k * m; }
+
+/// A fixed-capacity list (no heap): the solutions of one phase or one law.
+template <class T, int Capacity>
+struct FixedList {
+  std::array<T, Capacity> items;
+  int size = 0;
+  bool overflow = false;  ///< more were found than fit (the list is then not exhaustive)
+  void push(const T& x) {
+    if (size < Capacity) items[size++] = x;
+    else overflow = true;
+  }
+  const T& operator[](int i) const { return items[i]; }
+  T& operator[](int i) { return items[i]; }
+};
+
+/// How many solutions one phase or one law keeps. Enough for every case met in practice: one contact
+/// has at most 4 per phase; more contacts are only enumerated up to 3.
+inline constexpr int kMaxSolutions = 24;
+
+template <int MaxC>
+struct Phase {
+  static constexpr int kMaxRows = times(MaxC, 2);
+  using Rows = VecT<kMaxRows>;
+  using RowMat = MatT<kMaxRows, kMaxRows>;
+  using CVec = VecT<MaxC>;
+
+  int a = 0;              ///< contacts that take part
+  bool friction = false;  ///< tangential rows present (rows = 2a), else rows = a and t = 0
+  RowMat G;               ///< rows × rows: [G_NN G_NT; G_TN G_TT] or G_NN
+  Rows q;                 ///< rows: (q_N, q_T)
+  CVec mu, b0;            ///< a (friction only)
+
+  int rows() const { return friction ? 2 * a : a; }
+  /// The velocities (w, v) = G u + q at percussions u = (x, t).
+  Rows velocity(const Rows& u) const {
+    Rows v = q;
+    v.noalias() += G * u;
+    return v;
+  }
+};
+
+/// Absolute tolerances of the phase: velocities, and percussions (velocity over the largest G_ii).
+struct Tolerances {
+  double v = 0.0;
+  double p = 0.0;
+};
+
+template <int MaxC>
+Tolerances tolerances(const Phase<MaxC>& ph, double v_scale, double relative = 1e-9) {
+  Tolerances tol;
+  tol.v = relative * v_scale;
+  const double g = ph.rows() ? ph.G.diagonal().cwiseAbs().maxCoeff() : 1.0;
+  tol.p = tol.v / std::max(g, std::numeric_limits<double>::min());
+  return tol;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One contact, closed form.
+
+/// Every solution of a one-contact phase: the open contact (x = 0), sticking (v = 0), and sliding
+/// either way (t = −σβ), each a 2×2 closed form (paper eqs. 7-8 with eq. 5 or the Poisson phases).
+struct OneContact {
+  int count = 0;
+  double x[4] = {0, 0, 0, 0}, t[4] = {0, 0, 0, 0};
+  bool degenerate = false;  ///< G singular or a continuum of sliding solutions: use the enumeration
+};
+
+inline void one_contact_push(OneContact& s, double x, double t, const Tolerances& tol) {
+  x = std::max(0.0, x);
+  for (int k = 0; k < s.count; ++k)
+    if (std::fabs(s.x[k] - x) <= 8 * tol.p && std::fabs(s.t[k] - t) <= 8 * tol.p) return;
+  s.x[s.count] = x;
+  s.t[s.count] = t;
+  ++s.count;
+}
+
+/// gnn, gnt, gtt: the contact's Delassus entries; qn, qt: the phase offsets; bound μx + b0.
+inline OneContact one_contact(double gnn, double gnt, double gtt, double qn, double qt, double mu,
+                              double b0, bool friction, const Tolerances& tol) {
+  OneContact s;
+  if (!friction || (mu == 0.0 && b0 == 0.0)) {
+    // Frictionless (eq. 6 for one contact): x = max(0, −q_N/G_NN).
+    if (qn >= 0.0) one_contact_push(s, 0.0, 0.0, tol);
+    else if (gnn > 0.0) one_contact_push(s, -qn / gnn, 0.0, tol);
+    else if (qn >= -tol.v) one_contact_push(s, 0.0, 0.0, tol);
+    return s;
+  }
+  const double det = gnn * gtt - gnt * gnt;
+  if (!(gtt > 0.0) || !(det > 1e-12 * gnn * gtt)) {
+    s.degenerate = true;
+    return s;
+  }
+  // Open: x = 0, the tangential percussion alone with the fixed bound b0 (unique as G_TT > 0).
+  {
+    const double t = b0 > 0.0 ? std::clamp(-qt / gtt, -b0, b0) : 0.0;
+    if (qn + gnt * t >= -tol.v) one_contact_push(s, 0.0, t, tol);
+  }
+  // Stick: w = 0, v = 0.
+  {
+    const double x = (gnt * qt - gtt * qn) / det, t = (gnt * qn - gnn * qt) / det;
+    if (x >= -tol.p && std::fabs(t) <= mu * std::max(0.0, x) + b0 + tol.p)
+      one_contact_push(s, x, t, tol);
+  }
+  // Slide with σ = sign(v): t = −σ(μx + b0), w = 0 gives (G_NN − σμG_NT) x = −q_N + σG_NT b0.
+  // A slide with v = 0 is the stick above, so σv must be clearly positive.
+  for (const double sigma : {1.0, -1.0}) {
+    const double den = gnn - sigma * mu * gnt, num = -qn + sigma * gnt * b0;
+    if (std::fabs(den) <= 1e-12 * (gnn + mu * std::fabs(gnt))) {
+      if (std::fabs(num) <= tol.v) s.degenerate = true;  // a continuum: let the enumeration decide
+      continue;
+    }
+    const double x = num / den;
+    if (x < -tol.p) continue;
+    const double t = -sigma * (mu * std::max(0.0, x) + b0);
+    const double v = gnt * std::max(0.0, x) + gtt * t + qt;
+    if (sigma * v > tol.v) one_contact_push(s, x, t, tol);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Several contacts.
+
+/// The cheapest exact guess for several contacts (eq. 6 generalised): every contact closed and, with
+/// friction, sticking, u = −G⁻¹q. True when G is regular and u satisfies the phase's inequalities.
+template <int MaxC>
+bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u) {
+  using RowMat = typename Phase<MaxC>::RowMat;
+  const int a = ph.a;
+  Eigen::LLT<RowMat> llt(ph.G);
+  if (llt.info() != Eigen::Success) return false;
+  const auto d = llt.matrixLLT().diagonal();
+  if (!(d.minCoeff() > 1e-7 * d.maxCoeff())) return false;  // near-singular: let Lemke decide
+  u = llt.solve(-ph.q);
+  for (int i = 0; i < a; ++i) {
+    if (u(i) < -tol.p) return false;
+    u(i) = std::max(0.0, u(i));
+    if (ph.friction && std::fabs(u(a + i)) > ph.mu(i) * u(i) + ph.b0(i) + tol.p) return false;
+  }
+  return true;
+}
+
+/// True when the phase has no tangential percussion at all (no rows, or every bound identically 0).
+template <int MaxC>
+bool frictionless(const Phase<MaxC>& ph) {
+  if (!ph.friction) return true;
+  for (int i = 0; i < ph.a; ++i)
+    if (ph.mu(i) != 0.0 || ph.b0(i) != 0.0) return false;
+  return true;
+}
+
+/// The phase as an LCP solved by lexicographic Lemke. Without friction: LCP(G_NN, q_N), symmetric
+/// positive semidefinite, so a secondary ray proves there is no solution. With friction, the
+/// 4a-variable form with t = β⁺ − β⁻ (Anitescu & Potra 1997, planar case):
+///     D_T + λ ≥ 0 ⊥ β⁺ ≥ 0,   −D_T + λ ≥ 0 ⊥ β⁻ ≥ 0,   μx + b0 − β⁺ − β⁻ ≥ 0 ⊥ λ ≥ 0,
+/// whose matrix is copositive (zᵀMz = PᵀGP + λᵀμx) but not copositive-plus: a ray there is not a
+/// proof.
+template <int MaxC>
+LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt,
+                      typename Phase<MaxC>::Rows& u, int& pivots) {
+  constexpr int kMaxN = times(MaxC, 4);
+  using Mat = MatT<kMaxN, kMaxN>;
+  using Vec = VecT<kMaxN>;
+  const int a = ph.a;
+  Vec z, w;
+  u.setZero(ph.rows());
+  if (frictionless(ph)) {
+    const Mat M = ph.G.topLeftCorner(a, a);
+    const Vec q = ph.q.head(a);
+    const LcpStatus st = lcp::lemke<kMaxN>(M, q, opt, z, w, pivots);
+    if (st == LcpStatus::solved) u.head(a) = z;
+    return st;
+  }
+  const int n = 4 * a;
+  Mat M = Mat::Zero(n, n);
+  const auto Gnn = ph.G.topLeftCorner(a, a), Gnt = ph.G.topRightCorner(a, a);
+  const auto Gtn = ph.G.bottomLeftCorner(a, a), Gtt = ph.G.bottomRightCorner(a, a);
+  M.block(0, 0, a, a) = Gnn;
+  M.block(0, a, a, a) = Gnt;
+  M.block(0, 2 * a, a, a) = -Gnt;
+  M.block(a, 0, a, a) = Gtn;
+  M.block(a, a, a, a) = Gtt;
+  M.block(a, 2 * a, a, a) = -Gtt;
+  M.block(2 * a, 0, a, a) = -Gtn;
+  M.block(2 * a, a, a, a) = -Gtt;
+  M.block(2 * a, 2 * a, a, a) = Gtt;
+  for (int i = 0; i < a; ++i) {
+    M(a + i, 3 * a + i) = 1.0;
+    M(2 * a + i, 3 * a + i) = 1.0;
+    M(3 * a + i, i) = ph.mu(i);
+    M(3 * a + i, a + i) = -1.0;
+    M(3 * a + i, 2 * a + i) = -1.0;
+  }
+  Vec q(n);
+  q << ph.q.head(a), ph.q.tail(a), -ph.q.tail(a), ph.b0;
+  const LcpStatus st = lcp::lemke<kMaxN>(M, q, opt, z, w, pivots);
+  if (st == LcpStatus::solved) {
+    u.head(a) = z.head(a);
+    u.tail(a) = z.segment(a, a) - z.segment(2 * a, a);
+  }
+  return st;
+}
+
+/// Projects 0 onto {y : B y ≥ d} shifted by y0, i.e. min ‖y − y0‖ s.t. B y ≥ d, through its dual
+/// LCP(BBᵀ, B y0 − d) (symmetric positive semidefinite: Lemke finds the answer or proves the set
+/// empty). Returns false when the set is empty.
+template <int MaxC, class BMat, class Vec1, class Vec2>
+bool project_polyhedron(const BMat& B, const Vec1& d, const Vec2& y0, VecT<times(MaxC, 2)>& y) {
+  constexpr int kMaxN = times(MaxC, 4);
+  const int m = static_cast<int>(B.rows());
+  y = y0;
+  if (m == 0) return true;
+  MatT<kMaxN, kMaxN> BBt(m, m);
+  BBt.noalias() = B * B.transpose();
+  VecT<kMaxN> q(m), lambda, w;
+  q.noalias() = B * y0;
+  q -= d;
+  int pivots = 0;
+  if (lcp::lemke<kMaxN>(BBt, q, LemkeOptions{}, lambda, w, pivots) != LcpStatus::solved) return false;
+  y.noalias() += B.transpose() * lambda;
+  return true;
+}
+
+/// The linear description of the percussions u that solve the phase with a given mode: equalities
+/// K u = rhs, inequalities C u ≥ g. Modes per contact: normal open (x = 0, w ≥ 0) or closed
+/// (w = 0, x ≥ 0); tangential zero (t = 0, bound identically 0), stick (v = 0, |t| ≤ β) or slide
+/// σ = ±1 (t = −σβ, σv ≥ 0).
+enum class Tangential { zero, stick, slide_positive, slide_negative };
+
+template <int MaxC>
+struct ModeSystem {
+  static constexpr int kMaxRows = times(MaxC, 2);
+  static constexpr int kMaxIneq = times(MaxC, 3);
+  MatT<kMaxRows, kMaxRows> K;
+  VecT<kMaxRows> rhs;
+  MatT<kMaxIneq, kMaxRows> C;
+  VecT<kMaxIneq> g;
+  int m = 0;  ///< inequality rows used
+};
+
+template <int MaxC>
+void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangential* tang,
+                ModeSystem<MaxC>& s) {
+  const int a = ph.a, r = ph.rows();
+  s.K.setZero(r, r);
+  s.rhs.setZero(r);
+  s.C.setZero(3 * a, r);
+  s.g.setZero(3 * a);
+  s.m = 0;
+  auto ineq = [&](auto row, double g) {
+    s.C.row(s.m) = row;
+    s.g(s.m++) = g;
+  };
+  for (int i = 0; i < a; ++i) {
+    if (normal_closed[i]) {
+      s.K.row(i) = ph.G.row(i);
+      s.rhs(i) = -ph.q(i);
+      ineq(VecT<times(MaxC, 2)>::Unit(r, i).transpose(), 0.0);
+    } else {
+      s.K(i, i) = 1.0;
+      ineq(ph.G.row(i), -ph.q(i));
+    }
+    if (!ph.friction) continue;
+    const int k = a + i;
+    switch (tang[i]) {
+      case Tangential::zero:
+        s.K(k, k) = 1.0;
+        break;
+      case Tangential::stick: {
+        s.K.row(k) = ph.G.row(k);
+        s.rhs(k) = -ph.q(k);
+        VecT<times(MaxC, 2)> up = VecT<times(MaxC, 2)>::Zero(r), lo = up;
+        up(i) = ph.mu(i);
+        up(k) = -1.0;  // μx + b0 − t ≥ 0
+        lo(i) = ph.mu(i);
+        lo(k) = 1.0;  // μx + b0 + t ≥ 0
+        ineq(up.transpose(), -ph.b0(i));
+        ineq(lo.transpose(), -ph.b0(i));
+        break;
+      }
+      case Tangential::slide_positive:
+      case Tangential::slide_negative: {
+        const double sigma = tang[i] == Tangential::slide_positive ? 1.0 : -1.0;
+        s.K(k, k) = 1.0;  // t + σμx = −σ b0
+        s.K(k, i) = sigma * ph.mu(i);
+        s.rhs(k) = -sigma * ph.b0(i);
+        ineq(sigma * ph.G.row(k), -sigma * ph.q(k));
+        break;
+      }
+    }
+  }
+}
+
+/// Solves one mode: a point u of {K u = rhs, C u ≥ g − tolerance} if there is one. `moves` is set
+/// when K is singular and a direction of its null space changes the velocities (a possible continuum
+/// of solutions).
+template <int MaxC>
+bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Tolerances& tol,
+                typename Phase<MaxC>::Rows& u, bool& moves) {
+  constexpr int kMaxRows = times(MaxC, 2);
+  const int r = ph.rows();
+  moves = false;
+  // A row's tolerance scales with the row: tol.p · ‖row‖∞ is about tol.v for velocity rows (G rows)
+  // and tol.p for percussion rows (entries 1 and μ).
+  auto row_tol = [&](int j) { return tol.p * s.C.row(j).cwiseAbs().maxCoeff(); };
+  Eigen::FullPivLU<MatT<kMaxRows, kMaxRows>> lu(s.K);
+  lu.setThreshold(1e-10);
+  if (lu.rank() == r) {
+    u = lu.solve(s.rhs);
+    for (int j = 0; j < s.m; ++j)
+      if (s.C.row(j).dot(u) - s.g(j) < -row_tol(j)) return false;
+    return true;
+  }
+  // Singular mode (e.g. the flat bar's equal tangents): u = u0 + N y, feasibility by projection.
+  Eigen::JacobiSVD<MatT<kMaxRows, kMaxRows>> svd(s.K, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const auto& sv = svd.singularValues();
+  const double smax = sv.size() ? sv(0) : 0.0;
+  int rank = 0;
+  while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
+  svd.setThreshold(1e-10);
+  const typename Phase<MaxC>::Rows u0 = svd.solve(s.rhs);
+  if ((s.K * u0 - s.rhs).cwiseAbs().maxCoeff() >
+      std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff()))
+    return false;  // inconsistent equations
+  const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
+  MatT<times(MaxC, 3), kMaxRows> B = s.C.topRows(s.m) * N;
+  VecT<times(MaxC, 3)> d = s.g.head(s.m) - s.C.topRows(s.m) * u0;
+  for (int j = 0; j < s.m; ++j) d(j) -= row_tol(j);
+  VecT<kMaxRows> y;
+  const VecT<kMaxRows> y0 = VecT<kMaxRows>::Zero(r - rank);
+  if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
+  u = u0 + N * y;
+  moves = (ph.G * N).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, ph.G.cwiseAbs().maxCoeff());
+  return true;
+}
+
+/// Every solution of a phase with friction, by trying every contact mode (up to 6 per contact).
+/// Solutions with the same velocities are one (their percussions differ only where G is singular;
+/// `minimum_norm` then picks one). `continuum` is set when a singular mode may hold a continuum of
+/// velocities.
+template <int MaxC>
+void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
+                     FixedList<typename Phase<MaxC>::Rows, kMaxSolutions>& out, bool& continuum) {
+  using Rows = typename Phase<MaxC>::Rows;
+  const int a = ph.a;
+  continuum = false;
+  constexpr int kMaxEnum = 3;
+  if (a > kMaxEnum) return;
+  // Per contact, the list of (closed, tangential) modes that make sense.
+  std::array<std::array<std::pair<int, Tangential>, 6>, kMaxEnum> modes{};
+  std::array<int, kMaxEnum> count{}, pick{};
+  for (int i = 0; i < a; ++i) {
+    int c = 0;
+    const bool zero_bound = !ph.friction || (ph.mu(i) == 0.0 && ph.b0(i) == 0.0);
+    for (int closed = 0; closed < 2; ++closed) {
+      if (zero_bound || (!closed && ph.b0(i) == 0.0)) {
+        modes[i][c++] = {closed, Tangential::zero};
+      } else {
+        for (Tangential t : {Tangential::stick, Tangential::slide_positive,
+                             Tangential::slide_negative})
+          modes[i][c++] = {closed, t};
+      }
+    }
+    count[i] = c;
+  }
+  ModeSystem<MaxC> sys;
+  Rows u;
+  int normal_closed[kMaxEnum];
+  Tangential tang[kMaxEnum];
+  while (true) {
+    for (int i = 0; i < a; ++i) {
+      normal_closed[i] = modes[i][pick[i]].first;
+      tang[i] = modes[i][pick[i]].second;
+    }
+    build_mode(ph, normal_closed, tang, sys);
+    bool moves = false;
+    if (solve_mode(ph, sys, tol, u, moves)) {
+      continuum = continuum || moves;
+      for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
+      const Rows v = ph.velocity(u);
+      bool seen = false;
+      for (int k = 0; k < out.size && !seen; ++k)
+        seen = (ph.velocity(out[k]) - v).cwiseAbs().maxCoeff() <= 16 * tol.v;
+      if (!seen) out.push(u);
+    }
+    int i = 0;
+    while (i < a && ++pick[i] == count[i]) pick[i++] = 0;
+    if (i == a) break;
+  }
+}
+
+/// Among the percussions that solve the phase with the same velocities as u (a polyhedron when G is
+/// singular: the velocities fix G u, and each contact's sign pattern fixes linear conditions), the
+/// one that minimises ‖u + shift‖ (`shift` turns the phase unknowns into the physical percussion:
+/// Poisson's expansion adds e∘P_NC). Replaces u; returns true when that set is a single point.
+template <int MaxC>
+bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
+                  const typename Phase<MaxC>::Rows& shift, typename Phase<MaxC>::Rows& u) {
+  constexpr int kMaxRows = times(MaxC, 2);
+  constexpr int kMaxStack = times(MaxC, 4);
+  constexpr int kMaxIneq = times(MaxC, 3);
+  using Rows = typename Phase<MaxC>::Rows;
+  const int a = ph.a, r = ph.rows();
+  const Rows v = ph.velocity(u);
+  MatT<kMaxStack, kMaxRows> K(2 * r, r);
+  K.setZero();
+  K.topRows(r) = ph.G;
+  int ne = r;
+  MatT<kMaxIneq, kMaxRows> C(3 * a, r);
+  C.setZero();
+  VecT<kMaxIneq> g(3 * a);
+  int m = 0;
+  for (int i = 0; i < a; ++i) {
+    if (v(i) > tol.v) {
+      K(ne++, i) = 1.0;  // separating: x_i = 0
+    } else {
+      C(m, i) = 1.0;  // x_i ≥ 0
+      g(m++) = 0.0;
+    }
+    if (!ph.friction) continue;
+    const int k = a + i;
+    if (ph.mu(i) == 0.0 && ph.b0(i) == 0.0) {
+      K(ne++, k) = 1.0;
+    } else if (std::fabs(v(k)) > tol.v) {
+      const double sigma = v(k) > 0 ? 1.0 : -1.0;  // sliding: t + σμx = −σb0
+      K(ne, k) = 1.0;
+      K(ne++, i) = sigma * ph.mu(i);
+    } else {
+      C(m, i) = ph.mu(i);  // sticking: μx + b0 ∓ t ≥ 0
+      C(m, k) = -1.0;
+      g(m++) = -ph.b0(i);
+      C(m, i) = ph.mu(i);
+      C(m, k) = 1.0;
+      g(m++) = -ph.b0(i);
+    }
+  }
+  Eigen::JacobiSVD<MatT<kMaxStack, kMaxRows>> svd(K.topRows(ne), Eigen::ComputeFullV);
+  const auto& sv = svd.singularValues();
+  const double smax = sv.size() ? sv(0) : 0.0;
+  int rank = 0;
+  while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
+  if (rank == r) return true;
+  const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
+  const MatT<kMaxIneq, kMaxRows> B = C.topRows(m) * N;
+  // u itself satisfies the inequalities up to rounding; clip that rounding so that y = 0 is exactly
+  // feasible and the answer violates nothing by more than it.
+  VecT<kMaxIneq> d = (g.head(m) - C.topRows(m) * u).cwiseMin(0.0);
+  const VecT<kMaxRows> y0 = -N.transpose() * (u + shift);
+  VecT<kMaxRows> y;
+  if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
+  u += N * y;
+  for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
+  // Single point? Only if no direction of the null space is feasible at y: project ±e_j onto the
+  // cone {δ : B_A δ ≥ 0} of the active rows; a non-zero projection is a feasible direction.
+  const int dim = r - rank;
+  MatT<kMaxIneq, kMaxRows> BA(m, dim);
+  int na = 0;
+  for (int j = 0; j < m; ++j)
+    if (B.row(j).dot(y) - d(j) <= tol.p)
+      BA.row(na++) = B.row(j);
+  if (na == 0) return false;
+  const VecT<kMaxIneq> zero = VecT<kMaxIneq>::Zero(na);
+  for (int j = 0; j < dim; ++j)
+    for (const double s : {1.0, -1.0}) {
+      const VecT<kMaxRows> e = s * VecT<kMaxRows>::Unit(dim, j);
+      VecT<kMaxRows> delta;
+      if (!project_polyhedron<MaxC>(BA.topRows(na), zero, e, delta)) continue;
+      if (delta.norm() > 1e-6) return false;
+    }
+  return true;
+}
+
+}  // namespace fremond::detail::classical

@@ -1,0 +1,387 @@
+// Newton + Coulomb and Poisson + Coulomb (SPEC §2, paper §4): stick, slide and reversal against
+// hand derivations, the frictionless limit, several solutions, the singular flat bar, and the
+// enumeration against Lemke.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "unit/classical_support.hpp"
+
+namespace fremond {
+namespace {
+
+using test::bar;
+using test::bar_first_impact;
+using test::flat_bar;
+using test::point_mass;
+
+constexpr double kPi4 = std::numbers::pi / 4;
+
+TEST(ClassicalCoulomb, PointMassSticksByHand) {
+  // G = I: P_N = −(1 + e) D_NA = 1.5; |D_TA| = 0.5 ≤ μ P_N, so P_T = −D_TA and D_TE = 0.
+  const ImpactResult r = solve_impact(point_mass(0.5, -1.0), ImpactLaw::newton_coulomb(0.5, 1.0));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.P_N(0), 1.5, 1e-15);
+  EXPECT_NEAR(r.P_T(0), -0.5, 1e-15);
+  EXPECT_NEAR(r.D_TE(0), 0.0, 1e-15);
+  EXPECT_EQ(r.solver.method, SolverMethod::closed_form);
+  EXPECT_TRUE(r.unique);
+  EXPECT_EQ(r.solutions_found, 1);
+}
+
+TEST(ClassicalCoulomb, PointMassSlidesEitherWayByHand) {
+  // P_N = 1.5, μ P_N = 0.75 < |D_TA| = 2: P_T = −0.75 sign(D_TA), D_TE = D_TA + P_T.
+  for (const double vx : {2.0, -2.0}) {
+    const ImpactResult r =
+        solve_impact(point_mass(vx, -1.0, 2.0), ImpactLaw::newton_coulomb(0.5, 0.5));
+    ASSERT_TRUE(r.ok()) << r.solver.message;
+    // m = 2: G = I/2, P_N = 1.5·2 = 3, bound 1.5, D_TE = vx + P_T/2.
+    EXPECT_NEAR(r.P_N(0), 3.0, 1e-15);
+    EXPECT_NEAR(r.P_T(0), -std::copysign(1.5, vx), 1e-15);
+    EXPECT_NEAR(r.D_TE(0), vx - std::copysign(0.75, vx), 1e-15);
+    EXPECT_LE(r.solver.residual, 1e-15);
+  }
+}
+
+TEST(ClassicalCoulomb, TiltedBarReversesItsSlidingByHand) {
+  // The paper's bar at θ = π/4 (eqs. 7-8: G_NN = G_TT = 2.5, G_NT = −1.5) with e = 0.9, μ = 0.2.
+  // Stick and forward sliding both fail; backward sliding (σ = −1, P_T = +μ P_N) gives
+  // P_N = −(1 + e) D_NA/(G_NN + μ G_NT) and D_TE = D_TA + (G_NT + μ G_TT) P_N < 0 < D_TA.
+  const double gnn = 2.5, gnt = -1.5, gtt = 2.5, e = 0.9, mu = 0.2;
+  const double dna = test::first_impact_ydot(), dta = 2.0;
+  const double qn = (1 + e) * dna;
+  // Stick: G P = (−q_N, −D_TA) violates |P_T| ≤ μ P_N.
+  const double det = gnn * gtt - gnt * gnt;
+  const double stick_n = (gnt * dta - gtt * qn) / det, stick_t = (gnt * qn - gnn * dta) / det;
+  ASSERT_GT(std::fabs(stick_t), mu * stick_n);
+  // Forward sliding ends with D_TE < 0: contradicts σ = +1.
+  const double fwd_n = -qn / (gnn - mu * gnt);
+  ASSERT_LT(dta + (gnt - mu * gtt) * fwd_n, 0.0);
+  const double pn = -qn / (gnn + mu * gnt), dte = dta + (gnt + mu * gtt) * pn;
+  ASSERT_LT(dte, 0.0);
+
+  const ImpactResult r = solve_impact(bar_first_impact(), ImpactLaw::newton_coulomb(e, mu));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.P_N(0), pn, 1e-13);
+  EXPECT_NEAR(r.P_T(0), mu * pn, 1e-13);
+  EXPECT_NEAR(r.D_TE(0), dte, 1e-13);
+  EXPECT_NEAR(r.D_NE(0), -e * dna, 1e-13);
+  EXPECT_TRUE(r.unique);
+}
+
+TEST(ClassicalCoulomb, ZeroFrictionIsTheFrictionlessLaw) {
+  const std::vector<ImpactProblem> problems = {bar_first_impact(), point_mass(2, -1),
+                                               flat_bar(Eigen::Vector3d(2, -3, 1))};
+  for (const ImpactProblem& p : problems) {
+    for (const double e : {0.0, 0.6, 1.0}) {
+      const ImpactResult n = solve_impact(p, ImpactLaw::newton(e));
+      const ImpactResult nc = solve_impact(p, ImpactLaw::newton_coulomb(e, 0.0));
+      ASSERT_TRUE(nc.ok()) << nc.solver.message;
+      EXPECT_EQ(nc.P_T.cwiseAbs().maxCoeff(), 0.0);
+      EXPECT_LE((nc.qdot_E - n.qdot_E).cwiseAbs().maxCoeff(), 1e-14);
+      const ImpactResult q = solve_impact(p, ImpactLaw::poisson(e));
+      const ImpactResult qc = solve_impact(p, ImpactLaw::poisson_coulomb(e, 0.0));
+      ASSERT_TRUE(qc.ok()) << qc.solver.message;
+      EXPECT_LE((qc.qdot_E - q.qdot_E).cwiseAbs().maxCoeff(), 1e-14);
+      // The friction machinery itself (a tiny μ, not the frictionless shortcut) tends to it.
+      const ImpactResult tiny = solve_impact(p, ImpactLaw::newton_coulomb(e, 1e-12));
+      ASSERT_TRUE(tiny.ok()) << tiny.solver.message;
+      EXPECT_LE((tiny.qdot_E - n.qdot_E).cwiseAbs().maxCoeff(), 1e-10);
+    }
+  }
+}
+
+TEST(ClassicalCoulomb, RestitutionZeroAndOneAreExactWithFriction) {
+  for (const double mu : {0.2, 1.0}) {
+    for (const ImpactProblem& p : {bar_first_impact(), point_mass(1.0, -1.0)}) {
+      const double dna = (p.W_N.transpose() * p.qdot_A)(0);
+      const ImpactResult plastic = solve_impact(p, ImpactLaw::newton_coulomb(0.0, mu));
+      ASSERT_TRUE(plastic.ok());
+      EXPECT_LE(std::fabs(plastic.D_NE(0)), 1e-15 * std::fabs(dna));
+      const ImpactResult elastic = solve_impact(p, ImpactLaw::newton_coulomb(1.0, mu));
+      ASSERT_TRUE(elastic.ok());
+      EXPECT_NEAR(elastic.D_NE(0), -dna, 2e-15 * std::fabs(dna));
+      const ImpactResult pe = solve_impact(p, ImpactLaw::poisson_coulomb(0.0, mu));
+      ASSERT_TRUE(pe.ok());
+      EXPECT_LE(std::fabs(pe.D_NE(0)), 1e-15 * std::fabs(dna));
+      EXPECT_EQ(pe.P_N(0), pe.P_NC(0));  // e = 0: no expansion percussion
+    }
+  }
+}
+
+TEST(ClassicalPoissonCoulomb, PointMassPhasesByHand) {
+  // G = I, q̇_A = (1.1, −1), μ = 0.8, e = 0.5. Compression: P_NC = 1, bound 0.8 < 1.1: slides,
+  // P_TC = −0.8, D_TC = 0.3. Expansion: P_NE = 0.5, bound 0.4 ≥ 0.3: sticks, P_TE = −0.3.
+  const ImpactResult r = solve_impact(point_mass(1.1, -1.0), ImpactLaw::poisson_coulomb(0.5, 0.8));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.has_phases);
+  EXPECT_NEAR(r.P_NC(0), 1.0, 1e-15);
+  EXPECT_NEAR(r.P_TC(0), -0.8, 1e-15);
+  EXPECT_NEAR(r.D_NC(0), 0.0, 1e-15);
+  EXPECT_NEAR(r.D_TC(0), 0.3, 1e-15);
+  EXPECT_NEAR(r.P_N(0), 1.5, 1e-15);
+  EXPECT_NEAR(r.P_T(0), -1.1, 1e-15);
+  EXPECT_NEAR(r.D_TE(0), 0.0, 1e-15);
+  // Decoupled, so it is also Newton + Coulomb's answer (stick iff |D_TA| ≤ μ(1 + e)|D_NA|).
+  const ImpactResult n = solve_impact(point_mass(1.1, -1.0), ImpactLaw::newton_coulomb(0.5, 0.8));
+  EXPECT_LE((n.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(ClassicalPoissonCoulomb, SlidesThroughBothPhasesByHand) {
+  // q̇_A = (2, −1), μ = 0.8, e = 0.5: compression P_TC = −0.8, D_TC = 1.2; expansion bound 0.4 < 1.2:
+  // still sliding, P_TE = −0.4, D_TE = 0.8.
+  const ImpactResult r = solve_impact(point_mass(2.0, -1.0), ImpactLaw::poisson_coulomb(0.5, 0.8));
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.D_TC(0), 1.2, 1e-15);
+  EXPECT_NEAR(r.P_T(0), -1.2, 1e-15);
+  EXPECT_NEAR(r.D_TE(0), 0.8, 1e-15);
+}
+
+TEST(ClassicalCoulomb, GrazingBarHasTwoSolutionsForLargeFriction) {
+  // The bar at θ = π/4 touching with D_NA = 0 and sliding back, D_TA = −1 (q̇_A = (−1, 0, 0)). The
+  // open contact (P = 0) is a solution. So is sticking, G P = (0, 1): P = (−G_NT, G_NN)/det =
+  // (1.5, 2.5)/4 with w_N = 0, admissible when |P_T| ≤ μ P_N, i.e. μ ≥ G_NN/|G_NT| = 5/3.
+  const ImpactProblem p = bar(kPi4, Eigen::Vector3d(-1, 0, 0));
+  const auto all = solve_impact_all(p, ImpactLaw::newton_coulomb(0.5, 2.0));
+  ASSERT_EQ(all.size(), 2u);
+  // Sorted by dissipation: sticking loses ½ P_T D_TA = 0.3125 of energy, the open contact none.
+  EXPECT_NEAR(all[0].P_N(0), 0.375, 1e-15);
+  EXPECT_NEAR(all[0].P_T(0), 0.625, 1e-15);
+  EXPECT_NEAR(all[0].energy_change, -0.3125, 1e-15);
+  EXPECT_EQ(all[1].P_N(0), 0.0);
+  EXPECT_EQ(all[1].P_T(0), 0.0);
+  for (const auto& r : all) {
+    EXPECT_FALSE(r.unique);
+    EXPECT_EQ(r.solutions_found, 2);
+    EXPECT_TRUE(r.ok());
+    EXPECT_LE(r.solver.residual, 1e-15);
+  }
+  const ImpactResult one = solve_impact(p, ImpactLaw::newton_coulomb(0.5, 2.0));
+  EXPECT_FALSE(one.unique);
+  EXPECT_EQ(one.solutions_found, 2);
+  EXPECT_NEAR(one.P_T(0), 0.625, 1e-15);  // the most dissipative is the one returned
+  // Below the threshold only the open contact is left.
+  const auto below = solve_impact_all(p, ImpactLaw::newton_coulomb(0.5, 1.6));
+  ASSERT_EQ(below.size(), 1u);
+  EXPECT_TRUE(below[0].unique);
+  EXPECT_EQ(below[0].P_N(0), 0.0);
+}
+
+TEST(ClassicalCoulomb, FlatBarWithSingularGSticksWithTheMinimumNormSplit) {
+  // θ = 0: G_NT = 0 and both tangents are (1, 0, 0), so the tangential rows of the 4×4 G are equal
+  // (rank 3). Normal part as without friction: P_N = 1.9 (19, 17)/12, ΣP_N = 5.7. Tangentially the
+  // bar is one mass: D_TE = D_TA + ΣP_T with D_TA = 2 ≤ μ ΣP_N, so it sticks with ΣP_T = −2;
+  // the split is free within |P_T,i| ≤ μ P_N,i and the minimum-norm one is (−1, −1).
+  const ImpactProblem p = flat_bar(Eigen::Vector3d(2, -3, 1));
+  SolverOptions lemke_only;
+  lemke_only.check_uniqueness = false;
+  for (const SolverOptions& o : {SolverOptions{}, lemke_only}) {
+    const ImpactResult r = solve_impact(p, ImpactLaw::newton_coulomb(0.9, 1.0), o);
+    ASSERT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_NEAR(r.P_N(0), 1.9 * 19 / 12, 1e-13);
+    EXPECT_NEAR(r.P_N(1), 1.9 * 17 / 12, 1e-13);
+    EXPECT_NEAR(r.P_T(0), -1.0, 1e-13);
+    EXPECT_NEAR(r.P_T(1), -1.0, 1e-13);
+    EXPECT_NEAR(r.qdot_E(0), 0.0, 1e-13);
+    EXPECT_NEAR(r.qdot_E(1), 2.7, 1e-13);
+    EXPECT_NEAR(r.qdot_E(2), -0.9, 1e-13);
+    EXPECT_FALSE(r.unique);  // the percussions are not unique, the velocities are
+    EXPECT_NE(std::string(r.solver.message).find("minimum-norm"), std::string::npos);
+    EXPECT_LE(r.solver.residual, 1e-14);
+  }
+  const ImpactResult lemke = solve_impact(p, ImpactLaw::newton_coulomb(0.9, 1.0), lemke_only);
+  EXPECT_EQ(lemke.solver.method, SolverMethod::lemke);
+  EXPECT_EQ(lemke.solutions_found, 0);  // not checked
+  // Sliding (μ = 0.2, μ ΣP_N = 1.14 < 2): each end's P_T = −μ P_N,i, unique.
+  for (const SolverOptions& o : {SolverOptions{}, lemke_only}) {
+    const ImpactResult s = solve_impact(p, ImpactLaw::newton_coulomb(0.9, 0.2), o);
+    ASSERT_TRUE(s.ok()) << s.solver.message;
+    EXPECT_NEAR(s.P_T(0), -0.2 * 1.9 * 19 / 12, 1e-13);
+    EXPECT_NEAR(s.P_T(1), -0.2 * 1.9 * 17 / 12, 1e-13);
+    EXPECT_NEAR(s.qdot_E(0), 2 - 0.2 * 5.7, 1e-13);
+  }
+  EXPECT_TRUE(solve_impact(p, ImpactLaw::newton_coulomb(0.9, 0.2)).unique);
+  // Poisson + Coulomb on the same bar: compression P_NC = G_NN⁻¹ (3.5, 2.5) = (19, 17)/12 with
+  // bound μ ΣP_NC = 3 ≥ 2: sticks with the split (−1, −1); the expansion starts at rest
+  // tangentially (bound e μ ΣP_NC > 0) and stays there: P_TE = 0.
+  const ImpactResult q = solve_impact(p, ImpactLaw::poisson_coulomb(0.9, 1.0));
+  ASSERT_TRUE(q.ok()) << q.solver.message;
+  EXPECT_NEAR(q.P_TC(0), -1.0, 1e-13);
+  EXPECT_NEAR(q.P_TC(1), -1.0, 1e-13);
+  EXPECT_NEAR(q.P_T(0), -1.0, 1e-13);
+  EXPECT_NEAR(q.qdot_E(0), 0.0, 1e-13);
+  EXPECT_FALSE(q.unique);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Several contacts: an independent enumeration of contact modes in the test, Lemke, and the
+// library's enumeration must agree.
+
+struct Reference {
+  std::vector<VectorX> velocities;  // distinct D_E = (D_NE, D_TE) of every solution
+};
+
+// Newton + Coulomb by brute force over (open | stick | slide+ | slide−) per contact, for a regular
+// G: each mode is a square linear system; a mode counts when its inequalities hold.
+Reference brute_force_newton_coulomb(const ImpactProblem& p, double e, double mu) {
+  const int c = p.contacts(), r = 2 * c;
+  MatrixX W(p.dofs(), r);
+  W << p.W_N, p.W_T;
+  const MatrixX G = W.transpose() * p.M.llt().solve(W);
+  const VectorX DA = W.transpose() * p.qdot_A;
+  VectorX q = DA;
+  q.head(c) *= (1 + e);
+  Reference ref;
+  const double tol = 1e-10 * DA.cwiseAbs().maxCoeff();
+  int modes = 1;
+  for (int i = 0; i < c; ++i) modes *= 4;
+  for (int code = 0; code < modes; ++code) {
+    MatrixX K = MatrixX::Zero(r, r);
+    VectorX b = VectorX::Zero(r);
+    std::vector<int> mode(c);
+    for (int i = 0, k = code; i < c; ++i, k /= 4) mode[i] = k % 4;
+    for (int i = 0; i < c; ++i) {
+      if (mode[i] == 0) {  // open: P_N = P_T = 0
+        K(i, i) = 1;
+        K(c + i, c + i) = 1;
+      } else {
+        K.row(i) = G.row(i);  // D_NE + e D_NA = 0
+        b(i) = -q(i);
+        if (mode[i] == 1) {
+          K.row(c + i) = G.row(c + i);  // D_TE = 0
+          b(c + i) = -q(c + i);
+        } else {  // P_T = −σ μ P_N
+          const double sigma = mode[i] == 2 ? 1 : -1;
+          K(c + i, c + i) = 1;
+          K(c + i, i) = sigma * mu;
+        }
+      }
+    }
+    const VectorX P = K.fullPivLu().solve(b);
+    const VectorX D = G * P + q;
+    bool ok = true;
+    for (int i = 0; i < c && ok; ++i) {
+      if (mode[i] == 0) ok = D(i) >= -tol;
+      else ok = P(i) >= -tol;
+      if (mode[i] == 1) ok = ok && std::fabs(P(c + i)) <= mu * P(i) + tol;
+      if (mode[i] == 2) ok = ok && D(c + i) > tol;
+      if (mode[i] == 3) ok = ok && D(c + i) < -tol;
+    }
+    if (!ok) continue;
+    VectorX DE = G * P + DA;
+    bool seen = false;
+    for (const auto& v : ref.velocities) seen = seen || (v - DE).cwiseAbs().maxCoeff() < 1e-8;
+    if (!seen) ref.velocities.push_back(DE);
+  }
+  return ref;
+}
+
+ImpactProblem random_problem(std::mt19937& rng, int c) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 6;
+  MatrixX A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = u(rng);
+  ImpactProblem p;
+  p.M = A * A.transpose() / n + 0.5 * MatrixX::Identity(n, n);
+  p.W_N.resize(n, c);
+  p.W_T.resize(n, c);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < c; ++j) {
+      p.W_N(i, j) = u(rng);
+      p.W_T(i, j) = u(rng);
+    }
+  p.qdot_A.resize(n);
+  for (int i = 0; i < n; ++i) p.qdot_A(i) = u(rng);
+  for (int j = 0; j < c; ++j)
+    if (p.W_N.col(j).dot(p.qdot_A) > 0) p.W_N.col(j) *= -1;
+  return p;
+}
+
+VectorX contact_velocities(const ImpactProblem& p, const ImpactResult& r) {
+  VectorX D(2 * p.contacts());
+  D << r.D_NE, r.D_TE;
+  return D;
+}
+
+TEST(ClassicalEnumeration, FindsEverySolutionAndAgreesWithLemkeWhenUnique) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> mus(0.0, 4.0);
+  int several = 0, single = 0, lemke_checked = 0;
+  SolverOptions lemke_only;
+  lemke_only.check_uniqueness = false;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int c = 2 + trial % 2;
+    const ImpactProblem p = random_problem(rng, c);
+    const double e = 0.5, mu = mus(rng);
+    const Reference ref = brute_force_newton_coulomb(p, e, mu);
+    const ImpactLaw law = ImpactLaw::newton_coulomb(e, mu);
+    const auto all = solve_impact_all(p, law);
+    ASSERT_EQ(all.size(), ref.velocities.size()) << "trial " << trial << " mu=" << mu;
+    for (const auto& r : all) {
+      EXPECT_TRUE(r.ok()) << "trial " << trial;
+      EXPECT_LE(r.solver.residual, 1e-12) << "trial " << trial;
+      const VectorX D = contact_velocities(p, r);
+      bool matched = false;
+      for (const auto& v : ref.velocities) matched = matched || (v - D).cwiseAbs().maxCoeff() < 1e-9;
+      EXPECT_TRUE(matched) << "trial " << trial;
+      EXPECT_EQ(r.unique, all.size() == 1) << "trial " << trial;
+    }
+    several += all.size() > 1;
+    if (all.size() == 1) {
+      ++single;
+      const ImpactResult l = solve_impact(p, law, lemke_only);
+      if (l.ok()) {
+        ++lemke_checked;
+        EXPECT_LE((contact_velocities(p, l) - contact_velocities(p, all[0])).cwiseAbs().maxCoeff(),
+                  1e-10)
+            << "trial " << trial;
+        EXPECT_LE((l.P_T - all[0].P_T).cwiseAbs().maxCoeff(), 1e-10) << "trial " << trial;
+      }
+    }
+  }
+  EXPECT_GT(several, 5);  // large μ gives several solutions in part of the sample
+  EXPECT_GT(single, 100);
+  EXPECT_GT(lemke_checked, single * 9 / 10);  // Lemke answers nearly everywhere a solution is unique
+}
+
+TEST(ClassicalEnumeration, SmallAndDynamicAgree) {
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 40; ++trial) {
+    const ImpactProblem p = random_problem(rng, 1 + trial % 3);
+    for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.7, 0.6),
+                                 ImpactLaw::poisson_coulomb(0.7, 0.6)}) {
+      const ImpactResult d = solve_impact(p, law);
+      const SmallImpactResult s = solve_impact(to_small(p), law);
+      ASSERT_EQ(d.solver.status, s.solver.status);
+      if (!d.ok()) continue;
+      EXPECT_LE((VectorX(s.qdot_E) - d.qdot_E).cwiseAbs().maxCoeff(), 1e-13);
+      EXPECT_EQ(d.unique, s.unique);
+      EXPECT_EQ(d.solutions_found, s.solutions_found);
+    }
+  }
+}
+
+TEST(ClassicalPoissonCoulomb, RandomAnswersSatisfyTheLaw) {
+  std::mt19937 rng(13);
+  int ok = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const ImpactProblem p = random_problem(rng, 1 + trial % 3);
+    const ImpactLaw law = ImpactLaw::poisson_coulomb(0.8, 0.4);
+    for (const auto& r : solve_impact_all(p, law)) {
+      EXPECT_TRUE(r.ok()) << "trial " << trial << ": " << r.solver.message;
+      EXPECT_LE(law_residual(p, law, r), 1e-12) << "trial " << trial;
+      // Pfeiffer & Glocker: Poisson + Coulomb in the plane does not create energy (paper §4.1).
+      EXPECT_LE(r.energy_change, 1e-12 * test::kinetic(p, p.qdot_A)) << "trial " << trial;
+      ok += r.ok();
+    }
+  }
+  EXPECT_GT(ok, 90);
+}
+
+}  // namespace
+}  // namespace fremond
