@@ -1,0 +1,80 @@
+// The preset scenes and the paper's laws (SPEC §5).
+#include "fremond/scenes/presets.hpp"
+
+#include "fremond/core/enum_names.hpp"
+#include "fremond/potentials/deadzone_power.hpp"
+#include "fremond/potentials/power.hpp"
+
+namespace fremond {
+
+namespace {
+constexpr detail::EnumNames<PaperLaw, 5> kPaperLaws{
+    {{PaperLaw::newton, "newton"},
+     {PaperLaw::newton_coulomb, "newton_coulomb"},
+     {PaperLaw::poisson_coulomb, "poisson_coulomb"},
+     {PaperLaw::fremond_coulomb, "fremond_coulomb"},
+     {PaperLaw::fremond_viscous, "fremond_viscous"}}};
+
+Scene on_ground(PlanarBody body, double gravity, const PlanarState& initial, ImpactLaw law) {
+  Scene s;
+  s.body = std::move(body);
+  s.obstacles = {HalfPlane{}};
+  s.gravity = gravity;
+  s.initial = initial;
+  s.law = std::move(law);
+  s.validate();
+  return s;
+}
+}  // namespace
+
+std::string_view to_string(PaperLaw l) { return detail::enum_to_string(kPaperLaws, l); }
+PaperLaw paper_law_from_string(std::string_view s) {
+  return detail::enum_from_string(kPaperLaws, s, "law");
+}
+
+Scene bar_scene(const BarParameters& bar, ImpactLaw law) {
+  PlanarBody body;
+  const double l = bar.half_length;
+  body.mass = bar.mass;
+  body.inertia = bar.mass * l * l / 3.0;
+  body.points = {ContactPoint{{-l, 0.0}, 0.0}, ContactPoint{{l, 0.0}, 0.0}};
+  return on_ground(std::move(body), bar.gravity, bar.initial, std::move(law));
+}
+
+Scene ball_scene(const BallParameters& ball, ImpactLaw law) {
+  PlanarBody body;
+  body.mass = ball.mass;
+  body.inertia = 0.4 * ball.mass * ball.radius * ball.radius;
+  body.points = {ContactPoint{{0.0, 0.0}, ball.radius}};
+  return on_ground(std::move(body), ball.gravity, ball.initial, std::move(law));
+}
+
+Scene block_scene(const BlockParameters& block, ImpactLaw law) {
+  PlanarBody body;
+  const double w = 0.5 * block.width, h = 0.5 * block.height;
+  body.mass = block.mass;
+  body.inertia = block.mass * (block.width * block.width + block.height * block.height) / 12.0;
+  body.points = {ContactPoint{{-w, -h}, 0.0}, ContactPoint{{w, -h}, 0.0},
+                 ContactPoint{{w, h}, 0.0}, ContactPoint{{-w, h}, 0.0}};
+  return on_ground(std::move(body), block.gravity, block.initial, std::move(law));
+}
+
+ImpactLaw paper_law(PaperLaw law, double k_N) {
+  using C = PaperConstants;
+  switch (law) {
+    case PaperLaw::newton:
+      return ImpactLaw::newton(C::e);
+    case PaperLaw::newton_coulomb:
+      return ImpactLaw::newton_coulomb(C::e, C::mu);
+    case PaperLaw::poisson_coulomb:
+      return ImpactLaw::poisson_coulomb(C::e, C::mu);
+    case PaperLaw::fremond_coulomb:
+      return ImpactLaw::fremond_coulomb(PowerPotential(k_N, C::p), C::mu);
+    case PaperLaw::fremond_viscous:
+      return ImpactLaw::fremond(PowerPotential(k_N, C::p),
+                                DeadZonePowerPotential(C::k_T, C::q, C::r));
+  }
+  return ImpactLaw::newton(C::e);
+}
+
+}  // namespace fremond
