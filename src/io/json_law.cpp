@@ -19,7 +19,9 @@ namespace fremond::io::detail {
 using fremond::detail::format_number;
 
 std::string key_path(const std::string& where, std::string_view key) {
-  return where.empty() ? std::string(key) : where + "." + std::string(key);
+  // An empty key is legal JSON; quoted, it still shows in "<key>: <reason>".
+  const std::string k = key.empty() ? std::string("\"\"") : std::string(key);
+  return where.empty() ? k : where + "." + k;
 }
 
 std::string index_path(const std::string& where, std::size_t i) {
@@ -96,6 +98,8 @@ class PathTrackingBuilder final : public nlohmann::json_sax<json> {
           at = key_path(at, f.key);
       }
     }
+    // A pathological nesting depth would make the name longer than the message is useful.
+    if (at.size() > 200) at = at.substr(0, 200) + "...";
     const std::string name = at.empty() ? root_name_ : at;
     if (ex.id == 406) {  // out_of_range.406: a number beyond the range of a double
       fail(name, "must be a finite number, got " + token + " (out of the range of a double)");
