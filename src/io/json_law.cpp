@@ -264,9 +264,7 @@ MatrixX matrix_from_json(const json& j, const std::string& key) {
     const std::string row_key = index_path(key, i);
     if (!row.is_array())
       throw InvalidArgument(row_key,
-                            "must be a row (a list of numbers; matrices are lists of "
-                            "rows), got " +
-                                describe_json(row));
+                            "must be a list of numbers (a matrix row), got " + describe_json(row));
     if (i == 0) cols = static_cast<Eigen::Index>(row.size());
     if (static_cast<Eigen::Index>(row.size()) != cols)
       throw InvalidArgument(row_key, "has " + std::to_string(row.size()) + " entries but " +

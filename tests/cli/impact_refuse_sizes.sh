@@ -9,11 +9,11 @@ refuse_edit "M rows of different lengths" "M[1]" "every row needs the same lengt
 refuse_edit "M empty" "M" "empty" fremond_point.json 'd["M"] = []'
 refuse_edit "M a number" "M" "must be a matrix (a list of rows), got the number 2" \
   fremond_point.json 'd["M"] = 2'
-refuse_edit "M a flat list" "M[0]" "must be a row" fremond_point.json 'd["M"] = [2]'
+refuse_edit "M a flat list" "M[0]" "must be a list of numbers (a matrix row)" fremond_point.json 'd["M"] = [2]'
 
 # Contact directions.
 refuse_edit "W_N rows != n" "W_N" "must have 2 rows" newton_coulomb_point.json 'd["W_N"] = [[1]]'
-refuse_edit "W_N a flat list" "W_N[0]" "must be a row" newton_coulomb_point.json \
+refuse_edit "W_N a flat list" "W_N[0]" "must be a list of numbers (a matrix row)" newton_coulomb_point.json \
   'd["W_N"] = [0, 1]'
 refuse_edit "W_T columns != W_N columns" "W_T" "must be 2x1 like W_N, got 2x2" \
   newton_coulomb_point.json 'd["W_T"] = [[1, 0], [0, 1]]'
