@@ -1,0 +1,180 @@
+// Our classical laws (Newton, Poisson, with Coulomb) on the benchmark problems of problems.hpp, at
+// three depths, each labelled so that bench/compare.py can set them beside the Siconos peers:
+//
+//  - BM_Classical_FromData: from (M, W, q̇_A) to the percussions, i.e. the contact space
+//    (G = Wᵀ M⁻¹ W on the stack) then the law. This is what the Siconos peers time; same label.
+//  - BM_Classical_Law: the law alone, from G and D_A: closed form, Lemke, and the minimum-norm
+//    choice where G is singular ("from=G" in the label).
+//  - BM_Classical_SolveImpact: the public entry point, with input validation, the result's
+//    velocities, the law's residual and the admissibility report ("stage=solve_impact"); uniqueness
+//    checked by mode enumeration or not ("checked=1|0").
+//
+// After timing, each benchmark checks its answer against the closed forms of problems.hpp and
+// reports the percussions as counters.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "../src/solvers/detail/classical_law.hpp"
+#include "problems.hpp"
+
+namespace {
+
+using namespace fremond;
+using namespace fremond::bench;
+using ContactSpace3 = detail::ContactSpaceT<kSmallDofs, kSmallContacts>;
+
+struct Case {
+  std::string problem, law_name;
+  std::vector<SmallImpactProblem> problems;
+  ImpactLaw law;
+  std::vector<Eigen::VectorXd> expected;  ///< q̇_E per problem (empty: checked by residual only)
+};
+
+const std::vector<Case>& cases() {
+  static const std::vector<Case> all = [] {
+    std::vector<Case> v;
+    const double e = kRestitution, mu = kFriction;
+    auto newton_expected = [&](const SmallImpactProblem& p) {
+      const ContactSpace cs = contact_space(p);
+      return velocity_after(p, cs, newton_frictionless(cs.G, cs.D_A, e));
+    };
+    auto coulomb_expected = [&](const SmallImpactProblem& p) {
+      const ContactSpace cs = contact_space(p);
+      const Eigen::Matrix2d G = cs.G;
+      return velocity_after(p, cs, newton_coulomb_one_contact(G, cs.D_A(0), cs.D_A(1), e, mu));
+    };
+    {
+      Case c{"bar_first_impact", "newton", {bar_first_impact(false)}, ImpactLaw::newton(e), {}};
+      c.expected.push_back(newton_expected(c.problems[0]));
+      v.push_back(c);
+    }
+    {
+      Case c{"bar_first_impact", "newton_coulomb", {bar_first_impact(true)},
+             ImpactLaw::newton_coulomb(e, mu), {}};
+      c.expected.push_back(coulomb_expected(c.problems[0]));
+      v.push_back(c);
+    }
+    v.push_back(Case{"bar_first_impact", "poisson_coulomb", {bar_first_impact(true)},
+                     ImpactLaw::poisson_coulomb(e, mu), {}});
+    {
+      Case c{"point_mass", "newton_coulomb", {point_mass()}, ImpactLaw::newton_coulomb(e, mu), {}};
+      c.expected.push_back(coulomb_expected(c.problems[0]));
+      v.push_back(c);
+    }
+    {
+      Case c{"flat_bar", "newton", {flat_bar_two_contacts(false)}, ImpactLaw::newton(e), {}};
+      c.expected.push_back(newton_expected(c.problems[0]));
+      v.push_back(c);
+    }
+    {
+      Case c{"flat_bar", "newton_coulomb", {flat_bar_two_contacts(true)},
+             ImpactLaw::newton_coulomb(e, mu), {}};
+      c.expected.push_back(flat_bar_newton_coulomb_velocity(e, mu));
+      v.push_back(c);
+    }
+    v.push_back(Case{"flat_bar", "poisson_coulomb", {flat_bar_two_contacts(true)},
+                     ImpactLaw::poisson_coulomb(e, mu), {}});
+    {
+      Case c{"random_n6_c3", "newton", {}, ImpactLaw::newton(e), {}};
+      for (int i = 0; i < kRandomProblems; ++i) {
+        c.problems.push_back(random_spd_problem(i, false));
+        c.expected.push_back(newton_expected(c.problems.back()));
+      }
+      v.push_back(c);
+    }
+    {
+      Case c{"random_n6_c3", "newton_coulomb", {}, ImpactLaw::newton_coulomb(e, mu), {}};
+      for (int i = 0; i < kRandomProblems; ++i) c.problems.push_back(random_spd_problem(i, true));
+      v.push_back(c);
+    }
+    return v;
+  }();
+  return all;
+}
+
+// Checks every problem of the case with the full entry point (untimed): converged, the law's
+// residual at rounding, and q̇_E equal to the closed form where there is one.
+void check(benchmark::State& state, const Case& c) {
+  double worst = 0.0, residual = 0.0;
+  for (std::size_t k = 0; k < c.problems.size(); ++k) {
+    const SmallImpactResult r = solve_impact(c.problems[k], c.law);
+    if (!r.ok()) {
+      state.SkipWithError(("not solved: " + std::string(r.solver.message)).c_str());
+      return;
+    }
+    residual = std::max(residual, r.solver.residual);
+    if (k < c.expected.size())
+      worst = std::max(worst, (Eigen::VectorXd(r.qdot_E) - c.expected[k]).lpNorm<Eigen::Infinity>());
+    if (k == 0)
+      for (int i = 0; i < r.P_N.size(); ++i) {
+        state.counters["P_N" + std::to_string(i)] = r.P_N(i);
+        state.counters["P_T" + std::to_string(i)] = r.P_T(i);
+      }
+  }
+  state.counters["err"] = worst;
+  state.counters["residual"] = residual;
+  if (!(worst <= 1e-9) || !(residual <= 1e-12))
+    state.SkipWithError(("answer differs from the closed form by " + std::to_string(worst)).c_str());
+}
+
+void BM_Classical_FromData(benchmark::State& state, const Case* c) {
+  ContactSpace3 cs;
+  detail::classical::LawOutcome<kSmallContacts> lo;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const SmallImpactProblem& p = c->problems[k++ % c->problems.size()];
+    detail::build_contact_space(p, c->law.has_friction(), cs);
+    lo = {};
+    detail::classical::solve_law(p, cs, c->law, false, lo);
+    benchmark::DoNotOptimize(lo.solutions[0].P.data());
+  }
+  state.SetLabel(bench_label(c->problem, c->law_name));
+  check(state, *c);
+}
+
+void BM_Classical_Law(benchmark::State& state, const Case* c) {
+  std::vector<ContactSpace3> spaces(c->problems.size());
+  for (std::size_t k = 0; k < c->problems.size(); ++k)
+    detail::build_contact_space(c->problems[k], c->law.has_friction(), spaces[k]);
+  detail::classical::LawOutcome<kSmallContacts> lo;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::size_t j = k++ % c->problems.size();
+    lo = {};
+    detail::classical::solve_law(c->problems[j], spaces[j], c->law, false, lo);
+    benchmark::DoNotOptimize(lo.solutions[0].P.data());
+  }
+  state.SetLabel(bench_label(c->problem, c->law_name) + " from=G");
+  check(state, *c);
+}
+
+void BM_Classical_SolveImpact(benchmark::State& state, const Case* c, bool checked) {
+  SolverOptions options;
+  options.check_uniqueness = checked;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const SmallImpactResult r = solve_impact(c->problems[k++ % c->problems.size()], c->law, options);
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.SetLabel(bench_label(c->problem, c->law_name) + " stage=solve_impact checked=" +
+                 (checked ? "1" : "0"));
+  check(state, *c);
+}
+
+const bool registered = [] {
+  for (const Case& c : cases()) {
+    const std::string suffix = "/" + c.problem + "/" + c.law_name;
+    benchmark::RegisterBenchmark(("BM_Classical_FromData" + suffix).c_str(), BM_Classical_FromData,
+                                 &c);
+    benchmark::RegisterBenchmark(("BM_Classical_Law" + suffix).c_str(), BM_Classical_Law, &c);
+    for (const bool checked : {false, true})
+      benchmark::RegisterBenchmark(
+          ("BM_Classical_SolveImpact" + suffix + (checked ? "/checked" : "/unchecked")).c_str(),
+          BM_Classical_SolveImpact, &c, checked);
+  }
+  return true;
+}();
+
+}  // namespace

@@ -1,0 +1,227 @@
+#pragma once
+// The law level of the classical impact laws: each law as one phase (Newton) or two (Poisson's
+// compression, then expansion) of detail/classical_phase.hpp, each phase by its cheapest exact
+// method, with every solution listed where the enumeration can list them. Header-only so that the
+// benchmarks time exactly what solve_impact runs; the results are filled in classical.cpp.
+#include <algorithm>
+
+#include "classical_phase.hpp"
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/detail/contact_space.hpp"
+#include "fremond/solvers/solver_status.hpp"
+
+namespace fremond::detail::classical {
+
+// The costlier of two methods, for a law whose phases were solved by different ones.
+inline SolverMethod costlier(SolverMethod a, SolverMethod b) {
+  auto rank = [](SolverMethod m) {
+    switch (m) {
+      case SolverMethod::closed_form:
+        return 1;
+      case SolverMethod::lemke:
+        return 2;
+      case SolverMethod::mode_enumeration:
+        return 3;
+      default:
+        return 0;
+    }
+  };
+  return rank(a) >= rank(b) ? a : b;
+}
+
+template <int C>
+struct PhaseOutcome {
+  using Rows = typename Phase<C>::Rows;
+  FixedList<Rows, kMaxSolutions> u;  ///< the first one is the primary method's answer
+  SolverMethod primary = SolverMethod::closed_form;  ///< the method of u[0]
+  SolverMethod others = SolverMethod::closed_form;   ///< the method of the rest of the list
+  int pivots = 0;
+  int fallbacks = 0;
+  bool exhaustive = false;         ///< u holds every solution (up to equal velocities)
+  bool percussion_unique = true;   ///< false when a minimum-norm choice was made
+  bool continuum = false;          ///< a singular mode may hold a continuum of velocities
+};
+
+// Conservative test of a singular G (then minimum_norm decides exactly, by SVD).
+template <class Mat>
+bool maybe_singular(const Mat& G) {
+  if (G.rows() == 0) return false;
+  Eigen::LLT<Mat> llt(G);
+  if (llt.info() != Eigen::Success) return true;
+  const auto d = llt.matrixLLT().diagonal();
+  return !(d.minCoeff() > 1e-7 * d.maxCoeff());
+}
+
+template <int C>
+void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singular,
+                 const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out) {
+  using Rows = typename Phase<C>::Rows;
+  const int r = ph.rows();
+  Rows u(r);
+  bool enumerate = false;
+  if (ph.a == 1) {
+    const bool f = ph.friction;
+    const OneContact oc =
+        one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0),
+                               f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0, f ? ph.b0(0) : 0.0, f, tol);
+    if (!oc.degenerate) {
+      for (int k = 0; k < oc.count; ++k) {
+        u(0) = oc.x[k];
+        if (f) u(1) = oc.t[k];
+        out.u.push(u);
+      }
+      out.primary = out.others = SolverMethod::closed_form;
+      out.exhaustive = true;
+      return;  // one contact with a regular 2×2 G: the percussion is fixed by the velocity
+    }
+    enumerate = true;  // singular 2×2 G: only the enumeration is sure
+    out.primary = out.others = SolverMethod::mode_enumeration;
+  } else {
+    const bool friction = !frictionless(ph);
+    bool have = false;
+    if (all_closed_guess(ph, tol, u)) {
+      have = true;
+      out.primary = SolverMethod::closed_form;
+    } else {
+      int pivots = 0;
+      have = lemke_phase(ph, LemkeOptions{}, u, pivots) == LcpStatus::solved;
+      out.pivots += pivots;
+      out.primary = SolverMethod::lemke;
+      if (have) {
+        for (int i = 0; i < ph.a; ++i) u(i) = std::max(0.0, u(i));
+      }
+    }
+    if (!friction) {
+      // Symmetric positive semidefinite LCP: the velocities are unique, and a ray proves that
+      // there is no solution.
+      if (have) out.u.push(u);
+      out.exhaustive = true;
+    } else if (ph.a <= 3 && (all || !have)) {
+      enumerate = true;
+      out.others = SolverMethod::mode_enumeration;
+      if (have) {
+        out.u.push(u);
+      } else {
+        out.primary = SolverMethod::mode_enumeration;
+        out.fallbacks = 1;
+      }
+    } else if (have) {
+      out.u.push(u);
+    }
+  }
+  if (enumerate) {
+    FixedList<Rows, kMaxSolutions> found;
+    enumerate_modes(ph, tol, found, out.continuum);
+    for (int k = 0; k < found.size; ++k) {
+      const Rows v = ph.velocity(found[k]);
+      bool seen = false;
+      for (int j = 0; j < out.u.size && !seen; ++j)
+        seen = (ph.velocity(out.u[j]) - v).cwiseAbs().maxCoeff() <= 16 * tol.v;
+      if (!seen) out.u.push(found[k]);
+    }
+    out.exhaustive = !found.overflow && !out.u.overflow;
+  }
+  if (singular)
+    for (int k = 0; k < out.u.size; ++k)
+      out.percussion_unique = minimum_norm(ph, tol, shift, out.u[k]) &&
+                              out.percussion_unique;
+}
+
+template <int C>
+struct LawSolution {
+  using Rows = typename Phase<C>::Rows;
+  Rows P;    ///< total percussion, active rows
+  Rows P_C;  ///< Poisson: compression percussion
+  double energy_change = 0.0;
+  SolverMethod method = SolverMethod::closed_form;
+};
+
+template <int C>
+struct LawOutcome {
+  FixedList<LawSolution<C>, kMaxSolutions> solutions;
+  SolverMethod method = SolverMethod::closed_form;  ///< the method of solutions[0]
+  int pivots = 0;
+  int fallbacks = 0;
+  bool exhaustive = true;
+  bool percussion_unique = true;
+  bool compression_unique = true;  ///< Poisson: the compression percussion
+  bool continuum = false;
+};
+
+template <int N, int C>
+void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+               bool all, LawOutcome<C>& out) {
+  using Rows = typename Phase<C>::Rows;
+  const int a = cs.active;
+  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  Phase<C> ph;
+  ph.a = a;
+  ph.friction = cs.tangential;
+  const int r = ph.rows();
+  ph.G = cs.G.topLeftCorner(r, r);
+  ph.mu.resize(a);
+  ph.b0.setZero(a);
+  VecT<C> e(a);
+  for (int k = 0; k < a; ++k) {
+    e(k) = law.e[cs.index(k)];
+    ph.mu(k) = ph.friction ? law.mu[cs.index(k)] : 0.0;
+  }
+  const Tolerances tol = tolerances(ph, cs.v_scale);
+  const bool singular = maybe_singular(ph.G);
+  // T_E − T_A = Pᵀ Wᵀq̇_A + ½ PᵀGP (eq. 9 with the obstacle terms w taken out of D_A).
+  const Rows Wq = cs.W.leftCols(r).transpose() * pb.qdot_A;
+  auto energy = [&](const Rows& P) { return P.dot(Wq) + 0.5 * P.dot(ph.G * P); };
+  const Rows zero = Rows::Zero(r);
+
+  // Newton (eq. 5): q = ((1 + e) D_NA, D_TA). Poisson's compression: q = D_A.
+  ph.q = cs.D_A.head(r);
+  if (!poisson) ph.q.head(a) = ph.q.head(a).cwiseProduct((e.array() + 1.0).matrix());
+  PhaseOutcome<C> first;
+  solve_phase(ph, tol, all, singular, zero, first);
+  out.pivots = first.pivots;
+  out.fallbacks = first.fallbacks;
+  out.exhaustive = first.exhaustive;
+  out.continuum = first.continuum;
+  if (poisson) out.compression_unique = first.percussion_unique;
+  else out.percussion_unique = first.percussion_unique;
+
+  for (int k = 0; k < first.u.size; ++k) {
+    const SolverMethod mk = k == 0 ? first.primary : first.others;
+    if (!poisson) {
+      LawSolution<C> s;
+      s.P = first.u[k];
+      s.energy_change = energy(s.P);
+      s.method = mk;
+      out.solutions.push(s);
+      continue;
+    }
+    // Poisson's expansion from the end of compression: P_NE = e P_NC + ΔP with 0 ≤ ΔP ⊥ D_NE ≥ 0,
+    // Coulomb on (P_TE, D_TE) with bound μ P_NE = μ ΔP + μ e P_NC.
+    const Rows& uc = first.u[k];
+    Phase<C> ex = ph;
+    Rows shift = Rows::Zero(r);
+    shift.head(a) = e.cwiseProduct(uc.head(a));
+    ex.q = ph.velocity(uc);
+    ex.q.noalias() += ph.G * shift;
+    if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
+    PhaseOutcome<C> second;
+    solve_phase(ex, tol, all, singular, shift, second);
+    out.pivots += second.pivots;
+    out.fallbacks += second.fallbacks;
+    out.exhaustive = out.exhaustive && second.exhaustive;
+    out.continuum = out.continuum || second.continuum;
+    out.percussion_unique = out.percussion_unique && second.percussion_unique;
+    for (int j = 0; j < second.u.size; ++j) {
+      LawSolution<C> s;
+      s.P_C = uc;
+      s.P = uc + shift + second.u[j];
+      s.energy_change = energy(s.P);
+      s.method = costlier(mk, j == 0 ? second.primary : second.others);
+      out.solutions.push(s);
+    }
+  }
+  if (out.solutions.overflow) out.exhaustive = false;
+  out.method = out.solutions.size ? out.solutions[0].method : first.primary;
+}
+
+}  // namespace fremond::detail::classical
