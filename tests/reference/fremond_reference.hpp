@@ -1,0 +1,1041 @@
+#pragma once
+/// @file An independent high-precision reference for the impact laws, in `__float128` (libquadmath:
+/// link with `-lquadmath`). It shares no code with the library: its own linear algebra, its own
+/// root finders, its own reading of SPEC §1-3. Use it to check the library's solvers, never inside
+/// them.
+///
+/// What it solves (SPEC §1: D = Wᵀ q̇ + w, G = Wᵀ M⁻¹ W, D_E = D_A + G P, z = (D_A + D_E)/2; P ≥ 0
+/// pushes apart; only contacts with D_NA ≤ 0 take part, the others get no percussion):
+///
+///  - fremond_one_contact(): Frémond's law on ONE contact, any M, with the normal law
+///    −P_N ∈ k z_N|z_N|^(p−2) + N_R+(D_NE) (SPEC §2-3) and the tangential law none, the viscous
+///    dead zone −P_T = k_T sign(z_T) max(0, |z_T| − r)^(q−1) (eq. 25 in our scaling), or Coulomb on
+///    (P_T, z_T) with the bound μ|P_N|. Returns EVERY solution (several or none are possible with
+///    Coulomb when μ|G_NT| > G_NN). Method: the reaction is the normal cone of z_N ≥ D_NA/2 (that
+///    is D_NE ≥ 0), so for a fixed tangential mode the normal law is one scalar inclusion
+///    z_N + (α/2)(f_N(z_N) + N(z_N)) ∋ b; for α > 0 it has one root (a monotone equation, then a
+///    clamp at D_NA/2), for α < 0 (Painlevé) every root is found on the ≤ 3 intervals where it is
+///    monotone. Coulomb: modes stick (z_T = 0) and slide σ = ±1 with each sign of P_N. Dead zone:
+///    the tangential equation P_T + f_T(z_T(P_T)) = 0, with z_T(P_T) from the normal solve, is
+///    strictly increasing in P_T (a partial minimisation of the dual problem), so one bracketed
+///    root (its mode, in the zone or out on a side, is read off the answer). Every scalar root is
+///    found by bisection safeguarding Newton's method, to the last bit of quad precision.
+///  - fremond_several(): Frémond's law on several contacts, normal law with the tangential law none
+///    or dead zone (not Coulomb): the strongly convex problem of SPEC §2, solved in contact space
+///    (no G⁻¹) through its optimality system z = D_A + G P/2 with each row's law written with its
+///    resolvent z_j = J_j(s_j), P_j = c_j (z_j − s_j) (the reaction is the clamp of J_N at D_NA/2):
+///    non-smooth Gauss-Seidel sweeps (each row solved exactly by the scalar root finder; the block
+///    coordinate descent of the dual problem, which converges), then Levenberg-Marquardt on
+///    F(s) = z(s) − D_A − G P(s)/2, whose Jacobian stays bounded for p or q near 1 and for large p.
+///  - newton_frictionless(): Newton's law, LCP 0 ≤ P_N ⊥ G_NN P_N + (1 + e) D_NA ≥ 0 (eq. 6 for one
+///    contact), by enumeration of the active sets; every distinct solution (G_NN singular:
+///    several).
+///
+/// Ranges: checked for p ∈ [1.01, 50], q ∈ [1.01, 10], r from 0 to above every velocity, |D_A| from
+/// 1e-10 to 1e6, k from 1e-6 to 1e6, mass ratios up to 1e6. Results are then good to about
+/// cond(M)·1e-33 relative (the law's residual, fremond_residual(), is reported with each solution).
+/// Not handled: α = 0 exactly in a Coulomb slide mode (μ G_NT = ±G_NN: a continuum of solutions or
+/// none; that mode is skipped), W_T parallel to W_N (G singular on one contact: stick is skipped),
+/// more than 12 contacts in fremond_several / newton_frictionless (2^c enumeration).
+#include <quadmath.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace fremond_reference {
+
+using quad = __float128;
+using QVec = std::vector<quad>;
+
+// ---------------------------------------------------------------------------------------------
+// Data
+
+/// One impact problem in quad precision (SPEC §1). W_N[i] and W_T[i] are the columns of contact i
+/// (length n each); W_T empty: frictionless. w_N, w_T empty: zero.
+struct Problem {
+  std::vector<QVec> M;  ///< n rows of n, symmetric positive definite.
+  std::vector<QVec> W_N, W_T;
+  QVec w_N, w_T;
+  QVec qdot_A;
+  int dofs() const { return static_cast<int>(qdot_A.size()); }
+  int contacts() const { return static_cast<int>(W_N.size()); }
+  bool has_tangential() const { return !W_T.empty(); }
+};
+
+/// Copies matrices with .rows(), .cols() and (i, j) (e.g. Eigen's, in double) into a Problem.
+/// W_N and W_T are n×c, one column a contact; a W_T with no column gives a frictionless problem.
+template <class MatM, class MatW, class VecQ>
+Problem problem_from(const MatM& M, const MatW& W_N, const MatW& W_T, const VecQ& qdot_A) {
+  Problem p;
+  const int n = static_cast<int>(M.rows());
+  p.M.assign(n, QVec(n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) p.M[i][j] = static_cast<quad>(M(i, j));
+  for (int c = 0; c < static_cast<int>(W_N.cols()); ++c) {
+    QVec col(n);
+    for (int i = 0; i < n; ++i) col[i] = static_cast<quad>(W_N(i, c));
+    p.W_N.push_back(col);
+  }
+  for (int c = 0; c < static_cast<int>(W_T.cols()); ++c) {
+    QVec col(n);
+    for (int i = 0; i < n; ++i) col[i] = static_cast<quad>(W_T(i, c));
+    p.W_T.push_back(col);
+  }
+  p.qdot_A.resize(n);
+  for (int i = 0; i < n; ++i) p.qdot_A[i] = static_cast<quad>(qdot_A(i));
+  return p;
+}
+
+/// Normal law φ_N(z) = k|z|^p/p, p > 1, k ≥ 0: −P_N = f_N(z) = k z|z|^(p−2) (plus the reaction).
+struct PowerLaw {
+  quad k = 0;
+  quad p = 2;
+};
+
+enum class TangentialKind {
+  none,      ///< P_T = 0.
+  deadzone,  ///< −P_T = f_T(z_T) = k sign(z_T) max(0, |z_T| − r)^(q−1), q > 1, r ≥ 0.
+  coulomb,   ///< Coulomb on (P_T, z_T) with the bound μ|P_N| (one contact only).
+};
+
+struct TangentialLaw {
+  TangentialKind kind = TangentialKind::none;
+  quad k = 0, q = 2, r = 0;  ///< dead zone.
+  quad mu = 0;               ///< Coulomb.
+  static TangentialLaw none() { return {}; }
+  static TangentialLaw dead_zone(quad k, quad q, quad r) {
+    TangentialLaw t;
+    t.kind = TangentialKind::deadzone;
+    t.k = k;
+    t.q = q;
+    t.r = r;
+    return t;
+  }
+  static TangentialLaw coulomb(quad mu) {
+    TangentialLaw t;
+    t.kind = TangentialKind::coulomb;
+    t.mu = mu;
+    return t;
+  }
+};
+
+/// One solution. Per-contact vectors have one entry a contact (zero for those that do not take
+/// part, and P_T, D_T*, z_T zero without W_T).
+struct Solution {
+  QVec qdot_E;
+  QVec P_N, P_T;    ///< total percussions on the body.
+  QVec P_reaction;  ///< the reaction part of P_N (≥ 0; −I_reac of SPEC §2).
+  QVec D_NA, D_TA, D_NE, D_TE;
+  QVec z_N, z_T;                ///< mean velocities.
+  std::vector<int> takes_part;  ///< 1 when D_NA ≤ 0.
+  std::string mode;   ///< e.g. "c0:free/slide+" (normal: free or reaction; tangential mode).
+  quad residual = 0;  ///< the law's scaled residual at this solution (fremond/newton_residual).
+  bool ok = true;     ///< false when an iterative part did not meet its tolerance.
+};
+
+// ---------------------------------------------------------------------------------------------
+// Helpers
+
+namespace detail {
+
+inline quad eps() {
+  return ldexpq(1, -112);
+}
+inline quad huge() {
+  return ldexpq(1, 16000);
+}
+inline bool finite(quad x) {
+  return finiteq(x) != 0;
+}
+inline quad sgn(quad x) {
+  return x > 0 ? 1 : (x < 0 ? -1 : 0);
+}
+
+/// |x|^a for x ≠ 0 (0 at 0 for a > 0, +∞ for a < 0).
+inline quad pow_abs(quad x, quad a) {
+  const quad ax = fabsq(x);
+  if (ax == 0) return a > 0 ? quad(0) : (a == 0 ? quad(1) : huge() * huge());
+  return powq(ax, a);
+}
+
+inline quad dot(const QVec& a, const QVec& b) {
+  quad s = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+/// A dense row-major matrix.
+struct Mat {
+  int rows = 0, cols = 0;
+  QVec a;
+  Mat() = default;
+  Mat(int r, int c) : rows(r), cols(c), a(static_cast<std::size_t>(r) * c, quad(0)) {}
+  quad& operator()(int i, int j) { return a[static_cast<std::size_t>(i) * cols + j]; }
+  quad operator()(int i, int j) const { return a[static_cast<std::size_t>(i) * cols + j]; }
+};
+
+/// Solves A x = b by Gaussian elimination with partial pivoting; false when a pivot is below
+/// rel_tol × the largest entry of A (singular to that tolerance).
+inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100)) {
+  const int n = A.rows;
+  quad scale = 0;
+  for (quad v : A.a) scale = fmaxq(scale, fabsq(v));
+  if (scale == 0) return n == 0;
+  for (int k = 0; k < n; ++k) {
+    int piv = k;
+    for (int i = k + 1; i < n; ++i)
+      if (fabsq(A(i, k)) > fabsq(A(piv, k))) piv = i;
+    if (fabsq(A(piv, k)) <= rel_tol * scale) return false;
+    if (piv != k) {
+      for (int j = 0; j < n; ++j) std::swap(A(k, j), A(piv, j));
+      std::swap(b[k], b[piv]);
+    }
+    for (int i = k + 1; i < n; ++i) {
+      const quad f = A(i, k) / A(k, k);
+      if (f == 0) continue;
+      for (int j = k; j < n; ++j) A(i, j) -= f * A(k, j);
+      b[i] -= f * b[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    quad s = b[k];
+    for (int j = k + 1; j < n; ++j) s -= A(k, j) * b[j];
+    b[k] = s / A(k, k);
+  }
+  return true;
+}
+
+/// Cholesky factor L (M = L Lᵀ) of the symmetric positive definite M; throws otherwise.
+struct Cholesky {
+  int n = 0;
+  Mat L;
+  explicit Cholesky(const std::vector<QVec>& M) : n(static_cast<int>(M.size())), L(n, n) {
+    for (int j = 0; j < n; ++j) {
+      quad d = M[j][j];
+      for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+      if (!(d > 0)) throw std::invalid_argument("fremond_reference: M is not positive definite");
+      L(j, j) = sqrtq(d);
+      for (int i = j + 1; i < n; ++i) {
+        quad s = M[i][j];
+        for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k);
+        L(i, j) = s / L(j, j);
+      }
+    }
+  }
+  QVec solve(QVec b) const {
+    for (int i = 0; i < n; ++i) {
+      for (int k = 0; k < i; ++k) b[i] -= L(i, k) * b[k];
+      b[i] /= L(i, i);
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      for (int k = i + 1; k < n; ++k) b[i] -= L(k, i) * b[k];
+      b[i] /= L(i, i);
+    }
+    return b;
+  }
+};
+
+/// The contact-space data of a problem (SPEC §1).
+struct ContactData {
+  int n = 0, c = 0;
+  bool has_T = false;
+  std::vector<QVec> MinvWN, MinvWT;  ///< M⁻¹ W columns.
+  Mat GNN, GNT, GTT;                 ///< G blocks, c×c (GNT(i, j) = W_N,iᵀ M⁻¹ W_T,j).
+  QVec DNA, DTA;
+  std::vector<int> part;  ///< 1 when D_NA ≤ 0.
+};
+
+inline ContactData contact_data(const Problem& p) {
+  const int n = p.dofs(), c = p.contacts();
+  if (static_cast<int>(p.M.size()) != n) throw std::invalid_argument("fremond_reference: M size");
+  if (p.has_tangential() && static_cast<int>(p.W_T.size()) != c)
+    throw std::invalid_argument("fremond_reference: W_T must have as many columns as W_N");
+  const Cholesky chol(p.M);
+  ContactData d;
+  d.n = n;
+  d.c = c;
+  d.has_T = p.has_tangential();
+  d.GNN = Mat(c, c);
+  d.GNT = Mat(c, c);
+  d.GTT = Mat(c, c);
+  d.DNA.assign(c, 0);
+  d.DTA.assign(c, 0);
+  d.part.assign(c, 0);
+  for (int i = 0; i < c; ++i) {
+    d.MinvWN.push_back(chol.solve(p.W_N[i]));
+    if (d.has_T) d.MinvWT.push_back(chol.solve(p.W_T[i]));
+  }
+  for (int i = 0; i < c; ++i) {
+    d.DNA[i] = dot(p.W_N[i], p.qdot_A) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
+    if (d.has_T) d.DTA[i] = dot(p.W_T[i], p.qdot_A) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
+    d.part[i] = d.DNA[i] <= 0 ? 1 : 0;
+    for (int j = 0; j < c; ++j) {
+      d.GNN(i, j) = dot(p.W_N[i], d.MinvWN[j]);
+      if (d.has_T) {
+        d.GNT(i, j) = dot(p.W_N[i], d.MinvWT[j]);
+        d.GTT(i, j) = dot(p.W_T[i], d.MinvWT[j]);
+      }
+    }
+  }
+  return d;
+}
+
+/// f_N(z) = k z|z|^(p−2) and its derivative k(p−1)|z|^(p−2).
+inline quad f_normal(const PowerLaw& law, quad z) {
+  return law.k * sgn(z) * pow_abs(z, law.p - 1);
+}
+inline quad df_normal(const PowerLaw& law, quad z) {
+  if (law.k == 0) return 0;
+  return law.k * (law.p - 1) * pow_abs(z, law.p - 2);
+}
+/// f_T(y) = k sign(y) max(0, |y| − r)^(q−1) and its derivative (0 inside the zone).
+inline quad f_tangent(const TangentialLaw& law, quad y) {
+  if (law.kind != TangentialKind::deadzone) return 0;
+  const quad out = fabsq(y) - law.r;
+  return out > 0 ? law.k * sgn(y) * powq(out, law.q - 1) : quad(0);
+}
+inline quad df_tangent(const TangentialLaw& law, quad y) {
+  if (law.kind != TangentialKind::deadzone || law.k == 0) return 0;
+  const quad out = fabsq(y) - law.r;
+  return out > 0 ? law.k * (law.q - 1) * pow_abs(out, law.q - 2) : quad(0);
+}
+
+/// A value and a slope.
+struct ValueSlope {
+  quad value, slope;
+};
+
+/// A root of a function monotone on the bracket [a, b] whose ends have values of opposite signs
+/// (fa, fb, either may be 0): Newton's method safeguarded by bisection (rtsafe), to the last bit
+/// (or until |f| ≤ ftol or the bracket is narrower than xtol·|x|). Slopes may be infinite or zero:
+/// the step then bisects.
+template <class F>
+quad find_root(F&& f, quad a, quad b, quad fa, quad fb, quad ftol = 0, quad xtol = 0) {
+  if (fa == 0) return a;
+  if (fb == 0) return b;
+  if ((fa > 0) == (fb > 0)) throw std::logic_error("fremond_reference: root not bracketed");
+  // Orient so that f(lo) < 0 < f(hi) (lo may be above hi).
+  quad lo = fa < 0 ? a : b, hi = fa < 0 ? b : a;
+  quad x = (lo + hi) / 2;
+  quad dx_old = fabsq(hi - lo), dx = dx_old;
+  const quad tiny = ldexpq(1, -16300);
+  for (int it = 0; it < 20000; ++it) {
+    const ValueSlope v = f(x);
+    if (v.value == 0 || fabsq(v.value) <= ftol) return x;
+    if (v.value < 0)
+      lo = x;
+    else
+      hi = x;
+    const quad width = fabsq(hi - lo);
+    if (width <= fmaxq(xtol, 2 * eps()) * fabsq(x) || width <= tiny) break;
+    quad next = x;
+    bool newton = finite(v.slope) && v.slope != 0;
+    if (newton) {
+      next = x - v.value / v.slope;
+      // Inside the bracket and at least halving the step.
+      newton = finite(next) && (next - lo) * (next - hi) < 0 &&
+               fabsq(2 * v.value) <= fabsq(dx_old * v.slope);
+    }
+    dx_old = dx;
+    if (!newton) next = (lo + hi) / 2;
+    dx = fabsq(next - x);
+    if (next == x) next = (lo + hi) / 2;
+    if (next == lo || next == hi) break;  // the bracket holds two neighbouring numbers
+    x = next;
+  }
+  const quad flo = f(lo).value, fhi = f(hi).value;
+  return fabsq(flo) <= fabsq(fhi) ? lo : hi;
+}
+
+/// Every root of g(z) = z + a f_N(z) − b on [lower, ∞), a ≠ 0. g' = 1 + a k (p−1)|z|^(p−2) is even
+/// and monotone in |z|, so g is monotone on (−∞, −z_c], [−z_c, z_c], [z_c, ∞) with z_c where g' = 0
+/// (no z_c when a > 0 or p = 2: one interval).
+inline std::vector<quad> roots_of_normal(const PowerLaw& law, quad a, quad b, quad lower) {
+  auto g = [&](quad z) {
+    return ValueSlope{z + a * f_normal(law, z) - b, 1 + a * df_normal(law, z)};
+  };
+  std::vector<quad> cuts;  // interval ends inside (lower, ∞)
+  if (a * law.k < 0 && law.p != 2) {
+    const quad zc = powq(-1 / (a * law.k * (law.p - 1)), 1 / (law.p - 2));
+    if (finite(zc) && zc > 0) {
+      if (-zc > lower) cuts.push_back(-zc);
+      if (zc > lower) cuts.push_back(zc);
+    }
+  } else if (a * law.k < 0 && law.p == 2 && 1 + a * law.k == 0) {
+    return {};  // g constant: a continuum or nothing (not handled)
+  }
+  std::vector<quad> ends{lower};
+  ends.insert(ends.end(), cuts.begin(), cuts.end());
+  std::vector<quad> roots;
+  for (std::size_t s = 0; s < ends.size(); ++s) {
+    const quad lo = ends[s];
+    const quad glo = g(lo).value;
+    quad hi, ghi;
+    if (s + 1 < ends.size()) {
+      hi = ends[s + 1];
+      ghi = g(hi).value;
+    } else {
+      // Last interval, [lo, ∞): step out until the sign changes or g stops moving towards 0.
+      quad step = fmaxq(fmaxq(fabsq(b), fabsq(lo)), ldexpq(1, -200));
+      hi = lo + step;
+      ghi = g(hi).value;
+      for (int k = 0; k < 40000 && (ghi > 0) == (glo > 0) && ghi != 0; ++k) {
+        step *= 2;
+        hi = lo + step;
+        if (!finite(hi)) break;
+        ghi = g(hi).value;
+        if (!finite(ghi)) break;
+      }
+      if (!finite(hi) || !finite(ghi)) continue;
+    }
+    if (glo == 0) {
+      roots.push_back(lo);
+      continue;
+    }
+    if ((glo > 0) == (ghi > 0)) continue;
+    if (ghi == 0 && s + 1 < ends.size()) continue;  // found as the next interval's lower end
+    roots.push_back(find_root(g, lo, hi, glo, ghi));
+  }
+  return roots;
+}
+
+/// The normal inclusion z + (α/2)(f_N(z) + N_[lower,∞)(z)) ∋ b. Each candidate is (z, P_N,
+/// reaction) with P_N = 2(z − b)/α; for α > 0 there is exactly one (the monotone case), for α < 0
+/// the free roots above `lower` and the clamped z = lower when its reaction is ≥ 0.
+struct NormalCandidate {
+  quad z, P_N, reaction;
+  bool clamped;
+};
+
+inline std::vector<NormalCandidate> normal_candidates(const PowerLaw& law, quad alpha, quad b,
+                                                      quad lower) {
+  std::vector<NormalCandidate> out;
+  if (alpha == 0) return out;  // not handled (see the file comment)
+  const quad a = alpha / 2;
+  auto g = [&](quad z) {
+    return ValueSlope{z + a * f_normal(law, z) - b, 1 + a * df_normal(law, z)};
+  };
+  if (alpha > 0) {
+    // Monotone: clamp when the free root lies below `lower`.
+    const quad glow = g(lower).value;
+    if (glow >= 0) {
+      out.push_back({lower, (lower - b) / a, (lower - b) / a + f_normal(law, lower), true});
+      return out;
+    }
+    // Root above lower: bracket [max(lower, min(b, 0)), max(b, 0)].
+    const quad lo = fmaxq(lower, fminq(b, quad(0))), hi = fmaxq(b, quad(0));
+    const quad z = find_root(g, lo, hi, g(lo).value, g(hi).value);
+    out.push_back({z, -f_normal(law, z), 0, false});
+    return out;
+  }
+  for (quad z : roots_of_normal(law, a, b, lower)) out.push_back({z, -f_normal(law, z), 0, false});
+  const quad P = (lower - b) / a, R = P + f_normal(law, lower);
+  if (R >= 0) out.push_back({lower, P, R, true});
+  return out;
+}
+
+inline const PowerLaw& pick(const std::vector<PowerLaw>& v, int i) {
+  return v.size() == 1 ? v[0] : v.at(i);
+}
+inline const TangentialLaw& pick(const std::vector<TangentialLaw>& v, int i) {
+  return v.size() == 1 ? v[0] : v.at(i);
+}
+
+/// Fills velocities and the mean velocities of `s` from its percussions.
+inline void complete(const Problem& p, const ContactData& d, Solution& s) {
+  const int n = d.n, c = d.c;
+  s.qdot_E = p.qdot_A;
+  for (int i = 0; i < c; ++i)
+    for (int j = 0; j < n; ++j) {
+      s.qdot_E[j] += d.MinvWN[i][j] * s.P_N[i];
+      if (d.has_T) s.qdot_E[j] += d.MinvWT[i][j] * s.P_T[i];
+    }
+  s.D_NA = d.DNA;
+  s.D_TA = d.DTA;
+  s.D_NE.assign(c, 0);
+  s.D_TE.assign(c, 0);
+  s.z_N.assign(c, 0);
+  s.z_T.assign(c, 0);
+  s.takes_part = d.part;
+  for (int i = 0; i < c; ++i) {
+    s.D_NE[i] = dot(p.W_N[i], s.qdot_E) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
+    s.z_N[i] = (s.D_NA[i] + s.D_NE[i]) / 2;
+    if (d.has_T) {
+      s.D_TE[i] = dot(p.W_T[i], s.qdot_E) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
+      s.z_T[i] = (s.D_TA[i] + s.D_TE[i]) / 2;
+    }
+  }
+}
+
+inline Solution empty_solution(int c) {
+  Solution s;
+  s.P_N.assign(c, 0);
+  s.P_T.assign(c, 0);
+  s.P_reaction.assign(c, 0);
+  return s;
+}
+
+/// The scales of the residuals: the largest |D_A| over the contacts that take part, and the
+/// percussion scale max(max|P|, v_scale / max G_ii).
+inline std::pair<quad, quad> scales(const ContactData& d, const Solution& s) {
+  quad v = 0, g = 0, P = 0;
+  for (int i = 0; i < d.c; ++i) {
+    if (!d.part[i]) continue;
+    v = fmaxq(v, fabsq(d.DNA[i]));
+    g = fmaxq(g, d.GNN(i, i));
+    if (d.has_T) {
+      v = fmaxq(v, fabsq(d.DTA[i]));
+      g = fmaxq(g, d.GTT(i, i));
+    }
+    P = fmaxq(P, fmaxq(fabsq(s.P_N[i]), fabsq(s.P_T[i])));
+  }
+  if (v == 0) v = 1;
+  if (g == 0) g = 1;
+  return {v, fmaxq(P, v / g)};
+}
+
+/// |D_E − (D_A + G P)| / v_scale over the contacts: q̇_E and P agree.
+inline quad consistency(const ContactData& d, const Solution& s, quad vs) {
+  quad r = 0;
+  for (int i = 0; i < d.c; ++i) {
+    quad dn = d.DNA[i], dt = d.DTA[i];
+    for (int j = 0; j < d.c; ++j) {
+      dn += d.GNN(i, j) * s.P_N[j];
+      if (d.has_T) {
+        dn += d.GNT(i, j) * s.P_T[j];
+        dt += d.GNT(j, i) * s.P_N[j] + d.GTT(i, j) * s.P_T[j];
+      }
+    }
+    r = fmaxq(r, fabsq(dn - s.D_NE[i]) / vs);
+    if (d.has_T) r = fmaxq(r, fabsq(dt - s.D_TE[i]) / vs);
+  }
+  return r;
+}
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------------------------
+// Residuals
+
+/// The scaled residual of Frémond's law at `s` (0 exactly at a solution), the largest of:
+///  - q̇_E and P agree: |D_E − D_A − G P| / v_s;
+///  - the normal law with its reaction R = P_N + f_N(z_N): |min(D_NE / v_s, R_b)|, R_b the smaller
+///    of |R|/P_s and |z_N − f_N⁻¹(−P_N)|/v_s, with the sign of R;
+///  - tangential: none |P_T|/P_s; dead zone the smaller of |P_T + f_T(z_T)|/P_s and the distance
+///    of z_T to f_T⁻¹(−P_T) over v_s; Coulomb the natural map
+///    |P_T − proj_[−μ|P_N|, μ|P_N|](P_T − z_T P_s/v_s)| / P_s;
+///  - contacts that do not take part: |P| / P_s;
+/// with v_s the largest |D_A| of the contacts that take part and P_s = max(max|P|, v_s / max G_ii).
+/// Taking the smaller of the two makes each term a backward error (the relative change of P or of z
+/// that would make the equation exact), so a stiff law (large k, q or p near 1 at the edge of the
+/// zone) is not penalised for the rounding of z.
+/// Laws: one entry for every contact or one each.
+inline quad fremond_residual(const Problem& p, const std::vector<PowerLaw>& normal,
+                             const std::vector<TangentialLaw>& tangential, const Solution& s) {
+  const detail::ContactData d = detail::contact_data(p);
+  const auto [vs, Ps] = detail::scales(d, s);
+  quad r = detail::consistency(d, s, vs);
+  for (int i = 0; i < d.c; ++i) {
+    if (!d.part[i]) {
+      r = fmaxq(r, fmaxq(fabsq(s.P_N[i]), fabsq(s.P_T[i])) / Ps);
+      continue;
+    }
+    const PowerLaw& nl = detail::pick(normal, i);
+    const TangentialLaw& tl = detail::pick(tangential, i);
+    const quad z_N = (s.D_NA[i] + s.D_NE[i]) / 2;
+    const quad R = s.P_N[i] + detail::f_normal(nl, z_N);
+    // R measured as a backward error: the smaller of its relative size and the relative change of
+    // z_N that would make P_N − R = −f_N(z_N) hold with R = 0.
+    quad Rb = R / Ps;
+    if (nl.k > 0) {
+      const quad s_N = -s.P_N[i];
+      const quad z_inv = detail::sgn(s_N) * powq(fabsq(s_N) / nl.k, 1 / (nl.p - 1));
+      Rb = detail::sgn(R) * fminq(fabsq(R) / Ps, fabsq(z_N - z_inv) / vs);
+    }
+    r = fmaxq(r, fabsq(fminq(s.D_NE[i] / vs, Rb)));
+    if (!d.has_T) continue;
+    const quad z_T = (s.D_TA[i] + s.D_TE[i]) / 2;
+    switch (tl.kind) {
+      case TangentialKind::none:
+        r = fmaxq(r, fabsq(s.P_T[i]) / Ps);
+        break;
+      case TangentialKind::deadzone: {
+        // The same backward error: −P_T = f_T(z_T) up to a relative change of P_T or of z_T;
+        // f_T⁻¹(s) is r + (|s|/k)^(1/(q−1)) with the sign of s, or the zone [−r, r] for s = 0.
+        const quad s_T = -s.P_T[i];
+        quad dz = 0;
+        if (s_T == 0)
+          dz = fmaxq(quad(0), fabsq(z_T) - tl.r);
+        else if (tl.k > 0)
+          dz = fabsq(z_T - detail::sgn(s_T) * (tl.r + powq(fabsq(s_T) / tl.k, 1 / (tl.q - 1))));
+        else
+          dz = detail::huge();
+        r = fmaxq(r, fminq(fabsq(s.P_T[i] + detail::f_tangent(tl, z_T)) / Ps, dz / vs));
+        break;
+      }
+      case TangentialKind::coulomb: {
+        const quad bound = tl.mu * fabsq(s.P_N[i]);
+        const quad proj = fminq(bound, fmaxq(-bound, s.P_T[i] - z_T * Ps / vs));
+        r = fmaxq(r, fabsq(s.P_T[i] - proj) / Ps);
+        break;
+      }
+    }
+  }
+  return r;
+}
+
+/// The scaled residual of Newton's frictionless law: |min(P_N/P_s, (D_NE + e D_NA)/v_s)| over the
+/// contacts that take part, |P|/P_s over the others, and the agreement of q̇_E with P.
+inline quad newton_residual(const Problem& p, const QVec& e, const Solution& s) {
+  const detail::ContactData d = detail::contact_data(p);
+  const auto [vs, Ps] = detail::scales(d, s);
+  quad r = detail::consistency(d, s, vs);
+  for (int i = 0; i < d.c; ++i) {
+    if (!d.part[i]) {
+      r = fmaxq(r, fabsq(s.P_N[i]) / Ps);
+      continue;
+    }
+    const quad ei = e.size() == 1 ? e[0] : e.at(i);
+    r = fmaxq(r, fabsq(fminq(s.P_N[i] / Ps, (s.D_NE[i] + ei * s.D_NA[i]) / vs)));
+    if (d.has_T) r = fmaxq(r, fabsq(s.P_T[i]) / Ps);
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frémond's law, one contact
+
+/// Every solution of Frémond's law on the one contact of `p` (see the file comment). For the
+/// tangential laws none and dead zone there is exactly one; with Coulomb the list may hold several
+/// or be empty (no solution). A contact with D_NA > 0 gives the one solution P = 0.
+inline std::vector<Solution> fremond_one_contact(const Problem& p, const PowerLaw& normal,
+                                                 const TangentialLaw& tangential) {
+  using namespace detail;
+  if (p.contacts() != 1) throw std::invalid_argument("fremond_one_contact: needs one contact");
+  if (!(normal.p > 1) || normal.k < 0) throw std::invalid_argument("fremond_one_contact: p, k");
+  const ContactData d = contact_data(p);
+  const std::vector<PowerLaw> nv{normal};
+  const std::vector<TangentialLaw> tv{tangential};
+  auto finish = [&](quad PN, quad PT, quad R, std::string mode) {
+    Solution s = empty_solution(1);
+    s.P_N[0] = PN;
+    s.P_T[0] = d.has_T ? PT : quad(0);
+    s.P_reaction[0] = R;
+    s.mode = "c0:" + mode;
+    complete(p, d, s);
+    s.residual = fremond_residual(p, nv, tv, s);
+    return s;
+  };
+  if (!d.part[0]) return {finish(0, 0, 0, "separating")};
+
+  const quad DNA = d.DNA[0], DTA = d.DTA[0], lower = DNA / 2;
+  const quad GNN = d.GNN(0, 0);
+  const quad GNT = d.has_T ? d.GNT(0, 0) : quad(0), GTT = d.has_T ? d.GTT(0, 0) : quad(0);
+  const TangentialKind kind = d.has_T ? tangential.kind : TangentialKind::none;
+
+  if (kind == TangentialKind::none) {
+    const NormalCandidate nc = normal_candidates(normal, GNN, DNA, lower).at(0);
+    return {finish(nc.P_N, 0, nc.reaction, nc.clamped ? "reaction/none" : "free/none")};
+  }
+
+  if (kind == TangentialKind::deadzone) {
+    // The normal solve for a given P_T: b = D_NA + G_NT P_T/2, α = G_NN.
+    struct Inner {
+      NormalCandidate nc;
+      quad z_T, dzT;  // z_T and dz_T/dP_T
+    };
+    auto inner = [&](quad PT) {
+      const quad b = DNA + GNT * PT / 2;
+      const NormalCandidate nc = normal_candidates(normal, GNN, b, lower).at(0);
+      quad dPN;
+      if (nc.clamped) {
+        dPN = -GNT / GNN;
+      } else {
+        const quad fp = df_normal(normal, nc.z);
+        dPN = finite(fp) ? -GNT * fp / (2 + GNN * fp) : -GNT / GNN;
+      }
+      const quad zT = DTA + (GNT * nc.P_N + GTT * PT) / 2;
+      return Inner{nc, zT, (GNT * dPN + GTT) / 2};
+    };
+    auto e = [&](quad PT) {
+      const Inner in = inner(PT);
+      const quad fp = df_tangent(tangential, in.z_T);
+      return ValueSlope{PT + f_tangent(tangential, in.z_T), 1 + fp * in.dzT};
+    };
+    // e(0) = A = f_T(z_T(0)); z_T is nondecreasing in P_T, so e(−A) ≤ 0 ≤ e(0) when A > 0 (and
+    // the other way round when A < 0): the root lies between −A and 0.
+    const quad A = e(0).value;
+    quad PT = 0;
+    if (A != 0) {
+      const quad eA = e(-A).value;
+      PT = (eA != 0 && (eA > 0) == (A > 0)) ? -A : find_root(e, -A, quad(0), eA, A);
+    }
+    const Inner in = inner(PT);
+    // The mode from the percussion: near the edge of the zone with q near 1, z_T may be out of the
+    // zone by less than its rounding.
+    const std::string tmode = PT == 0 ? "zone" : (PT < 0 ? "out+" : "out-");
+    return {finish(in.nc.P_N, PT, in.nc.reaction,
+                   std::string(in.nc.clamped ? "reaction/" : "free/") + tmode)};
+  }
+
+  // Coulomb on (P_T, z_T) with the bound μ|P_N|.
+  const quad mu = tangential.mu;
+  std::vector<Solution> found;
+  auto add = [&](const Solution& s) {
+    for (const Solution& f : found) {
+      const quad sc = fmaxq(fmaxq(fabsq(f.P_N[0]), fabsq(f.P_T[0])), ldexpq(1, -16000));
+      if (fabsq(f.P_N[0] - s.P_N[0]) <= ldexpq(1, -90) * sc &&
+          fabsq(f.P_T[0] - s.P_T[0]) <= ldexpq(1, -90) * sc)
+        return;
+    }
+    found.push_back(s);
+  };
+  const quad tol = ldexpq(1, -100);
+  // Stick: z_T = 0, P_T = −(2 D_TA + G_NT P_N)/G_TT; z_N = b' + (S/2) P_N with the Schur
+  // complement S = G_NN − G_NT²/G_TT.
+  if (GTT > 0) {
+    const quad S = GNN - GNT * GNT / GTT, b = DNA - GNT * DTA / GTT;
+    if (S > 0) {
+      for (const NormalCandidate& nc : normal_candidates(normal, S, b, lower)) {
+        const quad PT = -(2 * DTA + GNT * nc.P_N) / GTT;
+        if (fabsq(PT) <= mu * fabsq(nc.P_N) * (1 + tol) + tol * fabsq(DTA) / GTT)
+          add(finish(nc.P_N, PT, nc.reaction,
+                     std::string(nc.clamped ? "reaction" : "free") + "/stick"));
+      }
+    }
+  }
+  // Slide σ with P_N of sign s: P_T = c P_N, c = −σ μ s; z_N = D_NA + (α/2) P_N, α = G_NN + c G_NT.
+  for (int sigma : {1, -1})
+    for (int sP : {1, -1}) {
+      const quad c = -sigma * mu * sP, alpha = GNN + c * GNT;
+      for (const NormalCandidate& nc : normal_candidates(normal, alpha, DNA, lower)) {
+        if (sP * nc.P_N < 0) continue;
+        const quad PT = c * nc.P_N;
+        const quad zT = DTA + (GNT * nc.P_N + GTT * PT) / 2;
+        if (sigma * zT < -tol * fmaxq(fabsq(DTA), fabsq(DNA))) continue;
+        add(finish(
+            nc.P_N, PT, nc.reaction,
+            std::string(nc.clamped ? "reaction" : "free") + (sigma > 0 ? "/slide+" : "/slide-")));
+      }
+    }
+  return found;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frémond's law, several contacts (normal law; tangential none or dead zone)
+
+namespace detail {
+
+/// One contact row (normal or tangential) of the contact-space system, with its resolvent
+/// z = J(s): the solution of z + (1/c)(f(z) + N(z)) ∋ s, c = 2/G_jj, N the normal cone of
+/// [D_NA/2, ∞) on a normal row (the reaction) and nothing on a tangential row. Then P = c(z − s).
+struct Row {
+  int contact = 0;
+  bool normal = true;
+  PowerLaw nl;
+  TangentialLaw tl;
+  quad lower = 0;  // D_NA/2 on a normal row
+  quad c = 1;
+};
+
+struct Resolvent {
+  quad z, slope;  // J(s) and J'(s) ∈ [0, 1]
+  bool clamped;   // the reaction acts
+};
+
+inline Resolvent resolvent(const Row& row, quad s) {
+  const quad alpha = 2 / row.c;  // = G_jj
+  if (row.normal) {
+    const NormalCandidate nc = normal_candidates(row.nl, alpha, s, row.lower).at(0);
+    if (nc.clamped) return {nc.z, 0, true};
+    const quad fp = df_normal(row.nl, nc.z);
+    return {nc.z, finite(fp) ? 1 / (1 + fp / row.c) : quad(0), false};
+  }
+  // Dead zone: z = s inside the zone, else the root of z + f_T(z)/c = s beyond the edge.
+  if (fabsq(s) <= row.tl.r || row.tl.k == 0) return {s, 1, false};
+  auto g = [&](quad z) {
+    return ValueSlope{z + f_tangent(row.tl, z) / row.c - s, 1 + df_tangent(row.tl, z) / row.c};
+  };
+  const quad edge = sgn(s) * row.tl.r;
+  const quad z = find_root(g, edge, s, g(edge).value, g(s).value);
+  const quad fp = df_tangent(row.tl, z);
+  return {z, finite(fp) ? 1 / (1 + fp / row.c) : quad(0), false};
+}
+
+}  // namespace detail
+
+/// Frémond's law on several contacts with the normal power law and the tangential law none or
+/// dead zone (see the file comment): the unique solution. Method, in contact space (it needs no
+/// G⁻¹): with one variable s_j a row and the resolvents above, z_j = J_j(s_j), P_j = c_j(z_j −
+/// s_j), solve F(s) = z − D_A − G P/2 = 0 (SPEC §1: z = D_A + G P/2). First non-smooth Gauss-Seidel
+/// sweeps (each row exactly: s_j = D_A,j + ½ Σ_{k≠j} G_jk P_k; the block coordinate descent of the
+/// dual problem, which converges), then Levenberg-Marquardt on F with the Jacobian
+/// diag(J') − ½ G C (diag(J') − I), alternating until ‖F‖ is at rounding level. `ok` is false when
+/// the law's residual stays above 1e-27. Laws: one for every contact or one each.
+inline Solution fremond_several(const Problem& p, const std::vector<PowerLaw>& normal,
+                                const std::vector<TangentialLaw>& tangential) {
+  using namespace detail;
+  const ContactData d = contact_data(p);
+  const int c = d.c;
+  for (const TangentialLaw& t : tangential)
+    if (t.kind == TangentialKind::coulomb)
+      throw std::invalid_argument("fremond_several: Coulomb is for fremond_one_contact");
+  for (const PowerLaw& l : normal)
+    if (!(l.p > 1) || l.k < 0) throw std::invalid_argument("fremond_several: p, k");
+
+  // The rows of the contacts that take part: N, and T when there is a dead zone.
+  std::vector<Row> rows;
+  QVec DA;
+  for (int i = 0; i < c; ++i) {
+    if (!d.part[i]) continue;
+    Row rn;
+    rn.contact = i;
+    rn.normal = true;
+    rn.nl = pick(normal, i);
+    rn.lower = d.DNA[i] / 2;
+    rn.c = 2 / d.GNN(i, i);
+    rows.push_back(rn);
+    DA.push_back(d.DNA[i]);
+    const TangentialLaw& tl = pick(tangential, i);
+    if (d.has_T && tl.kind == TangentialKind::deadzone) {
+      Row rt;
+      rt.contact = i;
+      rt.normal = false;
+      rt.tl = tl;
+      rt.c = 2 / d.GTT(i, i);
+      rows.push_back(rt);
+      DA.push_back(d.DTA[i]);
+    }
+  }
+  const int m = static_cast<int>(rows.size());
+  Mat G(m, m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) {
+      const int i = rows[a].contact, j = rows[b].contact;
+      if (rows[a].normal && rows[b].normal) G(a, b) = d.GNN(i, j);
+      if (rows[a].normal && !rows[b].normal) G(a, b) = d.GNT(i, j);
+      if (!rows[a].normal && rows[b].normal) G(a, b) = d.GNT(j, i);
+      if (!rows[a].normal && !rows[b].normal) G(a, b) = d.GTT(i, j);
+    }
+  quad vs = 0;
+  for (quad x : DA) vs = fmaxq(vs, fabsq(x));
+  if (vs == 0) vs = 1;
+
+  QVec s = DA, z(m), P(m, 0), slope(m, 0);
+  std::vector<int> clamped(m, 0);
+  auto evaluate = [&](const QVec& sv, QVec& zv, QVec& Pv, QVec& sl, std::vector<int>& cl) {
+    for (int a = 0; a < m; ++a) {
+      const Resolvent r = resolvent(rows[a], sv[a]);
+      zv[a] = r.z;
+      sl[a] = r.slope;
+      cl[a] = r.clamped;
+      Pv[a] = rows[a].c * (r.z - sv[a]);
+    }
+  };
+  // max_a |F_a| relative to the size of its terms, so that the floor is rounding, however large
+  // G's entries (mass ratios) are.
+  auto residual_of = [&](const QVec& zv, const QVec& Pv, QVec& F) {
+    quad worst = 0;
+    for (int a = 0; a < m; ++a) {
+      quad GP = 0, size = fabsq(zv[a]) + fabsq(DA[a]) + ldexpq(1, -200) * vs;
+      for (int b = 0; b < m; ++b) {
+        GP += G(a, b) * Pv[b];
+        size += fabsq(G(a, b) * Pv[b]) / 2;
+      }
+      F[a] = zv[a] - DA[a] - GP / 2;
+      worst = fmaxq(worst, fabsq(F[a]) / size);
+    }
+    return worst;
+  };
+  auto sweeps = [&](int count) {
+    for (int sweep = 0; sweep < count; ++sweep) {
+      quad change = 0;
+      for (int a = 0; a < m; ++a) {
+        quad rest = 0;
+        for (int b = 0; b < m; ++b)
+          if (b != a) rest += G(a, b) * P[b];
+        s[a] = DA[a] + rest / 2;
+        const Resolvent r = resolvent(rows[a], s[a]);
+        const quad Pn = rows[a].c * (r.z - s[a]);
+        change = fmaxq(change, fabsq(r.z - z[a]));
+        z[a] = r.z;
+        slope[a] = r.slope;
+        clamped[a] = r.clamped;
+        P[a] = Pn;
+      }
+      if (change <= ldexpq(1, -40) * vs) break;
+    }
+  };
+
+  const quad target = ldexpq(1, -108);
+  QVec F(m);
+  bool converged = m == 0;
+  // Few sweeps first (LM converges from far once the reactions and zones are about right), more
+  // when LM stalls.
+  const int sweep_counts[] = {30, 300, 3000, 10000};
+  for (int round = 0; round < 4 && !converged; ++round) {
+    sweeps(sweep_counts[round]);
+    evaluate(s, z, P, slope, clamped);
+    quad norm = residual_of(z, P, F);
+    quad lambda = ldexpq(1, -60);
+    for (int it = 0; it < 400 && norm > target; ++it) {
+      // Jacobian of F: δz = J' δs, δP = c (J' − 1) δs.
+      Mat Jf(m, m);
+      for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b)
+          Jf(a, b) = (a == b ? slope[a] : quad(0)) - G(a, b) * rows[b].c * (slope[b] - 1) / 2;
+      Mat A(m, m);
+      QVec g(m, 0);
+      for (int a = 0; a < m; ++a) {
+        for (int b = 0; b < m; ++b) {
+          quad sum = 0;
+          for (int k = 0; k < m; ++k) sum += Jf(k, a) * Jf(k, b);
+          A(a, b) = sum;
+        }
+        for (int k = 0; k < m; ++k) g[a] -= Jf(k, a) * F[k];
+      }
+      quad diag = 0;
+      for (int a = 0; a < m; ++a) diag = fmaxq(diag, A(a, a));
+      bool improved = false;
+      for (int tries = 0; tries < 40 && !improved; ++tries) {
+        Mat Al = A;
+        for (int a = 0; a < m; ++a) Al(a, a) += lambda * diag;
+        QVec step = g;
+        if (!solve_linear(Al, step, ldexpq(1, -112))) {
+          lambda *= 16;
+          continue;
+        }
+        QVec s2(m), z2(m), P2(m), sl2(m), F2(m);
+        std::vector<int> cl2(m);
+        for (int a = 0; a < m; ++a) s2[a] = s[a] + step[a];
+        evaluate(s2, z2, P2, sl2, cl2);
+        const quad norm2 = residual_of(z2, P2, F2);
+        if (norm2 < norm) {
+          s = s2, z = z2, P = P2, slope = sl2, clamped = cl2, F = F2;
+          norm = norm2;
+          lambda = fmaxq(lambda / 16, ldexpq(1, -100));
+          improved = true;
+        } else {
+          lambda *= 16;
+        }
+      }
+      if (!improved) break;
+    }
+    converged = norm <= ldexpq(1, -100);  // LM stopped: at rounding level, or sweep more
+  }
+
+  Solution sol = empty_solution(c);
+  for (int a = 0; a < m; ++a) {
+    const int i = rows[a].contact;
+    if (rows[a].normal) {
+      sol.P_N[i] = P[a];
+      sol.P_reaction[i] = clamped[a] ? P[a] + f_normal(rows[a].nl, z[a]) : quad(0);
+    } else {
+      sol.P_T[i] = P[a];
+    }
+  }
+  complete(p, d, sol);
+  sol.residual = fremond_residual(p, normal, tangential, sol);
+  for (int i = 0; i < c; ++i) {
+    if (!sol.mode.empty()) sol.mode += " ";
+    std::string t;
+    for (int a = 0; a < m; ++a)
+      if (rows[a].contact == i && !rows[a].normal)
+        t = sol.P_T[i] == 0 ? "/zone" : (sol.P_T[i] < 0 ? "/out+" : "/out-");
+    sol.mode += "c" + std::to_string(i) + ":" +
+                (!d.part[i] ? std::string("separating")
+                            : (sol.P_reaction[i] != 0 ? std::string("reaction") : "free") + t);
+  }
+  sol.ok = sol.residual <= ldexpq(1, -90);
+  return sol;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Newton's law, frictionless
+
+/// Every solution of Newton's frictionless law (e: one for every contact or one each) by
+/// enumeration of the active sets S of the LCP 0 ≤ P_N ⊥ G_NN P_N + (1 + e) D_NA ≥ 0 over the
+/// contacts that take part: P_S = −G_SS⁻¹ (1 + e_S) D_NA,S where G_SS is regular, kept when
+/// P_S ≥ 0 and the others' D_NE + e D_NA ≥ 0. Distinct solutions (in P_N) only; for one contact
+/// this is eq. (6): P_N = −(1 + e) D_NA / G_NN.
+inline std::vector<Solution> newton_frictionless(const Problem& p, const QVec& e) {
+  using namespace detail;
+  const ContactData d = contact_data(p);
+  const int c = d.c;
+  auto ecoef = [&](int i) { return e.size() == 1 ? e[0] : e.at(i); };
+  std::vector<int> J;
+  for (int i = 0; i < c; ++i)
+    if (d.part[i]) J.push_back(i);
+  if (J.size() > 12)
+    throw std::invalid_argument("newton_frictionless: at most 12 contacts take part");
+  const int m = static_cast<int>(J.size());
+  quad vs = 0;
+  for (int i : J) vs = fmaxq(vs, fabsq(d.DNA[i]));
+  if (vs == 0) vs = 1;
+  std::vector<Solution> found;
+  for (int S = 0; S < (1 << m); ++S) {
+    std::vector<int> act;
+    for (int k = 0; k < m; ++k)
+      if (S & (1 << k)) act.push_back(J[k]);
+    const int s = static_cast<int>(act.size());
+    Mat Gs(s, s);
+    QVec x(s);
+    for (int a = 0; a < s; ++a) {
+      x[a] = -(1 + ecoef(act[a])) * d.DNA[act[a]];
+      for (int b = 0; b < s; ++b) Gs(a, b) = d.GNN(act[a], act[b]);
+    }
+    if (s > 0 && !solve_linear(Gs, x)) continue;
+    Solution sol = empty_solution(c);
+    for (int a = 0; a < s; ++a) sol.P_N[act[a]] = x[a];
+    quad gmax = 0;
+    for (int i : J) gmax = fmaxq(gmax, d.GNN(i, i));
+    const quad Ps = vs / gmax, tol = ldexpq(1, -95);
+    bool ok = true;
+    for (int a = 0; a < s; ++a) ok = ok && x[a] >= -tol * Ps;
+    for (int i : J) {
+      if (std::find(act.begin(), act.end(), i) != act.end()) continue;
+      quad w = (1 + ecoef(i)) * d.DNA[i];
+      for (int j : act) w += d.GNN(i, j) * sol.P_N[j];
+      ok = ok && w >= -tol * vs;
+    }
+    if (!ok) continue;
+    bool known = false;
+    for (const Solution& f : found) {
+      quad diff = 0;
+      for (int i = 0; i < c; ++i) diff = fmaxq(diff, fabsq(f.P_N[i] - sol.P_N[i]));
+      known = known || diff <= ldexpq(1, -90) * Ps;
+    }
+    if (known) continue;
+    complete(p, d, sol);
+    sol.mode.clear();
+    for (int i = 0; i < c; ++i) {
+      if (!sol.mode.empty()) sol.mode += " ";
+      const bool active = std::find(act.begin(), act.end(), i) != act.end();
+      sol.mode += "c" + std::to_string(i) + ":" +
+                  (!d.part[i] ? "separating" : (active ? "active" : "open"));
+    }
+    sol.residual = newton_residual(p, e, sol);
+    found.push_back(sol);
+  }
+  return found;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
+
+inline double to_double(quad x) {
+  return static_cast<double>(x);
+}
+
+/// x with `digits` significant digits (quadmath_snprintf "%.*Qg").
+inline std::string to_string(quad x, int digits = 36) {
+  char buf[128];
+  quadmath_snprintf(buf, sizeof buf, "%.*Qg", digits, x);
+  return buf;
+}
+
+}  // namespace fremond_reference

@@ -1,0 +1,370 @@
+// The quad-precision reference (tests/reference/fremond_reference.hpp) against closed forms:
+// Frémond's point mass at p = 2 (SPEC §3, paper eq. 24 corrected), the reaction of a point mass
+// (SPEC §3's corrected I_reac), Newton's eq. (6); Frémond + Coulomb at p = 2 against its
+// piecewise-linear closed forms; and its own consistency: the law's residual in quad precision, and
+// the one-contact scalar method against the several-contact velocity-space method on the same
+// problems.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "reference/fremond_reference.hpp"
+
+namespace {
+
+namespace ref = fremond_reference;
+using ref::quad;
+
+quad q(double x) {
+  return static_cast<quad>(x);
+}
+double d(quad x) {
+  return static_cast<double>(x);
+}
+quad rel(quad a, quad b) {
+  return fabsq(a - b) / fmaxq(fmaxq(fabsq(a), fabsq(b)), ldexpq(1, -16000));
+}
+const quad kTight = q(1e-30);
+
+/// A point mass m in the plane, q = (x, y), ground y = 0: W_N = (0, 1), W_T = (1, 0), G = I/m.
+ref::Problem point_mass(quad m, quad xdot, quad ydot, bool tangential = true) {
+  ref::Problem p;
+  p.M = {{m, 0}, {0, m}};
+  p.W_N = {{0, 1}};
+  if (tangential) p.W_T = {{1, 0}};
+  p.qdot_A = {xdot, ydot};
+  return p;
+}
+
+/// The paper's bar at θ (SPEC §5): M = diag(m, m, m l²/3), the lower end's W_N, W_T.
+ref::Problem bar(quad theta, quad xdot, quad ydot, quad thetadot) {
+  const quad m = 1, l = q(0.5), J = m * l * l / 3;
+  ref::Problem p;
+  p.M = {{m, 0, 0}, {0, m, 0}, {0, 0, J}};
+  p.W_N = {{0, 1, -l * cosq(theta)}};
+  p.W_T = {{1, 0, l * sinq(theta)}};
+  p.qdot_A = {xdot, ydot, thetadot};
+  return p;
+}
+
+/// SplitMix64, for reproducible random cases.
+struct Rng {
+  std::uint64_t s;
+  double uniform(double lo, double hi) {
+    std::uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+  double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
+};
+
+/// A random problem: n dofs, c contacts, M = B Bᵀ/n + I/2 scaled per dof by up to `mass_ratio`,
+/// every contact taking part, velocities of size `speed`.
+ref::Problem random_problem(Rng& rng, int n, int c, double speed, double mass_ratio = 1) {
+  std::vector<std::vector<double>> B(n, std::vector<double>(n));
+  for (auto& row : B)
+    for (double& x : row) x = rng.uniform(-1, 1);
+  std::vector<double> scale(n);
+  for (double& s : scale) s = std::sqrt(rng.log_uniform(1, mass_ratio));
+  ref::Problem p;
+  p.M.assign(n, ref::QVec(n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = i == j ? 0.5 : 0.0;
+      for (int k = 0; k < n; ++k) s += B[i][k] * B[j][k] / n;
+      p.M[i][j] = q(s * scale[i] * scale[j]);
+    }
+  p.qdot_A.resize(n);
+  for (auto& v : p.qdot_A) v = q(speed * rng.uniform(-1, 1));
+  for (int k = 0; k < c; ++k) {
+    ref::QVec wn(n), wt(n);
+    for (int i = 0; i < n; ++i) {
+      wn[i] = q(rng.uniform(-1, 1));
+      wt[i] = q(rng.uniform(-1, 1));
+    }
+    quad dn = 0;
+    for (int i = 0; i < n; ++i) dn += wn[i] * p.qdot_A[i];
+    if (dn > 0)
+      for (auto& x : wn) x = -x;
+    p.W_N.push_back(wn);
+    p.W_T.push_back(wt);
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closed forms
+
+// SPEC §3 (paper eq. 24 in our scaling): p = 2, one point mass, normal law alone:
+// ε = −D_NE/D_NA = (k − 2m)/(k + 2m), for k ≥ 2m (below, the reaction stops the mass: D_NE = 0).
+TEST(ReferenceSelfTest, PointMassLinearLawGivesPaperRestitution) {
+  for (double m : {1.0, 3.7, 1e3, 1e-3})
+    for (double k_over : {1.0, 1.5, 10.0, 1e3, 1e6})
+      for (double v : {1e-10, 0.3, 3.5613, 1e6}) {
+        const quad mq = q(m), k = q(2 * m * k_over);
+        const auto sols = ref::fremond_one_contact(point_mass(mq, 0, -q(v), false), {k, 2},
+                                                   ref::TangentialLaw::none());
+        ASSERT_EQ(sols.size(), 1u);
+        const ref::Solution& s = sols[0];
+        const quad eps = (k - 2 * mq) / (k + 2 * mq);
+        EXPECT_LT(d(fabsq(-s.D_NE[0] / s.D_NA[0] - eps)), 1e-31) << m << " " << k_over << " " << v;
+        // The reaction is zero (at k = 2m, ε = 0, it is zero up to rounding).
+        EXPECT_LT(d(fabsq(s.P_reaction[0]) / s.P_N[0]), 1e-31);
+        EXPECT_LT(d(s.residual), 1e-31);
+      }
+}
+
+// SPEC §3's corrected erratum: with D_NE = 0, I_reac = (m − k_paper|D_NA|^(p−2)) D_NA ≤ 0 with
+// k_paper = k 2^(1−p); our reaction percussion is P_reac = −I_reac. k is chosen below the value at
+// which the normal law alone would stop the mass, so the reaction acts.
+TEST(ReferenceSelfTest, PointMassReactionMatchesCorrectedErratum) {
+  for (double p : {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0})
+    for (double m : {1.0, 7.5})
+      for (double v : {1e-10, 1e-3, 1.0, 3.5613, 1e6})
+        for (double frac : {0.0, 0.25, 0.9}) {
+          const quad pq = q(p), mq = q(m), D = -q(v);
+          // Largest k with a reaction: m = k 2^(1−p) |D|^(p−2).
+          const quad k_max = mq * powq(2, pq - 1) / powq(fabsq(D), pq - 2);
+          const quad k = q(frac) * k_max;
+          const auto sols =
+              ref::fremond_one_contact(point_mass(mq, 1, D), {k, pq}, ref::TangentialLaw::none());
+          ASSERT_EQ(sols.size(), 1u);
+          const ref::Solution& s = sols[0];
+          const quad k_paper = k * powq(2, 1 - pq);
+          const quad I_reac = (mq - k_paper * powq(fabsq(D), pq - 2)) * D;
+          EXPECT_LE(d(I_reac), 0.0);
+          EXPECT_LT(d(rel(s.P_reaction[0], -I_reac)), 1e-31) << p << " " << m << " " << v;
+          EXPECT_LT(d(fabsq(s.D_NE[0]) / fabsq(D)), 1e-32);
+          EXPECT_LT(d(s.residual), 1e-31);
+        }
+}
+
+// Newton's eq. (6) on one contact: P_N = −(1 + e) D_NA / G_NN; here on the paper's bar at its first
+// impact (G_NN = (1 + 3 cos²θ)/m, SPEC §5), and q̇_E = q̇_A + M⁻¹ W_N P_N.
+TEST(ReferenceSelfTest, NewtonOneContactIsEquationSix) {
+  const quad theta = acosq(q(-1)) / 4, vy = -sqrtq(2 * q(9.81) * (1 - q(0.5) * sinq(theta)));
+  ref::Problem p = bar(theta, 2, vy, 0);
+  p.W_T.clear();
+  for (double e : {0.0, 0.5, 0.9, 1.0}) {
+    const auto sols = ref::newton_frictionless(p, {q(e)});
+    ASSERT_EQ(sols.size(), 1u);
+    const quad GNN = (1 + 3 * cosq(theta) * cosq(theta)) / 1;
+    const quad PN = -(1 + q(e)) * vy / GNN;
+    EXPECT_LT(d(rel(sols[0].P_N[0], PN)), 1e-32);
+    EXPECT_LT(d(rel(sols[0].D_NE[0], -q(e) * vy)), 1e-32);
+    // ẏ_E = ẏ_A + P_N/m, θ̇_E = −l cos θ P_N / J.
+    EXPECT_LT(d(rel(sols[0].qdot_E[1], vy + PN)), 1e-32);
+    EXPECT_LT(d(rel(sols[0].qdot_E[2], -q(0.5) * cosq(theta) * PN / (q(0.25) / 3))), 1e-32);
+    EXPECT_LT(d(sols[0].residual), 1e-32);
+  }
+}
+
+// Newton on the flat bar with both ends down (θ = 0): G_NN = [[4, −2], [−2, 4]], so both active
+// gives P = G_NN⁻¹ (−(1 + e) D_NA) = ((4 b₁ + 2 b₂)/12, (2 b₁ + 4 b₂)/12) with b = −(1 + e) D_NA.
+TEST(ReferenceSelfTest, NewtonFlatBarTwoContacts) {
+  ref::Problem p = bar(0, 2, -3, 1);
+  p.W_N = {{0, 1, q(0.5)}, {0, 1, -q(0.5)}};
+  p.W_T.clear();
+  const quad e = q(0.9);
+  const auto sols = ref::newton_frictionless(p, {e});
+  ASSERT_EQ(sols.size(), 1u);
+  const quad b1 = -(1 + e) * (-3 + q(0.5)), b2 = -(1 + e) * (-3 - q(0.5));
+  EXPECT_LT(d(rel(sols[0].P_N[0], (4 * b1 + 2 * b2) / 12)), 1e-32);
+  EXPECT_LT(d(rel(sols[0].P_N[1], (2 * b1 + 4 * b2) / 12)), 1e-32);
+  EXPECT_LT(d(sols[0].residual), 1e-32);
+  // A separating contact gets nothing: θ̇ large enough that end 1 moves up.
+  p.qdot_A = {0, -1, 5};
+  const auto sep = ref::newton_frictionless(p, {e});
+  ASSERT_EQ(sep.size(), 1u);
+  EXPECT_EQ(sep[0].takes_part[0], 0);
+  EXPECT_EQ(d(sep[0].P_N[0]), 0.0);
+  EXPECT_LT(d(rel(sep[0].P_N[1], -(1 + e) * (-1 - q(2.5)) / 4)), 1e-32);
+}
+
+// Frémond + Coulomb at p = 2 is piecewise linear: every mode is a linear system in (P_N, P_T),
+// solved here directly (not through the reference's reduction to z_N), and the reference must find
+// exactly the solutions these closed forms find, including Painlevé cases (μ|G_NT| > G_NN: several
+// solutions, or none).
+struct LinearSolution {
+  quad PN, PT;
+};
+
+std::vector<LinearSolution> coulomb_p2_closed_forms(quad GNN, quad GNT, quad GTT, quad DNA,
+                                                    quad DTA, quad k, quad mu) {
+  std::vector<LinearSolution> out;
+  auto keep = [&](quad PN, quad PT, bool reaction) {
+    const quad DNE = DNA + GNN * PN + GNT * PT, zN = (DNA + DNE) / 2;
+    const quad zT = DTA + (GNT * PN + GTT * PT) / 2;
+    const quad tol = q(1e-28) * (fabsq(DNA) + fabsq(DTA));
+    if (reaction && !(PN + k * zN >= -tol)) return;
+    if (!reaction && !(DNE >= -tol)) return;
+    if (!(fabsq(PT) <= mu * fabsq(PN) + tol)) return;
+    if (fabsq(PT) < mu * fabsq(PN) - tol && fabsq(zT) > tol) return;  // inside: must stick
+    if (fabsq(zT) > tol && !(PT * zT <= 0)) return;                   // slides against
+    for (const auto& s : out)
+      if (fabsq(s.PN - PN) + fabsq(s.PT - PT) <= q(1e-25) * (fabsq(PN) + fabsq(PT) + 1)) return;
+    out.push_back({PN, PT});
+  };
+  auto solve2 = [](quad a, quad b, quad c, quad dd, quad r1, quad r2, quad& x, quad& y) {
+    const quad det = a * dd - b * c;
+    if (det == 0) return false;
+    x = (r1 * dd - b * r2) / det;
+    y = (a * r2 - c * r1) / det;
+    return true;
+  };
+  quad PN, PT;
+  // Stick (z_T = 0: G_NT P_N + G_TT P_T = −2 D_TA), free (P_N = −k z_N) or reaction (D_NE = 0).
+  if (solve2(1 + k * GNN / 2, k * GNT / 2, GNT, GTT, -k * DNA, -2 * DTA, PN, PT))
+    keep(PN, PT, false);
+  if (solve2(GNN, GNT, GNT, GTT, -DNA, -2 * DTA, PN, PT)) keep(PN, PT, true);
+  // Slide: P_T = c P_N with c = ±μ.
+  for (quad c : {mu, -mu}) {
+    const quad alpha = GNN + c * GNT;
+    if (1 + k * alpha / 2 != 0)
+      keep(-k * DNA / (1 + k * alpha / 2), c * (-k * DNA / (1 + k * alpha / 2)), false);
+    if (alpha != 0) keep(-DNA / alpha, c * (-DNA / alpha), true);
+  }
+  return out;
+}
+
+TEST(ReferenceSelfTest, CoulombP2MatchesPiecewiseLinearClosedForms) {
+  Rng rng{11};
+  int several = 0, none = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const quad theta = q(rng.uniform(0.05, 1.5));
+    ref::Problem p =
+        bar(theta, q(rng.uniform(-4, 4)), -q(rng.uniform(0.1, 4)), q(rng.uniform(-3, 3)));
+    const quad k = q(rng.log_uniform(0.01, 100));
+    const quad mu = q(rng.log_uniform(0.05, 20));  // well past Painlevé's μ|G_NT| = G_NN sometimes
+    const auto sols = ref::fremond_one_contact(p, {k, 2}, ref::TangentialLaw::coulomb(mu));
+    const quad l = q(0.5), J = l * l / 3;
+    const quad GNN = 1 + l * l * cosq(theta) * cosq(theta) / J;
+    const quad GNT = -l * l * sinq(theta) * cosq(theta) / J;
+    const quad GTT = 1 + l * l * sinq(theta) * sinq(theta) / J;
+    const quad DNA = p.qdot_A[1] - l * cosq(theta) * p.qdot_A[2];
+    const quad DTA = p.qdot_A[0] + l * sinq(theta) * p.qdot_A[2];
+    if (DNA > 0) continue;
+    const auto expected = coulomb_p2_closed_forms(GNN, GNT, GTT, DNA, DTA, k, mu);
+    ASSERT_EQ(sols.size(), expected.size()) << "trial " << trial << " mu " << d(mu);
+    for (const auto& s : sols) {
+      EXPECT_LT(d(s.residual), 1e-30) << s.mode;
+      bool match = false;
+      for (const auto& e : expected)
+        match = match || (rel(s.P_N[0], e.PN) < q(1e-28) &&
+                          fabsq(s.P_T[0] - e.PT) <= q(1e-28) * (fabsq(e.PT) + fabsq(e.PN)));
+      EXPECT_TRUE(match) << "trial " << trial << " " << s.mode;
+    }
+    several += sols.size() > 1;
+    none += sols.empty();
+  }
+  // The random draws do reach the Painlevé cases. (None of them has no solution: with the
+  // two-sided power law the number of solutions found is odd, 1 or 3, in every draw tried.)
+  EXPECT_GT(several, 0);
+  EXPECT_EQ(none, 0);
+}
+
+// The paper's bar at μ = 1 is below Painlevé's condition (μ|G_NT| = 1.5 < G_NN = 2.5): one
+// solution, for every p of the cross-check list.
+TEST(ReferenceSelfTest, CoulombPaperBarHasOneSolution) {
+  const quad theta = acosq(q(-1)) / 4, vy = -sqrtq(2 * q(9.81) * (1 - q(0.5) * sinq(theta)));
+  for (double p : {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0}) {
+    // k_N of SPEC §3: the normal law alone gives restitution 0.9 at this impact.
+    const quad pq = q(p), e = q(0.9);
+    const quad k = (1 + e) / (q(2.5) * powq((1 - e) / 2, pq - 1) * powq(fabsq(vy), pq - 2));
+    const auto normal_only =
+        ref::fremond_one_contact(bar(theta, 2, vy, 0), {k, pq}, ref::TangentialLaw::none());
+    ASSERT_EQ(normal_only.size(), 1u);
+    EXPECT_LT(d(rel(-normal_only[0].D_NE[0] / normal_only[0].D_NA[0], e)), 1e-31);
+    const auto sols =
+        ref::fremond_one_contact(bar(theta, 2, vy, 0), {k, pq}, ref::TangentialLaw::coulomb(1));
+    ASSERT_EQ(sols.size(), 1u) << p;
+    EXPECT_LT(d(sols[0].residual), 1e-31) << p;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Internal consistency over the ranges the cross-checks use.
+
+TEST(ReferenceSelfTest, OneContactResidualsAreQuadSmall) {
+  Rng rng{2024};
+  const double ps[] = {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0};
+  for (int trial = 0; trial < 150; ++trial) {
+    const int n = 2 + trial % 5;
+    const double speed = rng.log_uniform(1e-10, 1e6);
+    ref::Problem p = random_problem(rng, n, 1, speed, trial % 3 == 0 ? 1e6 : 1.0);
+    const quad pq = q(ps[trial % 7]);
+    const quad k = q(rng.log_uniform(1e-6, 1e6));
+    const double qexp = rng.uniform(1.01, 3);
+    const double r = trial % 4 == 0 ? 0.0 : (trial % 4 == 1 ? 10 * speed : rng.uniform(0, speed));
+    const ref::TangentialLaw laws[] = {
+        ref::TangentialLaw::none(),
+        ref::TangentialLaw::dead_zone(q(rng.log_uniform(1e-6, 1e6)), q(qexp), q(r)),
+        ref::TangentialLaw::coulomb(q(rng.uniform(0, 2)))};
+    for (const auto& law : laws) {
+      const auto sols = ref::fremond_one_contact(p, {k, pq}, law);
+      if (law.kind != ref::TangentialKind::coulomb) {
+        ASSERT_EQ(sols.size(), 1u);
+      }
+      // Ill-conditioned M (ratios 1e6) costs its condition number in the last digits.
+      const double bound = trial % 3 == 0 ? 1e-26 : 1e-30;
+      for (const auto& s : sols)
+        EXPECT_LT(d(s.residual), bound) << "trial " << trial << " p " << d(pq) << " " << s.mode;
+    }
+  }
+}
+
+// Two independent methods of the reference on the same one-contact problems: the scalar reduction
+// (fremond_one_contact: nested monotone root finding) and the contact-space system
+// (fremond_several: Gauss-Seidel then Levenberg-Marquardt on the resolvents) agree to nearly quad
+// precision.
+TEST(ReferenceSelfTest, ScalarReductionAgreesWithContactSpaceSolver) {
+  Rng rng{7};
+  const double ps[] = {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0};
+  for (int trial = 0; trial < 70; ++trial) {
+    const double speed = rng.log_uniform(1e-10, 1e6);
+    ref::Problem p = random_problem(rng, 3, 1, speed);
+    const quad pq = q(ps[trial % 7]);
+    const quad k = q(rng.log_uniform(1e-6, 1e6));
+    const double r = trial % 3 == 0 ? 0.0 : (trial % 3 == 1 ? 10 * speed : rng.uniform(0, speed));
+    const auto law =
+        ref::TangentialLaw::dead_zone(q(rng.log_uniform(1e-6, 1e6)), q(rng.uniform(1.01, 3)), q(r));
+    const auto one = ref::fremond_one_contact(p, {k, pq}, law);
+    const auto sev = ref::fremond_several(p, {{k, pq}}, {law});
+    ASSERT_EQ(one.size(), 1u);
+    ASSERT_TRUE(sev.ok) << "trial " << trial;
+    const quad vs = fmaxq(fabsq(one[0].D_NA[0]), fabsq(one[0].D_TA[0]));
+    EXPECT_LT(d(fabsq(one[0].D_NE[0] - sev.D_NE[0]) / vs), 1e-28) << "trial " << trial;
+    EXPECT_LT(d(fabsq(one[0].D_TE[0] - sev.D_TE[0]) / vs), 1e-28) << "trial " << trial;
+  }
+}
+
+TEST(ReferenceSelfTest, SeveralContactsResidualsAreQuadSmall) {
+  Rng rng{99};
+  const double ps[] = {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0};
+  for (int trial = 0; trial < 40; ++trial) {
+    // Up to 4 contacts on 6 dofs: 8 rows, so G is singular when the dead zone is on.
+    const int c = 2 + trial % 3;
+    const double speed = rng.log_uniform(1e-10, 1e6);
+    const bool stiff_mass = trial % 5 == 4;
+    ref::Problem p = random_problem(rng, 6, c, speed, stiff_mass ? 1e6 : 1.0);
+    std::vector<ref::PowerLaw> normal;
+    std::vector<ref::TangentialLaw> tangential;
+    for (int i = 0; i < c; ++i) {
+      normal.push_back({q(rng.log_uniform(1e-6, 1e6)), q(ps[(trial + i) % 7])});
+      const double r = trial % 6 == 1 ? 10 * speed : (trial % 6 == 3 ? 0.0 : rng.uniform(0, speed));
+      tangential.push_back(trial % 2
+                               ? ref::TangentialLaw::none()
+                               : ref::TangentialLaw::dead_zone(q(rng.log_uniform(1e-6, 1e6)),
+                                                               q(rng.uniform(1.01, 3)), q(r)));
+    }
+    const ref::Solution s = ref::fremond_several(p, normal, tangential);
+    EXPECT_TRUE(s.ok) << "trial " << trial;
+    EXPECT_LT(d(s.residual), stiff_mass ? 1e-26 : 1e-30) << "trial " << trial << " " << s.mode;
+  }
+}
+
+}  // namespace
