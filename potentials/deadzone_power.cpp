@@ -46,8 +46,10 @@ double DeadZonePowerPotential::do_prox(double x, double tau, double* dprox) cons
 
 double DeadZonePowerPotential::do_conjugate(double s) const {
   if (k_ == 0.0) return s == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-  const double qc = q_ / (q_ - 1.0);
-  return r_ * std::fabs(s) + std::pow(std::fabs(s), qc) / (qc * std::pow(k_, qc - 1.0));
+  if (s == 0.0) return 0.0;
+  const double qc = q_ / (q_ - 1.0);  // in logarithms, as for the power law
+  return r_ * std::fabs(s) +
+         std::exp(qc * std::log(std::fabs(s)) - (qc - 1.0) * std::log(k_) - std::log(qc));
 }
 
 std::string DeadZonePowerPotential::do_describe() const {

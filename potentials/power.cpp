@@ -36,8 +36,11 @@ double PowerPotential::do_prox(double x, double tau, double* dprox) const {
 
 double PowerPotential::do_conjugate(double s) const {
   if (k_ == 0.0) return s == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+  if (s == 0.0) return 0.0;
+  // |s|^{p'}/(p' k^{p'−1}) in logarithms: for p near 1 the exponent p' is large and each factor
+  // alone over- or underflows although their ratio (≈ (1 − 1/p) k|z|^p at s = φ'(z)) is moderate.
   const double pc = p_ / (p_ - 1.0);  // conjugate exponent p'
-  return std::pow(std::fabs(s), pc) / (pc * std::pow(k_, pc - 1.0));
+  return std::exp(pc * std::log(std::fabs(s)) - (pc - 1.0) * std::log(k_) - std::log(pc));
 }
 
 std::string PowerPotential::do_describe() const {

@@ -43,7 +43,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   rep.per_contact.setZero(c);
   double p_scale = 0.0;
   for (int i = 0; i < c; ++i) p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
-  const double energy = 1e-3 * p_scale * v_scale;  // gaps below 1e-3·rel of this are noise
+  const double energy = p_scale * v_scale;  // the impact's energy scale
   const bool fremond = law.type == LawType::fremond;
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
@@ -77,8 +77,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         const double s = -r.P_T(i);
         const double scale = b * std::fabs(zT) + std::fabs(s * zT) + energy + 1e-300;
         const double over = std::fabs(s) - b;
+        // Outside the cone the conjugate is +∞; an excess that is rounding of the largest
+        // percussion of the impact is not counted as one.
         if (over > 1e-12 * (b + std::fabs(s)))
-          fy = std::max(fy, over / (b + std::fabs(s)));
+          fy = std::max(fy, over / (b + std::fabs(s) + p_scale));
         else
           fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT) / scale);
       }

@@ -241,8 +241,10 @@ int one_contact_coulomb_modes(const FremondRowsT<N, C>& rows, std::array<Contact
   return n;
 }
 
-/// Splits the normal percussion: P_reac = max(0, P_N + φ_N'(z_N)) where the reaction can act
-/// (z_N at its bound D_NA/2, i.e. D_NE = 0), else 0 (eq. 16).
+/// Splits the normal percussion: P_reac = max(0, P_N + φ_N'(z_N)) on a contact whose reaction acts,
+/// else 0 (eq. 16). The reaction acts where the natural map is on its bound branch,
+/// prox_{τφ_N}(z_N − τP_N) < D_NA/2: the same test the residual uses, so the split agrees with
+/// the solver's own convergence, whatever rounding left in D_NE.
 template <int N, int C>
 void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
                     ImpactResultT<N, C>& out) {
@@ -251,12 +253,13 @@ void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
   Rows<N, C> z;
   rows.mean_velocity(P, z);
   for (int k = 0; k < cs.active; ++k) {
+    const Potential& phi = rows.law->normal[rows.contact(k)];
     const double lb = rows.lower_bound(k);
-    const double slack = 64 * kEps * (std::fabs(lb) + std::fabs(z(k))) + std::numeric_limits<double>::min();
-    if (z(k) <= lb + slack) {
-      const double s = rows.law->normal[rows.contact(k)].subgradient(z(k));
-      out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + s);
-    }
+    const bool bound_branch =
+        (!rows.row_has_prox(k) || !std::isfinite(z(k)))
+            ? z(k) <= lb + 64 * kEps * (std::fabs(lb) + std::fabs(z(k)))
+            : phi.prox(z(k) - rows.tau(k) * P(k), rows.tau(k)) < lb;
+    if (bound_branch) out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + phi.subgradient(z(k)));
   }
 }
 
@@ -295,6 +298,28 @@ bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
   return qr.rank() == m;
 }
 
+/// One Gauss–Seidel sweep after convergence: each row then satisfies its own law exactly given
+/// the others (a row in a dead zone or a stick zone gets exactly zero, not Newton's last rounding).
+/// Kept only if the answer still passes the stopping test.
+template <int N, int C>
+void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double target) {
+  const auto& cs = *rows.cs;
+  const int r = cs.rows();
+  if (r < 2) return;
+  Rows<N, C> Q = P, z, R;
+  rows.mean_velocity(P, z);
+  const double gmax = cs.G.diagonal().maxCoeff();
+  for (int j = 0; j < r; ++j) {
+    const double g = cs.G(j, j);
+    if (!(g > 1e-14 * gmax)) continue;
+    const double x = z(j) - 0.5 * g * Q(j);
+    const double d = (rows.prox(j, x, rows.bound(j, Q)) - x) / rows.tau(j) - Q(j);
+    Q(j) += d;
+    z.noalias() += (0.5 * d) * cs.G.col(j);
+  }
+  if (std::isfinite(rows.residual(Q, z, R)) && rows.converged(Q, R, target)) P = Q;
+}
+
 template <int N, int C>
 void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, ImpactResultT<N, C>& out) {
   out.solver.method = m;
@@ -315,7 +340,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   rows.init(cs, law);
   Rows<N, C> P = Rows<N, C>::Zero(cs.rows());
   const SolverMethod want = opt.method;
-  auto finish = [&](const MethodOutcome& o, SolverMethod m) {
+  auto finish = [&](MethodOutcome o, SolverMethod m) {
+    if (cs.rows() && P.allFinite()) o.residual = rows.plain_residual(P);  // the law's residual
     write_outcome(o, m, cs.v_scale, out);
     scatter_solution(pb, cs, P, out);
     split_reaction(rows, P, out);
@@ -405,6 +431,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     if (!P0.allFinite()) P0.setZero();
     P = P0;
     const auto o = semismooth_newton(rows, P, opt);
+    if (o.status == SolverStatus::converged) final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
     if (o.status == SolverStatus::converged || !automatic) {
       finish(o, SolverMethod::semismooth_newton);
       out.solver.fallbacks = tried;
@@ -447,7 +474,7 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
       for (int k = 0; k < cs.active; ++k) active = active || cs.index(k) == i;
       if (!active) off = std::max({off, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
     }
-  const double res = cs.rows() ? rows.residual(P, z, R) : 0.0;
+  const double res = cs.rows() ? rows.plain_residual(P) : 0.0;
   const double gmax = cs.rows() ? cs.G.diagonal().maxCoeff() : 0.0;
   return std::max(res, off * gmax) / cs.v_scale;
 }

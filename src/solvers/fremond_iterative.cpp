@@ -38,7 +38,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
       o.message = "semismooth Newton: the residual is not finite";
       return o;
     }
-    if (nr <= std::max(target, rows.rounding_floor(P))) {
+    if (rows.converged(P, R, target)) {
       o.status = SolverStatus::converged;
       o.criterion = StopCriterion::residual;
       o.message = "semismooth Newton converged";
@@ -139,7 +139,7 @@ MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
       o.message = "proximal iterations: the iterates diverged";
       return o;
     }
-    if (nr <= std::max(target, rows.rounding_floor(P))) {
+    if (rows.converged(P, R, target)) {
       o.status = SolverStatus::converged;
       o.criterion = StopCriterion::residual;
       o.message = "proximal iterations converged";

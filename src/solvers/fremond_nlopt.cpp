@@ -110,7 +110,7 @@ bool polish(NloptData& d, VectorX& u, double v_scale) {
     VectorX s(r), h(r);
     for (int j = 0; j < r; ++j) {
       s(j) = pot(j).subgradient(z(j));
-      const double dz = 1e-6 * (std::fabs(z(j)) + v_scale);
+      const double dz = 1e-8 * (std::fabs(z(j)) + v_scale);  // small: kinks of φ'' nearby
       h(j) = (pot(j).subgradient(z(j) + dz) - pot(j).subgradient(z(j) - dz)) / (2.0 * dz);
       if (!std::isfinite(h(j)) || h(j) < 0.0) h(j) = 0.0;
     }
@@ -171,7 +171,6 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     std::vector<double> ctol(m, 0.0);
     nlopt_add_inequality_mconstraint(solver, m, constraints, &d, ctol.data());
     nlopt_set_xtol_rel(solver, 1e-15);
-    nlopt_set_ftol_rel(solver, 1e-16);
     nlopt_set_maxeval(solver, std::max(1, opt.max_nlopt_evaluations - evaluations));
     if (rows.coulomb) {
       const VectorX zt = DA.tail(a) + W.rightCols(a).transpose() *
@@ -183,35 +182,46 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     evaluations += nlopt_get_numevals(solver);
     nlopt_destroy(solver);
     o.native_code = static_cast<int>(code);
-    if (!rows.coulomb && code > 0) {
-      VectorX u = Eigen::Map<const VectorX>(x.data(), n);
-      if (polish(d, u, cs.v_scale))
-        for (int i = 0; i < n; ++i) x[i] = u(i);
-    }
-    // The percussion from the velocities.
-    const Eigen::Map<const VectorX> u(x.data(), n);
-    const VectorX z = DA + W.transpose() * u;
-    const VectorX rhs = 2.0 * (M * u);
-    std::vector<int> free_rows;
-    VectorX known = VectorX::Zero(r);
-    for (int j = 0; j < r; ++j) {
-      const bool normal = j < a;
-      const double lb = normal ? 0.5 * DA(j) : 0.0;
-      const bool at_bound = normal && z(j) <= lb + 1e-9 * cs.v_scale;
-      if (at_bound || (!normal && rows.coulomb)) {
-        free_rows.push_back(j);
-      } else {
-        const Potential& pot =
-            normal ? rows.law->normal[contact[j]] : rows.law->tangential_potential[contact[j - a]];
-        known(j) = -pot.subgradient(z(j));
+    // The percussion from the velocities, and the law's residual there.
+    auto recover = [&](const VectorX& u, VectorX& Pout) {
+      const VectorX z = DA + W.transpose() * u;
+      const VectorX rhs = 2.0 * (M * u);
+      std::vector<int> free_rows;
+      VectorX known = VectorX::Zero(r);
+      for (int j = 0; j < r; ++j) {
+        const bool normal = j < a;
+        const double lb = normal ? 0.5 * DA(j) : 0.0;
+        const bool at_bound = normal && z(j) <= lb + 1e-9 * cs.v_scale;
+        if (at_bound || (!normal && rows.coulomb)) {
+          free_rows.push_back(j);
+        } else {
+          const Potential& pot = normal ? rows.law->normal[contact[j]]
+                                        : rows.law->tangential_potential[contact[j - a]];
+          known(j) = -pot.subgradient(z(j));
+        }
       }
-    }
-    Pv = known;
-    if (!free_rows.empty()) {
-      MatrixX Wf(n, free_rows.size());
-      for (std::size_t i = 0; i < free_rows.size(); ++i) Wf.col(i) = W.col(free_rows[i]);
-      const VectorX sol = Wf.completeOrthogonalDecomposition().solve(rhs - W * known);
-      for (std::size_t i = 0; i < free_rows.size(); ++i) Pv(free_rows[i]) = sol(i);
+      Pout = known;
+      if (!free_rows.empty()) {
+        MatrixX Wf(n, free_rows.size());
+        for (std::size_t i = 0; i < free_rows.size(); ++i) Wf.col(i) = W.col(free_rows[i]);
+        const VectorX sol = Wf.completeOrthogonalDecomposition().solve(rhs - W * known);
+        for (std::size_t i = 0; i < free_rows.size(); ++i) Pout(free_rows[i]) = sol(i);
+      }
+      typename FremondRowsT<N, C>::Rows Pr = Pout, zr, R;
+      return rows.residual(Pr, zr, R);
+    };
+    VectorX u = Eigen::Map<const VectorX>(x.data(), n);
+    double res = recover(u, Pv);
+    if (!rows.coulomb && code > 0) {
+      VectorX up = u, Pp;
+      if (polish(d, up, cs.v_scale)) {
+        const double resp = recover(up, Pp);
+        if (resp < res) {
+          res = resp;
+          Pv = Pp;
+          for (int i = 0; i < n; ++i) x[i] = up(i);
+        }
+      }
     }
     if (!rows.coulomb) break;
     VectorX bnew(a);
@@ -229,7 +239,7 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   if (!std::isfinite(o.residual)) {
     o.status = SolverStatus::failed;
     o.message = "NLopt: the answer is not finite";
-  } else if (o.residual <= std::max(target, rows.rounding_floor(P))) {
+  } else if (rows.converged(P, R, target)) {
     o.status = SolverStatus::converged;
     o.message = "NLopt (SLSQP) converged to the NLopt tolerance";
   } else if (o.native_code == NLOPT_MAXEVAL_REACHED) {

@@ -26,7 +26,9 @@ struct FremondRowsT {
 
   const CS* cs = nullptr;
   const ImpactLaw* law = nullptr;
-  Rows tau;  ///< prox step per row
+  Rows tau;     ///< prox step per row
+  Rows weight;  ///< τ_max/τ_j ≥ 1: a row's residual R_j = τ_j·(percussion error), so the weight
+                ///< measures every row's percussion error on the same scale
   bool coulomb = false;
   bool all_prox = true;  ///< every potential has a prox (else those rows use subgradients)
 
@@ -48,6 +50,9 @@ struct FremondRowsT {
       const double g = space.G(j, j);
       tau(j) = g > 1e-14 * gmax ? 0.5 * g : fallback;
     }
+    weight.resize(r);
+    const double tmax = r ? tau.maxCoeff() : 1.0;
+    for (int j = 0; j < r; ++j) weight(j) = tmax / tau(j);
   }
 
   int active() const { return cs->active; }
@@ -100,7 +105,7 @@ struct FremondRowsT {
   /// z = D_A + G P / 2.
   void mean_velocity(const Rows& P, Rows& z) const { z.noalias() = cs->D_A + 0.5 * (cs->G * P); }
 
-  /// R = z − prox(z − τP); returns ‖R‖∞.
+  /// R = z − prox(z − τP); returns the weighted norm max_j weight_j |R_j|.
   double residual(const Rows& P, Rows& z, Rows& R) const {
     mean_velocity(P, z);
     const int r = cs->rows();
@@ -109,7 +114,7 @@ struct FremondRowsT {
     for (int j = 0; j < r; ++j) {
       R(j) = row_residual(j, z(j), P);
       if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
-      m = std::max(m, std::fabs(R(j)));
+      m = std::max(m, weight(j) * std::fabs(R(j)));
     }
     return m;
   }
@@ -118,6 +123,30 @@ struct FremondRowsT {
     if (is_normal(j)) return law->normal[contact(j)].capabilities().prox;
     if (coulomb) return true;
     return law->tangential_potential[contact(j)].capabilities().prox;
+  }
+
+  /// The stopping test of every solver: each row within the target or at its own rounding floor,
+  ///   weight_j |R_j| ≤ target  or  |R_j| ≤ 16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|),
+  /// with R from the last call of residual().
+  bool converged(const Rows& P, const Rows& R, double target) const {
+    const int r = cs->rows();
+    const double eps16 = 16.0 * std::numeric_limits<double>::epsilon();
+    for (int j = 0; j < r; ++j) {
+      const double a = std::fabs(R(j));
+      if (weight(j) * a <= target) continue;
+      const double floor = eps16 * (std::fabs(cs->D_A(j)) +
+                                    0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
+                                    tau(j) * std::fabs(P(j)));
+      if (!(a <= floor)) return false;
+    }
+    return true;
+  }
+
+  /// ‖R‖∞ without weights, in velocity units: what law_residual reports (scaled by v_scale).
+  double plain_residual(const Rows& P) const {
+    Rows z, R;
+    if (!std::isfinite(residual(P, z, R))) return std::numeric_limits<double>::infinity();
+    return cs->rows() ? R.cwiseAbs().maxCoeff() : 0.0;
   }
 
   /// One row of R. Where the potential has no prox (value and subgradient only), the equivalent
@@ -132,11 +161,6 @@ struct FremondRowsT {
     return tau(j) * (P(j) + law->tangential_potential[contact(j)].subgradient(zj));
   }
 
-  /// The scale below which the residual cannot be evaluated: rounding in z = D_A + G P/2.
-  double rounding_floor(const Rows& P) const {
-    const double s = (cs->D_A.cwiseAbs() + 0.5 * (cs->G.cwiseAbs() * P.cwiseAbs())).maxCoeff();
-    return 16.0 * std::numeric_limits<double>::epsilon() * s;
-  }
 };
 
 }  // namespace fremond::detail

@@ -1,0 +1,92 @@
+#pragma once
+// Problems shared by the tests: the paper's bar (SPEC §5), point masses, and random problems with a
+// fixed seed (random SPD M, random contact directions, some contacts taking part).
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <Eigen/QR>
+
+#include "fremond/fremond.hpp"
+
+namespace fremond::testing {
+
+inline constexpr double kBarHalfLength = 0.5;
+inline constexpr double kGravity = 9.81;
+
+/// The bar of SPEC §5 with one end at angle θ on the ground; `end` = −1 the lower end at θ > 0.
+/// W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ) for the end s (SPEC §5 for s = −1, θ = π/4).
+inline ImpactProblem bar_problem(double theta, Eigen::Vector3d qdot, bool both_ends = false) {
+  const double l = kBarHalfLength, m = 1.0;
+  ImpactProblem pb;
+  pb.M = MatrixX::Zero(3, 3);
+  pb.M.diagonal() << m, m, m * l * l / 3.0;
+  const int c = both_ends ? 2 : 1;
+  pb.W_N.resize(3, c);
+  pb.W_T.resize(3, c);
+  for (int i = 0; i < c; ++i) {
+    const double s = (i == 0) ? -1.0 : 1.0;
+    pb.W_N.col(i) << 0.0, 1.0, s * l * std::cos(theta);
+    pb.W_T.col(i) << 1.0, 0.0, -s * l * std::sin(theta);
+  }
+  pb.qdot_A = qdot;
+  return pb;
+}
+
+/// The bar at its first impact from SPEC §5's initial state: a free fall from y = 1 until the lower
+/// end touches (centre at l sin θ), ẋ = 2, θ̇ = 0.
+inline ImpactProblem paper_bar_first_impact() {
+  const double th = std::numbers::pi / 4;
+  const double drop = 1.0 - kBarHalfLength * std::sin(th);
+  return bar_problem(th, Eigen::Vector3d(2.0, -std::sqrt(2.0 * kGravity * drop), 0.0));
+}
+
+/// A point mass m hitting the ground with normal velocity v < 0 (and tangential velocity vt).
+inline ImpactProblem point_mass(double m, double v, double vt = 0.0, bool tangential = false) {
+  ImpactProblem pb;
+  const int n = tangential ? 2 : 1;
+  pb.M = m * MatrixX::Identity(n, n);
+  pb.W_N = MatrixX::Zero(n, 1);
+  pb.W_N(n - 1, 0) = 1.0;
+  if (tangential) {
+    pb.W_T = MatrixX::Zero(n, 1);
+    pb.W_T(0, 0) = 1.0;
+    pb.qdot_A = Eigen::Vector2d(vt, v);
+  } else {
+    pb.qdot_A = VectorX::Constant(1, v);
+  }
+  return pb;
+}
+
+/// A random problem: n dofs, c contacts, M = AᵀA + δI with condition up to `cond`, directions of
+/// unit scale, velocities of scale `vscale`; at least one contact takes part.
+inline ImpactProblem random_problem(std::mt19937_64& rng, int n, int c, bool tangential,
+                                    double cond = 1e3, double vscale = 1.0) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  ImpactProblem pb;
+  MatrixX A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = u(rng);
+  Eigen::HouseholderQR<MatrixX> qr(A);
+  const MatrixX Q = qr.householderQ();
+  VectorX d(n);
+  for (int i = 0; i < n; ++i) d(i) = std::pow(cond, 0.5 * (u(rng) + 1.0) * (n > 1 ? 1.0 : 0.0));
+  pb.M = Q * d.asDiagonal() * Q.transpose();
+  pb.M = 0.5 * (pb.M + pb.M.transpose()).eval();
+  pb.W_N.resize(n, c);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < c; ++j) pb.W_N(i, j) = u(rng);
+  if (tangential) {
+    pb.W_T.resize(n, c);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < c; ++j) pb.W_T(i, j) = u(rng);
+  }
+  pb.qdot_A.resize(n);
+  for (int i = 0; i < n; ++i) pb.qdot_A(i) = vscale * u(rng);
+  // Make the first contact approach.
+  const double dn = pb.W_N.col(0).dot(pb.qdot_A);
+  if (dn > 0.0) pb.qdot_A -= (2.0 * dn / pb.W_N.col(0).squaredNorm()) * pb.W_N.col(0);
+  return pb;
+}
+
+}  // namespace fremond::testing
