@@ -7,9 +7,10 @@ Run the benchmarks with JSON output, then this script on every file:
     build/bench/classical_bench --benchmark_out=ours.json --benchmark_out_format=json
     /usr/bin/python3 bench/compare.py siconos.json ours.json
 
-Benchmarks are paired by their label, "problem=... law=..." (bench_label() in bench/problems.hpp):
-every benchmark whose name starts with BM_Siconos_ is compared with every other benchmark of the same
-label. The ratio is Siconos's CPU time over ours (> 1: we are faster). Where both report a
+Benchmarks are paired by the "problem=... law=..." words of their label (bench_label() in
+bench/problems.hpp; further words, e.g. "stage=solve_impact", only describe the benchmark): every
+benchmark whose name starts with BM_Siconos_ is compared with every other benchmark of the same
+problem and law. The ratio is Siconos's CPU time over ours (> 1: we are faster). Where both report a
 `us_per_step` counter (time stepping), that is compared instead of the time of a whole run. Uses the
 standard library only.
 """
@@ -36,6 +37,19 @@ def load(paths):
     return runs
 
 
+def key(label):
+    """The pairing key: the label's "problem=..." and "law=..." words (others, e.g. "stage=...",
+    only describe the benchmark)."""
+    words = [w for w in label.split() if w.startswith(("problem=", "law="))]
+    return " ".join(words) if words and words[0].startswith("problem=") else ""
+
+
+def name_of(b):
+    """The benchmark's name, with the words of its label that are not part of the key."""
+    extra = [w for w in b.get("label", "").split() if not w.startswith(("problem=", "law="))]
+    return " ".join([b["name"]] + extra)
+
+
 def cost(b):
     """(value, unit) used for the comparison: µs per step if given, else CPU ns per iteration."""
     if "us_per_step" in b:
@@ -50,8 +64,8 @@ def main(argv=None):
 
     by_label = defaultdict(lambda: ([], []))
     for b in load(args.json):
-        label = b.get("label", "")
-        if not label.startswith("problem="):
+        label = key(b.get("label", ""))
+        if not label:
             continue
         siconos = b["name"].startswith("BM_Siconos_")
         by_label[label][0 if siconos else 1].append(b)
@@ -64,7 +78,7 @@ def main(argv=None):
                 (sv, su), (ov, ou) = cost(s), cost(o)
                 if su != ou or ov <= 0:
                     continue
-                rows.append((label, s["name"], sv, o["name"], ov, su, sv / ov))
+                rows.append((label, name_of(s), sv, name_of(o), ov, su, sv / ov))
     if not rows:
         print("no pairs: no Siconos benchmark shares a label with one of ours "
               "(was the benchmark built with Siconos? see the CMake message)")
