@@ -126,7 +126,6 @@ void BM_Classical_FromData(benchmark::State& state, const Case* c) {
   for (auto _ : state) {
     const SmallImpactProblem& p = c->problems[k++ % c->problems.size()];
     detail::build_contact_space(p, c->law.has_friction(), cs);
-    lo = {};
     detail::classical::solve_law(p, cs, c->law, false, lo);
     benchmark::DoNotOptimize(lo.solutions[0].P.data());
   }
@@ -142,7 +141,6 @@ void BM_Classical_Law(benchmark::State& state, const Case* c) {
   std::size_t k = 0;
   for (auto _ : state) {
     const std::size_t j = k++ % c->problems.size();
-    lo = {};
     detail::classical::solve_law(c->problems[j], spaces[j], c->law, false, lo);
     benchmark::DoNotOptimize(lo.solutions[0].P.data());
   }

@@ -4,6 +4,7 @@
 // method, with every solution listed where the enumeration can list them. Header-only so that the
 // benchmarks time exactly what solve_impact runs; the results are filled in classical.cpp.
 #include <algorithm>
+#include <limits>
 
 #include "classical_phase.hpp"
 #include "fremond/laws/impact_law.hpp"
@@ -29,6 +30,7 @@ inline SolverMethod costlier(SolverMethod a, SolverMethod b) {
   return rank(a) >= rank(b) ? a : b;
 }
 
+/// What solving one phase found.
 template <int C>
 struct PhaseOutcome {
   using Rows = typename Phase<C>::Rows;
@@ -37,23 +39,35 @@ struct PhaseOutcome {
   SolverMethod others = SolverMethod::closed_form;   ///< the method of the rest of the list
   int pivots = 0;
   int fallbacks = 0;
-  bool exhaustive = false;         ///< u holds every solution (up to equal velocities)
-  bool percussion_unique = true;   ///< false when a minimum-norm choice was made
-  bool continuum = false;          ///< a singular mode may hold a continuum of velocities
+  bool exhaustive = false;        ///< u holds every solution (up to equal velocities)
+  bool percussion_unique = true;  ///< false when a minimum-norm choice was made
+  bool continuum = false;         ///< a singular mode may hold a continuum of velocities
 };
 
-// Conservative test of a singular G (then minimum_norm decides exactly, by SVD).
-template <class Mat>
-bool maybe_singular(const Mat& G) {
-  if (G.rows() == 0) return false;
-  Eigen::LLT<Mat> llt(G);
-  if (llt.info() != Eigen::Success) return true;
-  const auto d = llt.matrixLLT().diagonal();
-  return !(d.minCoeff() > 1e-7 * d.maxCoeff());
-}
+/// G once per law: its Cholesky factor (the eq. 6 guess) and, when it is singular, null(G) (the
+/// minimum-norm choice).
+template <int C>
+struct Factored {
+  using RowMat = typename Phase<C>::RowMat;
+  Eigen::LLT<RowMat> llt;
+  bool regular = false;
+  RowMat null;  ///< orthonormal basis of null(G), no columns when G is regular
+
+  void compute(const RowMat& G) {
+    llt.compute(G);
+    regular = false;
+    if (llt.info() == Eigen::Success && G.rows() > 0) {
+      const auto d = llt.matrixLLT().diagonal();
+      regular = d.minCoeff() > 1e-7 * d.maxCoeff();
+    }
+    // A small pivot is only a hint: the eigenvalues decide what null(G) is.
+    if (regular) null.resize(G.rows(), 0);
+    else null = null_space<C>(G);
+  }
+};
 
 template <int C>
-void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singular,
+void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Factored<C>& fg,
                  const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out) {
   using Rows = typename Phase<C>::Rows;
   const int r = ph.rows();
@@ -61,9 +75,9 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singu
   bool enumerate = false;
   if (ph.a == 1) {
     const bool f = ph.friction;
-    const OneContact oc =
-        one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0),
-                               f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0, f ? ph.b0(0) : 0.0, f, tol);
+    const OneContact oc = one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0,
+                                      ph.q(0), f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0,
+                                      f ? ph.b0(0) : 0.0, f, tol);
     if (!oc.degenerate) {
       for (int k = 0; k < oc.count; ++k) {
         u(0) = oc.x[k];
@@ -79,7 +93,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singu
   } else {
     const bool friction = !frictionless(ph);
     bool have = false;
-    if (all_closed_guess(ph, tol, u)) {
+    if (all_closed_guess(ph, tol, fg.llt, fg.regular, u)) {
       have = true;
       out.primary = SolverMethod::closed_form;
     } else {
@@ -87,9 +101,8 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singu
       have = lemke_phase(ph, LemkeOptions{}, u, pivots) == LcpStatus::solved;
       out.pivots += pivots;
       out.primary = SolverMethod::lemke;
-      if (have) {
+      if (have)
         for (int i = 0; i < ph.a; ++i) u(i) = std::max(0.0, u(i));
-      }
     }
     if (!friction) {
       // Symmetric positive semidefinite LCP: the velocities are unique, and a ray proves that
@@ -121,10 +134,10 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, bool singu
     }
     out.exhaustive = !found.overflow && !out.u.overflow;
   }
-  if (singular)
+  if (fg.null.cols() > 0)
     for (int k = 0; k < out.u.size; ++k)
-      out.percussion_unique = minimum_norm(ph, tol, shift, out.u[k]) &&
-                              out.percussion_unique;
+      out.percussion_unique =
+          minimum_norm<C>(ph, tol, fg.null, shift, out.u[k]) && out.percussion_unique;
 }
 
 template <int C>
@@ -136,6 +149,7 @@ struct LawSolution {
   SolverMethod method = SolverMethod::closed_form;
 };
 
+/// Every solution found for a law, and how.
 template <int C>
 struct LawOutcome {
   FixedList<LawSolution<C>, kMaxSolutions> solutions;
@@ -146,13 +160,87 @@ struct LawOutcome {
   bool percussion_unique = true;
   bool compression_unique = true;  ///< Poisson: the compression percussion
   bool continuum = false;
+
+  void reset() {
+    solutions.clear();
+    method = SolverMethod::closed_form;
+    pivots = fallbacks = 0;
+    exhaustive = percussion_unique = compression_unique = true;
+    continuum = false;
+  }
 };
 
+/// One contact: the whole law on scalars with the closed forms of one_contact (eqs. 7-8 with eq. 5
+/// or Poisson's phases), no matrix work. False when its 2×2 G is degenerate (then the general path
+/// enumerates); `out` is then left empty.
+template <int N, int C>
+bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                           const ImpactLaw& law, LawOutcome<C>& out) {
+  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool f = cs.tangential;
+  const int r = f ? 2 : 1, i = cs.index(0);
+  const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
+  const double dna = cs.D_A(0), dta = f ? cs.D_A(1) : 0.0;
+  const double e = law.e[i], mu = f ? law.mu[i] : 0.0;
+  Tolerances tol;
+  tol.v = 1e-9 * cs.v_scale;
+  tol.p = tol.v / std::max({gnn, gtt, std::numeric_limits<double>::min()});
+  auto push = [&](double xc, double tc, double x, double t) {
+    LawSolution<C>* s = out.solutions.emplace();
+    if (!s) return;
+    s->P.resize(r);
+    s->P(0) = x;
+    if (f) s->P(1) = t;
+    if (poisson) {
+      s->P_C.resize(r);
+      s->P_C(0) = xc;
+      if (f) s->P_C(1) = tc;
+    }
+  };
+  const OneContact first = one_contact(gnn, gnt, gtt, poisson ? dna : (1 + e) * dna, dta, mu, 0.0,
+                                       f, tol);
+  if (first.degenerate) return false;
+  for (int k = 0; k < first.count; ++k) {
+    const double xc = first.x[k], tc = first.t[k];
+    if (!poisson) {
+      push(0.0, 0.0, xc, tc);
+      continue;
+    }
+    // Expansion from the end of compression with P_NE = e P_NC + ΔP, bound μ P_NE.
+    const double s = e * xc;
+    const double dnc = dna + gnn * xc + gnt * tc, dtc = dta + gnt * xc + gtt * tc;
+    const OneContact second =
+        one_contact(gnn, gnt, gtt, dnc + gnn * s, dtc + gnt * s, mu, mu * s, f, tol);
+    if (second.degenerate) {
+      out.solutions.clear();
+      return false;
+    }
+    for (int j = 0; j < second.count; ++j)
+      push(xc, tc, xc + s + second.x[j], tc + second.t[j]);
+  }
+  if (out.solutions.size > 1) {
+    // T_E − T_A = P·(Wᵀq̇_A) + ½ PᵀGP (eq. 9), to choose between several solutions.
+    const double wn = pb.W_N.col(i).dot(pb.qdot_A);
+    const double wt = f ? pb.W_T.col(i).dot(pb.qdot_A) : 0.0;
+    for (int k = 0; k < out.solutions.size; ++k) {
+      LawSolution<C>& s = out.solutions[k];
+      const double x = s.P(0), t = f ? s.P(1) : 0.0;
+      s.energy_change = x * wn + t * wt + 0.5 * (gnn * x * x + 2 * gnt * x * t + gtt * t * t);
+    }
+  }
+  out.exhaustive = !out.solutions.overflow;
+  return true;
+}
+
+/// Solves the law on the active contacts of `cs`. `all`: list every solution the enumeration can
+/// find (friction on up to 3 contacts); otherwise one, by the cheapest exact method.
 template <int N, int C>
 void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
                bool all, LawOutcome<C>& out) {
   using Rows = typename Phase<C>::Rows;
+  out.reset();
   const int a = cs.active;
+  if (a == 1 && solve_law_one_contact(pb, cs, law, out)) return;
   const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
   Phase<C> ph;
   ph.a = a;
@@ -167,7 +255,8 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     ph.mu(k) = ph.friction ? law.mu[cs.index(k)] : 0.0;
   }
   const Tolerances tol = tolerances(ph, cs.v_scale);
-  const bool singular = maybe_singular(ph.G);
+  Factored<C> fg;
+  fg.compute(ph.G);
   // T_E − T_A = Pᵀ Wᵀq̇_A + ½ PᵀGP (eq. 9 with the obstacle terms w taken out of D_A).
   const Rows Wq = cs.W.leftCols(r).transpose() * pb.qdot_A;
   auto energy = [&](const Rows& P) { return P.dot(Wq) + 0.5 * P.dot(ph.G * P); };
@@ -177,7 +266,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   ph.q = cs.D_A.head(r);
   if (!poisson) ph.q.head(a) = ph.q.head(a).cwiseProduct((e.array() + 1.0).matrix());
   PhaseOutcome<C> first;
-  solve_phase(ph, tol, all, singular, zero, first);
+  solve_phase(ph, tol, all, fg, zero, first);
   out.pivots = first.pivots;
   out.fallbacks = first.fallbacks;
   out.exhaustive = first.exhaustive;
@@ -188,11 +277,11 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   for (int k = 0; k < first.u.size; ++k) {
     const SolverMethod mk = k == 0 ? first.primary : first.others;
     if (!poisson) {
-      LawSolution<C> s;
-      s.P = first.u[k];
-      s.energy_change = energy(s.P);
-      s.method = mk;
-      out.solutions.push(s);
+      LawSolution<C>* s = out.solutions.emplace();
+      if (!s) break;
+      s->P = first.u[k];
+      s->energy_change = energy(s->P);
+      s->method = mk;
       continue;
     }
     // Poisson's expansion from the end of compression: P_NE = e P_NC + ΔP with 0 ≤ ΔP ⊥ D_NE ≥ 0,
@@ -205,19 +294,19 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     ex.q.noalias() += ph.G * shift;
     if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
     PhaseOutcome<C> second;
-    solve_phase(ex, tol, all, singular, shift, second);
+    solve_phase(ex, tol, all, fg, shift, second);
     out.pivots += second.pivots;
     out.fallbacks += second.fallbacks;
     out.exhaustive = out.exhaustive && second.exhaustive;
     out.continuum = out.continuum || second.continuum;
     out.percussion_unique = out.percussion_unique && second.percussion_unique;
     for (int j = 0; j < second.u.size; ++j) {
-      LawSolution<C> s;
-      s.P_C = uc;
-      s.P = uc + shift + second.u[j];
-      s.energy_change = energy(s.P);
-      s.method = costlier(mk, j == 0 ? second.primary : second.others);
-      out.solutions.push(s);
+      LawSolution<C>* s = out.solutions.emplace();
+      if (!s) break;
+      s->P_C = uc;
+      s->P = uc + shift + second.u[j];
+      s->energy_change = energy(s->P);
+      s->method = costlier(mk, j == 0 ? second.primary : second.others);
     }
   }
   if (out.solutions.overflow) out.exhaustive = false;

@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
@@ -31,18 +32,40 @@ namespace fremond::detail::classical {
 
 constexpr int times(int m, int k) { return m == Dynamic ? Dynamic : k * m; }
 
-/// A fixed-capacity list (no heap): the solutions of one phase or one law.
+/// A fixed-capacity list (no heap) whose items are constructed only when pushed, so that an empty
+/// list costs nothing to create: the solutions of one phase or one law.
 template <class T, int Capacity>
 struct FixedList {
-  std::array<T, Capacity> items;
   int size = 0;
   bool overflow = false;  ///< more were found than fit (the list is then not exhaustive)
-  void push(const T& x) {
-    if (size < Capacity) items[size++] = x;
-    else overflow = true;
+
+  FixedList() = default;
+  FixedList(const FixedList&) = delete;
+  FixedList& operator=(const FixedList&) = delete;
+  ~FixedList() { clear(); }
+  void clear() {
+    for (int i = 0; i < size; ++i) at(i)->~T();
+    size = 0;
+    overflow = false;
   }
-  const T& operator[](int i) const { return items[i]; }
-  T& operator[](int i) { return items[i]; }
+  /// A new default-constructed item at the end, or nullptr (and `overflow`) when full.
+  T* emplace() {
+    if (size == Capacity) {
+      overflow = true;
+      return nullptr;
+    }
+    return new (at(size++)) T();
+  }
+  void push(const T& x) {
+    if (T* p = emplace()) *p = x;
+  }
+  const T& operator[](int i) const { return *at(i); }
+  T& operator[](int i) { return *at(i); }
+
+ private:
+  T* at(int i) { return std::launder(reinterpret_cast<T*>(storage_)) + i; }
+  const T* at(int i) const { return std::launder(reinterpret_cast<const T*>(storage_)) + i; }
+  alignas(T) unsigned char storage_[sizeof(T) * Capacity];
 };
 
 /// How many solutions one phase or one law keeps. Enough for every case met in practice: one contact
@@ -154,15 +177,13 @@ inline OneContact one_contact(double gnn, double gnt, double gtt, double qn, dou
 // Several contacts.
 
 /// The cheapest exact guess for several contacts (eq. 6 generalised): every contact closed and, with
-/// friction, sticking, u = −G⁻¹q. True when G is regular and u satisfies the phase's inequalities.
-template <int MaxC>
-bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u) {
-  using RowMat = typename Phase<MaxC>::RowMat;
+/// friction, sticking, u = −G⁻¹q. True when G is regular (`llt` is its Cholesky factor, `regular`
+/// says it is usable) and u satisfies the phase's inequalities.
+template <int MaxC, class Llt>
+bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Llt& llt, bool regular,
+                      typename Phase<MaxC>::Rows& u) {
+  if (!regular) return false;
   const int a = ph.a;
-  Eigen::LLT<RowMat> llt(ph.G);
-  if (llt.info() != Eigen::Success) return false;
-  const auto d = llt.matrixLLT().diagonal();
-  if (!(d.minCoeff() > 1e-7 * d.maxCoeff())) return false;  // near-singular: let Lemke decide
   u = llt.solve(-ph.q);
   for (int i = 0; i < a; ++i) {
     if (u(i) < -tol.p) return false;
@@ -421,30 +442,47 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
   }
 }
 
+/// An orthonormal basis of null(G) (= null(W)): the directions along which the percussions of a
+/// phase can change without changing any velocity. Empty when G is regular.
+template <int MaxC>
+MatT<times(MaxC, 2), times(MaxC, 2)> null_space(const typename Phase<MaxC>::RowMat& G) {
+  using RowMat = typename Phase<MaxC>::RowMat;
+  const int r = static_cast<int>(G.rows());
+  if (r == 0) return RowMat(0, 0);
+  // G is symmetric positive semidefinite: its singular values are its eigenvalues (descending).
+  Eigen::JacobiSVD<RowMat> svd(G, Eigen::ComputeFullV);
+  const auto& sv = svd.singularValues();
+  int rank = 0;
+  while (rank < r && sv(rank) > 1e-10 * sv(0)) ++rank;
+  return svd.matrixV().rightCols(r - rank);
+}
+
 /// Among the percussions that solve the phase with the same velocities as u (a polyhedron when G is
 /// singular: the velocities fix G u, and each contact's sign pattern fixes linear conditions), the
 /// one that minimises ‖u + shift‖ (`shift` turns the phase unknowns into the physical percussion:
-/// Poisson's expansion adds e∘P_NC). Replaces u; returns true when that set is a single point.
+/// Poisson's expansion adds e∘P_NC). NG is null_space(G). Replaces u; returns true when that set
+/// is a single point.
 template <int MaxC>
 bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
+                  const MatT<times(MaxC, 2), times(MaxC, 2)>& NG,
                   const typename Phase<MaxC>::Rows& shift, typename Phase<MaxC>::Rows& u) {
   constexpr int kMaxRows = times(MaxC, 2);
-  constexpr int kMaxStack = times(MaxC, 4);
   constexpr int kMaxIneq = times(MaxC, 3);
   using Rows = typename Phase<MaxC>::Rows;
+  using RowMat = MatT<kMaxRows, kMaxRows>;
   const int a = ph.a, r = ph.rows();
+  if (NG.cols() == 0) return true;
   const Rows v = ph.velocity(u);
-  MatT<kMaxStack, kMaxRows> K(2 * r, r);
-  K.setZero();
-  K.topRows(r) = ph.G;
-  int ne = r;
+  RowMat E(r, r);  // equalities E δ = 0 beside G δ = 0: at most one per row
+  E.setZero();
+  int ne = 0;
   MatT<kMaxIneq, kMaxRows> C(3 * a, r);
   C.setZero();
   VecT<kMaxIneq> g(3 * a);
   int m = 0;
   for (int i = 0; i < a; ++i) {
     if (v(i) > tol.v) {
-      K(ne++, i) = 1.0;  // separating: x_i = 0
+      E(ne++, i) = 1.0;  // separating: x_i = 0
     } else {
       C(m, i) = 1.0;  // x_i ≥ 0
       g(m++) = 0.0;
@@ -452,11 +490,11 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
     if (!ph.friction) continue;
     const int k = a + i;
     if (ph.mu(i) == 0.0 && ph.b0(i) == 0.0) {
-      K(ne++, k) = 1.0;
+      E(ne++, k) = 1.0;
     } else if (std::fabs(v(k)) > tol.v) {
       const double sigma = v(k) > 0 ? 1.0 : -1.0;  // sliding: t + σμx = −σb0
-      K(ne, k) = 1.0;
-      K(ne++, i) = sigma * ph.mu(i);
+      E(ne, k) = 1.0;
+      E(ne++, i) = sigma * ph.mu(i);
     } else {
       C(m, i) = ph.mu(i);  // sticking: μx + b0 ∓ t ≥ 0
       C(m, k) = -1.0;
@@ -466,13 +504,18 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
       g(m++) = -ph.b0(i);
     }
   }
-  Eigen::JacobiSVD<MatT<kMaxStack, kMaxRows>> svd(K.topRows(ne), Eigen::ComputeFullV);
-  const auto& sv = svd.singularValues();
-  const double smax = sv.size() ? sv(0) : 0.0;
-  int rank = 0;
-  while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
-  if (rank == r) return true;
-  const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
+  // null([G; E]) = NG · null(E NG): a small SVD of E NG only.
+  RowMat N = NG;
+  if (ne > 0) {
+    const RowMat ENG = E.topRows(ne) * NG;
+    Eigen::JacobiSVD<RowMat> svd(ENG, Eigen::ComputeFullV);
+    const auto& sv = svd.singularValues();
+    const double scale = std::max(1.0, E.topRows(ne).cwiseAbs().maxCoeff());
+    int rank = 0;
+    while (rank < sv.size() && sv(rank) > 1e-10 * scale) ++rank;
+    if (rank == NG.cols()) return true;
+    N = NG * svd.matrixV().rightCols(NG.cols() - rank);
+  }
   const MatT<kMaxIneq, kMaxRows> B = C.topRows(m) * N;
   // u itself satisfies the inequalities up to rounding; clip that rounding so that y = 0 is exactly
   // feasible and the answer violates nothing by more than it.
@@ -484,7 +527,7 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
   for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
   // Single point? Only if no direction of the null space is feasible at y: project ±e_j onto the
   // cone {δ : B_A δ ≥ 0} of the active rows; a non-zero projection is a feasible direction.
-  const int dim = r - rank;
+  const int dim = static_cast<int>(N.cols());
   MatT<kMaxIneq, kMaxRows> BA(m, dim);
   int na = 0;
   for (int j = 0; j < m; ++j)
