@@ -30,6 +30,9 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
   RowMat J(r, r);
   double nr = rows.residual(P, z, R);
   const double target = opt.tolerance * cs.v_scale;
+  double nr_10_ago = nr;  // Newton that has not halved the residual in 10 steps is stuck at a
+                          // kink (a stationary point of ‖R‖² that is not a solution): stop, so
+                          // the driver falls back to the splitting, which cannot stall there.
   for (int it = 0;; ++it) {
     o.iterations = it;
     o.residual = nr;
@@ -43,6 +46,15 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
       o.criterion = StopCriterion::residual;
       o.message = "semismooth Newton converged";
       return o;
+    }
+    if (it > 0 && it % 10 == 0) {
+      if (nr > 0.5 * nr_10_ago) {
+        o.status = SolverStatus::stalled;
+        o.criterion = StopCriterion::step;
+        o.message = "semismooth Newton: no progress in 10 iterations (a kink of the residual)";
+        return o;
+      }
+      nr_10_ago = nr;
     }
     if (it >= opt.max_iterations) {
       o.status = SolverStatus::max_iterations;
@@ -61,30 +73,40 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
         J(j, k) -= dydb * rows.law->mu[rows.contact(j)] * (P(k) >= 0.0 ? 1.0 : -1.0);
       }
     }
-    Eigen::PartialPivLU<RowMat> lu(J);
-    bool ok = lu.rcond() > 1e-12;
-    if (ok) {
-      dP = lu.solve(-R);
-      ok = dP.allFinite();
-    }
-    if (!ok) {
-      RowMat A = J.transpose() * J;
-      const double lambda = std::max(nr, kEps * A.diagonal().maxCoeff());
-      A.diagonal().array() += lambda;
-      dP = A.llt().solve(-(J.transpose() * R));
-    }
-    // Armijo backtracking on θ = ½‖R‖².
+    // Directions in order: Newton (LU), then Levenberg–Marquardt with a damping that grows tenfold
+    // each time the line search finds no decrease (towards steepest descent on θ = ½‖R‖²).
     const double theta0 = 0.5 * R.squaredNorm();
-    double t = 1.0, nrt = nr;
+    double nrt = nr;
     bool accepted = false;
-    for (int ls = 0; ls < 50; ++ls) {
-      Pt = P + t * dP;
-      nrt = rows.residual(Pt, zt, Rt);
-      if (0.5 * Rt.squaredNorm() <= (1.0 - 1e-4 * t) * theta0) {
-        accepted = true;
-        break;
+    Eigen::PartialPivLU<RowMat> lu(J);
+    RowMat JtJ = J.transpose() * J;
+    const Rows JtR = J.transpose() * R;
+    const double jscale = std::max(JtJ.diagonal().maxCoeff(), std::numeric_limits<double>::min());
+    double lambda = std::max(nr, kEps * jscale);
+    for (int attempt = 0; attempt < 12 && !accepted; ++attempt) {
+      bool ok = false;
+      if (attempt == 0 && lu.rcond() > 1e-12) {
+        dP = lu.solve(-R);
+        ok = dP.allFinite();
       }
-      t *= 0.5;
+      if (!ok) {
+        RowMat A = JtJ;
+        A.diagonal().array() += lambda;
+        dP = A.llt().solve(-JtR);
+        lambda *= 10.0;
+        if (!dP.allFinite()) continue;
+      }
+      // Armijo backtracking on θ.
+      double t = 1.0;
+      for (int ls = 0; ls < 30; ++ls) {
+        Pt = P + t * dP;
+        nrt = rows.residual(Pt, zt, Rt);
+        if (0.5 * Rt.squaredNorm() <= (1.0 - 1e-4 * t) * theta0) {
+          accepted = true;
+          break;
+        }
+        t *= 0.5;
+      }
     }
     if (!accepted) {
       o.status = SolverStatus::stalled;

@@ -9,6 +9,7 @@
 // reactions, Coulomb) by least squares on W P = 2 M u.
 #include <nlopt.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
@@ -87,31 +88,55 @@ void constraints(unsigned m, double* result, unsigned nx, const double* x, doubl
   }
 }
 
-// SLSQP stops where the objective no longer resolves the step, about √ε relative in u. On smooth
-// potentials a Newton polish of the KKT system, with the active set SLSQP found and the Hessian
-// from differences of the subgradients, takes u to the last digits:
-//   F(u, λ) = [2Mu + W s(z) − 2 W_A λ ; D_NA,A + 2 W_Aᵀ u] = 0,   s_j = φ_j'(z_j).
-// The polish is kept only if its multipliers are ≥ 0 and it keeps every other contact open.
+// SLSQP stops where the objective no longer resolves the step, about √ε relative in u. A Newton
+// polish of the KKT system, with the active set SLSQP found and the Hessian from differences of the
+// subgradients, takes u to the last digits:
+//   F(u, λ) = [2Mu + W s(z) − Σ λ_i ∇c_i ; c_A(u)] = 0,   s_j = φ_j'(z_j) (b sign z_T when sliding),
+// with c_i = D_NE,i = D_NA,i + 2 W_N,iᵀu for the contacts whose reaction acts (λ_i ≥ 0) and
+// c_i = z_T,i for the contacts that stick under Coulomb (λ_i free). Kept only if its multipliers have
+// the right sign and it keeps every other contact open; the caller keeps it only if the law's
+// residual improves.
 bool polish(NloptData& d, VectorX& u, double v_scale) {
   const int n = d.n, a = d.a, r = d.rows;
-  std::vector<int> act;
-  auto normal_velocity = [&](const VectorX& uu, int k) {
-    return (*d.DA)(k) + 2.0 * d.W->col(k).dot(uu);
+  struct Constraint {
+    int row;        // column of W
+    double factor;  // ∇c = factor · W_row
+    bool signed_multiplier;
   };
+  std::vector<Constraint> act;
+  const VectorX z0 = *d.DA + d.W->transpose() * u;
   for (int k = 0; k < a; ++k)
-    if (normal_velocity(u, k) <= 1e-6 * v_scale) act.push_back(k);
+    if ((*d.DA)(k) + 2.0 * d.W->col(k).dot(u) <= 1e-6 * v_scale) act.push_back({k, 2.0, true});
+  std::vector<double> slide_sign(r, 0.0);
+  if (d.coulomb)
+    for (int k = 0; k < a; ++k) {
+      const int j = a + k;
+      if (std::fabs(z0(j)) <= 1e-6 * v_scale && d.b(k) > 0.0) act.push_back({j, 1.0, false});
+      else slide_sign[j] = z0(j) > 0.0 ? 1.0 : -1.0;
+    }
   const int m = static_cast<int>(act.size());
-  auto pot = [&](int j) -> const Potential& {
-    return j < a ? d.law->normal[(*d.contact)[j]] : d.law->tangential_potential[(*d.contact)[j - a]];
+  auto smooth = [&](int j) -> const Potential* {
+    if (j < a) return &d.law->normal[(*d.contact)[j]];
+    if (d.coulomb) return nullptr;
+    return &d.law->tangential_potential[(*d.contact)[j - a]];
+  };
+  auto constraint_value = [&](const VectorX& x, const Constraint& c) {
+    return c.row < a ? (*d.DA)(c.row) + 2.0 * d.W->col(c.row).dot(x)
+                     : (*d.DA)(c.row) + d.W->col(c.row).dot(x);
   };
   VectorX lambda = VectorX::Zero(m), x = u;
   for (int it = 0; it < 40; ++it) {
     const VectorX z = *d.DA + d.W->transpose() * x;
-    VectorX s(r), h(r);
+    VectorX s = VectorX::Zero(r), h = VectorX::Zero(r);
     for (int j = 0; j < r; ++j) {
-      s(j) = pot(j).subgradient(z(j));
+      const Potential* pot = smooth(j);
+      if (!pot) {  // Coulomb row: b sign(z_T) when sliding, a constraint when sticking
+        s(j) = d.b(j - a) * slide_sign[j];
+        continue;
+      }
+      s(j) = pot->subgradient(z(j));
       const double dz = 1e-8 * (std::fabs(z(j)) + v_scale);  // small: kinks of φ'' nearby
-      h(j) = (pot(j).subgradient(z(j) + dz) - pot(j).subgradient(z(j) - dz)) / (2.0 * dz);
+      h(j) = (pot->subgradient(z(j) + dz) - pot->subgradient(z(j) - dz)) / (2.0 * dz);
       if (!std::isfinite(h(j)) || h(j) < 0.0) h(j) = 0.0;
     }
     MatrixX K = MatrixX::Zero(n + m, n + m);
@@ -119,10 +144,11 @@ bool polish(NloptData& d, VectorX& u, double v_scale) {
     K.topLeftCorner(n, n) = 2.0 * (*d.M) + (*d.W) * h.asDiagonal() * d.W->transpose();
     F.head(n) = 2.0 * ((*d.M) * x) + (*d.W) * s;
     for (int i = 0; i < m; ++i) {
-      K.block(0, n + i, n, 1) = -2.0 * d.W->col(act[i]);
-      K.block(n + i, 0, 1, n) = 2.0 * d.W->col(act[i]).transpose();
-      F.head(n) -= 2.0 * lambda(i) * d.W->col(act[i]);
-      F(n + i) = normal_velocity(x, act[i]);
+      const VectorX g = act[i].factor * d.W->col(act[i].row);
+      K.block(0, n + i, n, 1) = -g;
+      K.block(n + i, 0, 1, n) = g.transpose();
+      F.head(n) -= lambda(i) * g;
+      F(n + i) = constraint_value(x, act[i]);
     }
     const VectorX step = K.fullPivLu().solve(-F);
     if (!step.allFinite()) return false;
@@ -131,10 +157,11 @@ bool polish(NloptData& d, VectorX& u, double v_scale) {
     if (step.head(n).norm() <= 4 * std::numeric_limits<double>::epsilon() * (x.norm() + 1e-300))
       break;
   }
+  const double lscale = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
   for (int i = 0; i < m; ++i)
-    if (lambda(i) < -1e-12 * (lambda.cwiseAbs().maxCoeff() + 1e-300)) return false;
+    if (act[i].signed_multiplier && lambda(i) < -1e-12 * (lscale + 1e-300)) return false;
   for (int k = 0; k < a; ++k)
-    if (normal_velocity(x, k) < -1e-12 * v_scale) return false;
+    if ((*d.DA)(k) + 2.0 * d.W->col(k).dot(x) < -1e-12 * v_scale) return false;
   u = x;
   return true;
 }
@@ -149,32 +176,53 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   const int n = cs.dofs, a = cs.active, r = cs.rows();
   const MatrixX M = pb.M;
   const MatrixX W = cs.W;
+  // NLopt works in y = Lᵀu (M = LLᵀ), where the kinetic term is |y|²: SLSQP's quasi-Newton model
+  // then starts well conditioned whatever the mass ratios.
+  const Eigen::LLT<MatrixX> llt(M);
+  const MatrixX L = llt.matrixL();
+  const MatrixX Iy = MatrixX::Identity(n, n);
+  const MatrixX Wy = L.triangularView<Eigen::Lower>().solve(W);
+  auto to_u = [&](const VectorX& y) -> VectorX {
+    return L.transpose().triangularView<Eigen::Upper>().solve(y);
+  };
   const VectorX DA = cs.D_A;
   std::vector<int> contact(a);
   for (int k = 0; k < a; ++k) contact[k] = cs.index(k);
-  NloptData d{&M, &W, &DA, rows.law, n, a, r, rows.coulomb, cs.tangential, VectorX::Zero(a),
+  NloptData d{&Iy, &Wy, &DA, rows.law, n, a, r, rows.coulomb, cs.tangential, VectorX::Zero(a),
               &contact};
   const int nx = n + (rows.coulomb ? a : 0);
   const int m = a + (rows.coulomb ? 2 * a : 0);
-  // Start from the given percussion's velocities (u = M⁻¹WP/2), feasible or not.
+  // Start from the given percussion's velocities (u = M⁻¹WP/2); without one, from the plastic
+  // impact (every contact that takes part stopped, D_NE = 0: λ solves G_NN λ = −D_NA), which is
+  // feasible: SLSQP started at an infeasible point can stop there on its step tolerance.
   std::vector<double> x(nx, 0.0);
-  if (P.size() == r && P.allFinite()) {
-    const VectorX u0 = 0.5 * (cs.MinvW * P);
-    for (int i = 0; i < n; ++i) x[i] = u0(i);
+  {
+    VectorX u0;
+    if (P.size() == r && P.allFinite() && P.cwiseAbs().maxCoeff() > 0.0) {
+      u0 = 0.5 * (cs.MinvW * P);
+    } else {
+      const MatrixX GNN = cs.G.topLeftCorner(a, a);
+      const VectorX lambda = GNN.completeOrthogonalDecomposition().solve(-DA.head(a));
+      u0 = 0.5 * (cs.MinvW.leftCols(a) * lambda);
+    }
+    const VectorX y0 = L.transpose() * u0;
+    for (int i = 0; i < n; ++i) x[i] = y0(i);
   }
   const double target = opt.nlopt_tolerance * cs.v_scale;
   int evaluations = 0;
   VectorX Pv = VectorX::Zero(r);
   for (int outer = 0; outer < (rows.coulomb ? 100 : 1); ++outer) {
-    nlopt_opt solver = nlopt_create(NLOPT_LD_SLSQP, nx);
+    // SLSQP for smooth potentials; with Coulomb's epigraph variables (linear in t, no curvature)
+    // SLSQP's quasi-Newton model stalls at the previous fixed point's answer, MMA does not.
+    nlopt_opt solver = nlopt_create(rows.coulomb ? NLOPT_LD_MMA : NLOPT_LD_SLSQP, nx);
     nlopt_set_min_objective(solver, objective, &d);
     std::vector<double> ctol(m, 0.0);
     nlopt_add_inequality_mconstraint(solver, m, constraints, &d, ctol.data());
     nlopt_set_xtol_rel(solver, 1e-15);
     nlopt_set_maxeval(solver, std::max(1, opt.max_nlopt_evaluations - evaluations));
     if (rows.coulomb) {
-      const VectorX zt = DA.tail(a) + W.rightCols(a).transpose() *
-                                          Eigen::Map<const VectorX>(x.data(), n);
+      const VectorX zt = DA.tail(a) + Wy.rightCols(a).transpose() *
+                                           Eigen::Map<const VectorX>(x.data(), n);
       for (int k = 0; k < a; ++k) x[n + k] = std::fabs(zt(k));
     }
     double f = 0.0;
@@ -210,12 +258,12 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
       typename FremondRowsT<N, C>::Rows Pr = Pout, zr, R;
       return rows.residual(Pr, zr, R);
     };
-    VectorX u = Eigen::Map<const VectorX>(x.data(), n);
-    double res = recover(u, Pv);
-    if (!rows.coulomb && code > 0) {
+    VectorX u = Eigen::Map<const VectorX>(x.data(), n);  // y
+    double res = recover(to_u(u), Pv);
+    if (std::isfinite(res) || u.allFinite()) {
       VectorX up = u, Pp;
       if (polish(d, up, cs.v_scale)) {
-        const double resp = recover(up, Pp);
+        const double resp = recover(to_u(up), Pp);
         if (resp < res) {
           res = resp;
           Pv = Pp;
