@@ -5,6 +5,9 @@
 //    (G = Wᵀ M⁻¹ W on the stack) then the law. This is what the Siconos peers time; same label.
 //  - BM_Classical_Law: the law alone, from G and D_A: closed form, Lemke, and the minimum-norm
 //    choice where G is singular ("from=G" in the label).
+//  - BM_Classical_Kernel: the exact method alone on the contact-space data of one phase: the closed
+//    form for one contact, Lemke on the phase's LCP for several ("stage=kernel"); no minimum-norm
+//    choice, no uniqueness check. This is the work the Siconos peers' solvers do after assembly.
 //  - BM_Classical_SolveImpact: the public entry point, with input validation, the result's
 //    velocities, the law's residual and the admissibility report ("stage=solve_impact"); uniqueness
 //    checked by mode enumeration or not ("checked=1|0").
@@ -161,12 +164,60 @@ void BM_Classical_SolveImpact(benchmark::State& state, const Case* c, bool check
   check(state, *c);
 }
 
+// The first phase of the law (Newton: eq. 5; Poisson: compression) on contact space.
+detail::classical::Phase<kSmallContacts> first_phase(const SmallImpactProblem& p,
+                                                    const ContactSpace3& cs, const ImpactLaw& law) {
+  detail::classical::Phase<kSmallContacts> ph;
+  ph.a = cs.active;
+  ph.friction = cs.tangential;
+  const int r = ph.rows(), a = ph.a;
+  ph.G = cs.G.topLeftCorner(r, r);
+  ph.q = cs.D_A.head(r);
+  ph.mu.resize(a);
+  ph.b0.setZero(a);
+  const bool newton = law.type == LawType::newton || law.type == LawType::newton_coulomb;
+  for (int k = 0; k < a; ++k) {
+    if (newton) ph.q(k) *= 1 + law.e[cs.index(k)];
+    ph.mu(k) = ph.friction ? law.mu[cs.index(k)] : 0.0;
+  }
+  (void)p;
+  return ph;
+}
+
+void BM_Classical_Kernel(benchmark::State& state, const Case* c) {
+  const SmallImpactProblem& p = c->problems[0];
+  ContactSpace3 cs;
+  detail::build_contact_space(p, c->law.has_friction(), cs);
+  const auto ph = first_phase(p, cs, c->law);
+  const auto tol = detail::classical::tolerances(ph, cs.v_scale);
+  detail::classical::Phase<kSmallContacts>::Rows u(ph.rows());
+  int pivots = 0;
+  for (auto _ : state) {
+    if (ph.a == 1) {
+      const bool f = ph.friction;
+      const auto oc = detail::classical::one_contact(
+          ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0), f ? ph.q(1) : 0.0,
+          f ? ph.mu(0) : 0.0, 0.0, f, tol);
+      benchmark::DoNotOptimize(oc);
+    } else {
+      benchmark::DoNotOptimize(detail::classical::lemke_phase(ph, LemkeOptions{}, u, pivots));
+      benchmark::DoNotOptimize(u.data());
+    }
+  }
+  state.counters["pivots"] = pivots;
+  state.SetLabel(bench_label(c->problem, c->law_name) + " stage=kernel");
+  check(state, *c);
+}
+
 const bool registered = [] {
   for (const Case& c : cases()) {
     const std::string suffix = "/" + c.problem + "/" + c.law_name;
     benchmark::RegisterBenchmark(("BM_Classical_FromData" + suffix).c_str(), BM_Classical_FromData,
                                  &c);
     benchmark::RegisterBenchmark(("BM_Classical_Law" + suffix).c_str(), BM_Classical_Law, &c);
+    if (c.problems.size() == 1)
+      benchmark::RegisterBenchmark(("BM_Classical_Kernel" + suffix).c_str(), BM_Classical_Kernel,
+                                   &c);
     for (const bool checked : {false, true})
       benchmark::RegisterBenchmark(
           ("BM_Classical_SolveImpact" + suffix + (checked ? "/checked" : "/unchecked")).c_str(),

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fremond/solvers/lemke.hpp"
 #include "unit/classical_support.hpp"
 
 namespace fremond {
@@ -71,6 +72,40 @@ TEST(ClassicalCoulomb, TiltedBarReversesItsSlidingByHand) {
   EXPECT_NEAR(r.D_TE(0), dte, 1e-13);
   EXPECT_NEAR(r.D_NE(0), -e * dna, 1e-13);
   EXPECT_TRUE(r.unique);
+}
+
+// Newton + Coulomb on one contact as the planar friction LCP, built here: z = (P_N, β⁺, β⁻, λ),
+//   w = (D_NE + e D_NA, D_TE + λ, −D_TE + λ, μ P_N − β⁺ − β⁻),   P_T = β⁺ − β⁻,
+// and solved by the public Lemke solver: a second method beside the library's closed form.
+TEST(ClassicalCoulomb, OneContactClosedFormMatchesTheLcp) {
+  int compared = 0;
+  for (const double theta : {0.3, kPi4, 1.2})
+    for (const double mu : {0.1, 0.5, 1.0, 2.0})
+      for (const double e : {0.0, 0.5, 1.0})
+        for (const double vx : {-2.0, 0.3, 2.0}) {
+          const ImpactProblem p = bar(theta, Eigen::Vector3d(vx, -1.5, 0.7));
+          MatrixX W(3, 2);
+          W << p.W_N, p.W_T;
+          const MatrixX G = W.transpose() * p.M.llt().solve(W);
+          const VectorX D = W.transpose() * p.qdot_A;
+          ASSERT_LT(D(0), 0.0);
+          MatrixX M = MatrixX::Zero(4, 4);
+          M << G(0, 0), G(0, 1), -G(0, 1), 0,  //
+              G(1, 0), G(1, 1), -G(1, 1), 1,   //
+              -G(1, 0), -G(1, 1), G(1, 1), 1,  //
+              mu, -1, -1, 0;
+          const VectorX q = Eigen::Vector4d((1 + e) * D(0), D(1), -D(1), 0);
+          const LcpResult lcp = solve_lcp(M, q);
+          const ImpactResult r = solve_impact(p, ImpactLaw::newton_coulomb(e, mu));
+          ASSERT_TRUE(r.ok()) << r.solver.message;
+          EXPECT_EQ(r.solver.method, SolverMethod::closed_form);
+          ASSERT_TRUE(r.unique);
+          if (!lcp.ok()) continue;  // Lemke may end on a ray for this copositive matrix
+          ++compared;
+          EXPECT_NEAR(r.P_N(0), lcp.z(0), 1e-12) << theta << " " << mu << " " << e << " " << vx;
+          EXPECT_NEAR(r.P_T(0), lcp.z(1) - lcp.z(2), 1e-12) << theta << " " << mu << " " << e;
+        }
+  EXPECT_GE(compared, 100);  // of 108
 }
 
 TEST(ClassicalCoulomb, ZeroFrictionIsTheFrictionlessLaw) {

@@ -263,6 +263,7 @@ bool project_polyhedron(const BMat& B, const Vec1& d, const Vec2& y0, VecT<times
   const int m = static_cast<int>(B.rows());
   y = y0;
   if (m == 0) return true;
+  if ((B * y0 - d).minCoeff() >= 0.0) return true;  // the unconstrained minimiser is feasible
   MatT<kMaxN, kMaxN> BBt(m, m);
   BBt.noalias() = B * B.transpose();
   VecT<kMaxN> q(m), lambda, w;
@@ -449,12 +450,16 @@ MatT<times(MaxC, 2), times(MaxC, 2)> null_space(const typename Phase<MaxC>::RowM
   using RowMat = typename Phase<MaxC>::RowMat;
   const int r = static_cast<int>(G.rows());
   if (r == 0) return RowMat(0, 0);
-  // G is symmetric positive semidefinite: its singular values are its eigenvalues (descending).
-  Eigen::JacobiSVD<RowMat> svd(G, Eigen::ComputeFullV);
-  const auto& sv = svd.singularValues();
-  int rank = 0;
-  while (rank < r && sv(rank) > 1e-10 * sv(0)) ++rank;
-  return svd.matrixV().rightCols(r - rank);
+  // A full-pivoting LU gives a basis of the kernel cheaply; Gram-Schmidt makes it orthonormal.
+  Eigen::FullPivLU<RowMat> lu(G);
+  lu.setThreshold(1e-10);
+  if (lu.rank() == r) return RowMat(r, 0);
+  RowMat N = lu.kernel();
+  for (int j = 0; j < N.cols(); ++j) {
+    for (int k = 0; k < j; ++k) N.col(j) -= N.col(k).dot(N.col(j)) * N.col(k);
+    N.col(j).normalize();
+  }
+  return N;
 }
 
 /// Among the percussions that solve the phase with the same velocities as u (a polyhedron when G is

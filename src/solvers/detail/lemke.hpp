@@ -55,15 +55,25 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
   for (int i = 0; i < n; ++i) basis(i) = i;  // w basic: B = I
 
   const double eps = std::numeric_limits<double>::epsilon();
+  // Rounding scales of the right-hand side and of the B⁻¹ block, refreshed once per ratio test
+  // (only when two candidates have to be compared).
+  double rhs_scale = 0.0, binv_scale = 0.0;
+  bool scales_fresh = false;
+  auto refresh_scales = [&] {
+    rhs_scale = T.col(c_rhs).cwiseAbs().maxCoeff();
+    binv_scale = T.leftCols(n).cwiseAbs().maxCoeff();
+    scales_fresh = true;
+  };
   // Is row i / d_i lexicographically smaller than row k / d_k, comparing (rhs, B⁻¹ row)? Two
   // entries are tied when they differ by less than the tie tolerance or than the rounding of their
   // column; then the next component decides. The B⁻¹ rows are independent, so some component does.
   auto lex_less = [&](int i, int k, double di, double dk) {
+    if (!scales_fresh) refresh_scales();
+    const double inv_min = 1.0 / std::min(di, dk);
     for (int c = -1; c < n; ++c) {
       const int col = c < 0 ? c_rhs : c;
       const double a = T(i, col) / di, b = T(k, col) / dk;
-      const double rounding =
-          64 * eps * T.col(col).cwiseAbs().maxCoeff() * std::max(1.0 / di, 1.0 / dk);
+      const double rounding = 64 * eps * (c < 0 ? rhs_scale : binv_scale) * inv_min;
       if (std::fabs(a - b) > opt.tie_tolerance * std::max(std::fabs(a), std::fabs(b)) + rounding)
         return a < b;
     }
@@ -78,6 +88,7 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
       T(i, j) = 0.0;
     }
     T(r, j) = 1.0;
+    scales_fresh = false;
   };
 
   // First pivot: z₀ enters at the level that makes every w_i ≥ 0; with the column −e every row
