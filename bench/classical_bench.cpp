@@ -54,13 +54,19 @@ const std::vector<Case>& cases() {
       v.push_back(c);
     }
     {
-      Case c{"bar_first_impact", "newton_coulomb", {bar_first_impact(true)},
-             ImpactLaw::newton_coulomb(e, mu), {}};
+      Case c{"bar_first_impact",
+             "newton_coulomb",
+             {bar_first_impact(true)},
+             ImpactLaw::newton_coulomb(e, mu),
+             {}};
       c.expected.push_back(coulomb_expected(c.problems[0]));
       v.push_back(c);
     }
-    v.push_back(Case{"bar_first_impact", "poisson_coulomb", {bar_first_impact(true)},
-                     ImpactLaw::poisson_coulomb(e, mu), {}});
+    v.push_back(Case{"bar_first_impact",
+                     "poisson_coulomb",
+                     {bar_first_impact(true)},
+                     ImpactLaw::poisson_coulomb(e, mu),
+                     {}});
     {
       Case c{"point_mass", "newton_coulomb", {point_mass()}, ImpactLaw::newton_coulomb(e, mu), {}};
       c.expected.push_back(coulomb_expected(c.problems[0]));
@@ -72,13 +78,19 @@ const std::vector<Case>& cases() {
       v.push_back(c);
     }
     {
-      Case c{"flat_bar", "newton_coulomb", {flat_bar_two_contacts(true)},
-             ImpactLaw::newton_coulomb(e, mu), {}};
+      Case c{"flat_bar",
+             "newton_coulomb",
+             {flat_bar_two_contacts(true)},
+             ImpactLaw::newton_coulomb(e, mu),
+             {}};
       c.expected.push_back(flat_bar_newton_coulomb_velocity(e, mu));
       v.push_back(c);
     }
-    v.push_back(Case{"flat_bar", "poisson_coulomb", {flat_bar_two_contacts(true)},
-                     ImpactLaw::poisson_coulomb(e, mu), {}});
+    v.push_back(Case{"flat_bar",
+                     "poisson_coulomb",
+                     {flat_bar_two_contacts(true)},
+                     ImpactLaw::poisson_coulomb(e, mu),
+                     {}});
     {
       Case c{"random_n6_c3", "newton", {}, ImpactLaw::newton(e), {}};
       for (int i = 0; i < kRandomProblems; ++i) {
@@ -109,7 +121,8 @@ void check(benchmark::State& state, const Case& c) {
     }
     residual = std::max(residual, r.solver.residual);
     if (k < c.expected.size())
-      worst = std::max(worst, (Eigen::VectorXd(r.qdot_E) - c.expected[k]).lpNorm<Eigen::Infinity>());
+      worst =
+          std::max(worst, (Eigen::VectorXd(r.qdot_E) - c.expected[k]).lpNorm<Eigen::Infinity>());
     if (k == 0)
       for (int i = 0; i < r.P_N.size(); ++i) {
         state.counters["P_N" + std::to_string(i)] = r.P_N(i);
@@ -119,7 +132,8 @@ void check(benchmark::State& state, const Case& c) {
   state.counters["err"] = worst;
   state.counters["residual"] = residual;
   if (!(worst <= 1e-9) || !(residual <= 1e-12))
-    state.SkipWithError(("answer differs from the closed form by " + std::to_string(worst)).c_str());
+    state.SkipWithError(
+        ("answer differs from the closed form by " + std::to_string(worst)).c_str());
 }
 
 void BM_Classical_FromData(benchmark::State& state, const Case* c) {
@@ -156,17 +170,19 @@ void BM_Classical_SolveImpact(benchmark::State& state, const Case* c, bool check
   options.check_uniqueness = checked;
   std::size_t k = 0;
   for (auto _ : state) {
-    const SmallImpactResult r = solve_impact(c->problems[k++ % c->problems.size()], c->law, options);
+    const SmallImpactResult r =
+        solve_impact(c->problems[k++ % c->problems.size()], c->law, options);
     benchmark::DoNotOptimize(r.P_N.data());
   }
-  state.SetLabel(bench_label(c->problem, c->law_name) + " stage=solve_impact checked=" +
-                 (checked ? "1" : "0"));
+  state.SetLabel(bench_label(c->problem, c->law_name) +
+                 " stage=solve_impact checked=" + (checked ? "1" : "0"));
   check(state, *c);
 }
 
 // The first phase of the law (Newton: eq. 5; Poisson: compression) on contact space.
 detail::classical::Phase<kSmallContacts> first_phase(const SmallImpactProblem& p,
-                                                    const ContactSpace3& cs, const ImpactLaw& law) {
+                                                     const ContactSpace3& cs,
+                                                     const ImpactLaw& law) {
   detail::classical::Phase<kSmallContacts> ph;
   ph.a = cs.active;
   ph.friction = cs.tangential;

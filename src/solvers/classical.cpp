@@ -1,13 +1,15 @@
 // The classical impact laws of SPEC §2: Newton (eqs. 5-6) and Poisson, each with or without Coulomb
-// friction in the compression/expansion form of Pfeiffer & Glocker (1996), on any number of contacts.
+// friction in the compression/expansion form of Pfeiffer & Glocker (1996), on any number of
+// contacts.
 //
 // Each law is one phase (Newton) or two (Poisson's compression, then expansion) of the form solved
 // in detail/classical_phase.hpp. Per phase the cheapest exact method comes first: the closed form
 // for one contact, the all-closed guess u = −G⁻¹q for several (eq. 6 when it holds), then
 // lexicographic Lemke on the phase's LCP. With friction on up to 3 contacts the enumeration of
 // contact modes lists every solution when asked (options.check_uniqueness, solve_impact_all), and
-// settles existence when Lemke's method ends on a ray. Where G is singular the percussions that give
-// the same velocities form a polyhedron; the minimum-norm one is returned and `unique` says so.
+// settles existence when Lemke's method ends on a ray. Where G is singular the percussions that
+// give the same velocities form a polyhedron; the minimum-norm one is returned and `unique` says
+// so.
 #include "fremond/solvers/detail/classical.hpp"
 
 #include <algorithm>
@@ -26,9 +28,9 @@ using classical::solve_law;
 
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
 template <int N, int C>
-void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
-                 const SolverOptions& options, const LawOutcome<C>& lo, int pick,
-                 ImpactResultT<N, C>& out) {
+void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                 const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
+                 int pick, ImpactResultT<N, C>& out) {
   const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
   const LawSolution<C>& s = lo.solutions[pick];
   scatter_solution(pb, cs, s.P, out);
@@ -52,15 +54,16 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, 
     }
   }
   const int found = lo.solutions.size;
-  out.unique = lo.exhaustive && found == 1 && !lo.continuum && lo.percussion_unique &&
-               lo.compression_unique;
+  out.unique =
+      lo.exhaustive && found == 1 && !lo.continuum && lo.percussion_unique && lo.compression_unique;
   out.solutions_found = lo.exhaustive ? found : 0;
   out.solver.method = s.method;
   out.solver.criterion = StopCriterion::exact;
   out.solver.iterations = lo.pivots;
   out.solver.fallbacks = lo.fallbacks;
   out.solver.residual = classical_residual(pb, law, out);
-  if (lo.continuum) out.solver.message = "a continuum of solutions (singular contact modes)";
+  if (lo.continuum)
+    out.solver.message = "a continuum of solutions (singular contact modes)";
   else if (lo.exhaustive && found > 1)
     out.solver.message = "several solutions; the most dissipative is returned";
   else if (!lo.compression_unique)
@@ -136,8 +139,8 @@ template <int C>
 int most_dissipative(const LawOutcome<C>& lo) {
   int best = 0;
   for (int k = 1; k < lo.solutions.size; ++k)
-    if (lo.solutions[k].energy_change < lo.solutions[best].energy_change - 1e-12 *
-                                            std::fabs(lo.solutions[best].energy_change))
+    if (lo.solutions[k].energy_change <
+        lo.solutions[best].energy_change - 1e-12 * std::fabs(lo.solutions[best].energy_change))
       best = k;
   return best;
 }
@@ -185,8 +188,8 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                                \
-  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,        \
+#define FREMOND_INSTANTIATE(N, C)                                                        \
+  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, \
                                 const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

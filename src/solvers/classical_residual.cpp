@@ -13,7 +13,9 @@ namespace fremond::detail {
 namespace {
 
 // min(w, g·x): zero exactly when 0 ≤ x ⊥ w ≥ 0 (g converts a percussion to a velocity).
-double complementarity(double w, double x, double g) { return std::min(w, g * x); }
+double complementarity(double w, double x, double g) {
+  return std::min(w, g * x);
+}
 
 // Coulomb's natural map on (t, v) with bound b: g·(t − clamp(t − v/g, −b, b)); zero exactly when
 // |t| ≤ b, v = 0 where |t| < b, t = −b sign(v) where v ≠ 0. A negative bound is clipped (the
@@ -93,8 +95,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   return worst / v_scale;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                               \
-  template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
+#define FREMOND_INSTANTIATE(N, C)                                                   \
+  template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&, \
                                      const ImpactResultT<N, C>&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

@@ -13,13 +13,15 @@ namespace fremond {
 
 namespace {
 constexpr detail::EnumNames<LcpStatus, 5> kLcpStatus{{{LcpStatus::not_run, "not_run"},
-                                                     {LcpStatus::solved, "solved"},
-                                                     {LcpStatus::secondary_ray, "secondary_ray"},
-                                                     {LcpStatus::max_pivots, "max_pivots"},
-                                                     {LcpStatus::failed, "failed"}}};
+                                                      {LcpStatus::solved, "solved"},
+                                                      {LcpStatus::secondary_ray, "secondary_ray"},
+                                                      {LcpStatus::max_pivots, "max_pivots"},
+                                                      {LcpStatus::failed, "failed"}}};
 }  // namespace
 
-std::string_view to_string(LcpStatus s) { return detail::enum_to_string(kLcpStatus, s); }
+std::string_view to_string(LcpStatus s) {
+  return detail::enum_to_string(kLcpStatus, s);
+}
 LcpStatus lcp_status_from_string(std::string_view s) {
   return detail::enum_from_string(kLcpStatus, s, "lcp_status");
 }
@@ -53,7 +55,8 @@ double lcp_residual(const MatT<Max, Max>& M, const VecT<Max>& q, const VecT<Max>
 }
 
 template <int Max>
-LcpResultT<Max> solve_lcp(const MatT<Max, Max>& M, const VecT<Max>& q, const LemkeOptions& options) {
+LcpResultT<Max> solve_lcp(const MatT<Max, Max>& M, const VecT<Max>& q,
+                          const LemkeOptions& options) {
   options.validate();
   if (M.rows() != M.cols() || M.rows() != q.size())
     throw InvalidArgument("M", "must be square of the size of q (" + std::to_string(q.size()) +
@@ -69,8 +72,8 @@ LcpResultT<Max> solve_lcp(const MatT<Max, Max>& M, const VecT<Max>& q, const Lem
 
 template LcpResultT<Dynamic> solve_lcp(const MatT<Dynamic, Dynamic>&, const VecT<Dynamic>&,
                                        const LemkeOptions&);
-template LcpResultT<kSmallLcp> solve_lcp(const MatT<kSmallLcp, kSmallLcp>&,
-                                         const VecT<kSmallLcp>&, const LemkeOptions&);
+template LcpResultT<kSmallLcp> solve_lcp(const MatT<kSmallLcp, kSmallLcp>&, const VecT<kSmallLcp>&,
+                                         const LemkeOptions&);
 template double lcp_residual(const MatT<Dynamic, Dynamic>&, const VecT<Dynamic>&,
                              const VecT<Dynamic>&);
 template double lcp_residual(const MatT<kSmallLcp, kSmallLcp>&, const VecT<kSmallLcp>&,

@@ -36,7 +36,7 @@ TEST(ClassicalBar, NewtonCoulombCreatesEnergyAsInFigure5) {
   const double bn = -(1 + e) * h.dna, bt = -h.dta;
   const double pn = (bn * h.gtt - h.gnt * bt) / det, pt = (h.gnn * bt - h.gnt * bn) / det;
   ASSERT_GT(pn, 0.0);
-  ASSERT_LE(std::fabs(pt), mu * pn);  // the stick mode holds...
+  ASSERT_LE(std::fabs(pt), mu * pn);        // the stick mode holds...
   for (const double sigma : {1.0, -1.0}) {  // ...and neither slide does: the answer is unique
     const double x = bn / (h.gnn - sigma * mu * h.gnt);
     ASSERT_LE(sigma * (h.dta + (h.gnt - sigma * mu * h.gtt) * x), 0.0);

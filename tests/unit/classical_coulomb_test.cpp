@@ -167,8 +167,8 @@ TEST(ClassicalPoissonCoulomb, PointMassPhasesByHand) {
 }
 
 TEST(ClassicalPoissonCoulomb, SlidesThroughBothPhasesByHand) {
-  // q̇_A = (2, −1), μ = 0.8, e = 0.5: compression P_TC = −0.8, D_TC = 1.2; expansion bound 0.4 < 1.2:
-  // still sliding, P_TE = −0.4, D_TE = 0.8.
+  // q̇_A = (2, −1), μ = 0.8, e = 0.5: compression P_TC = −0.8, D_TC = 1.2; expansion bound 0.4
+  // < 1.2: still sliding, P_TE = −0.4, D_TE = 0.8.
   const ImpactResult r = solve_impact(point_mass(2.0, -1.0), ImpactLaw::poisson_coulomb(0.5, 0.8));
   ASSERT_TRUE(r.ok());
   EXPECT_NEAR(r.D_TC(0), 1.2, 1e-15);
@@ -300,8 +300,10 @@ Reference brute_force_newton_coulomb(const ImpactProblem& p, double e, double mu
     const VectorX D = G * P + q;
     bool ok = true;
     for (int i = 0; i < c && ok; ++i) {
-      if (mode[i] == 0) ok = D(i) >= -tol;
-      else ok = P(i) >= -tol;
+      if (mode[i] == 0)
+        ok = D(i) >= -tol;
+      else
+        ok = P(i) >= -tol;
       if (mode[i] == 1) ok = ok && std::fabs(P(c + i)) <= mu * P(i) + tol;
       if (mode[i] == 2) ok = ok && D(c + i) > tol;
       if (mode[i] == 3) ok = ok && D(c + i) < -tol;
@@ -362,7 +364,8 @@ TEST(ClassicalEnumeration, FindsEverySolutionAndAgreesWithLemkeWhenUnique) {
       EXPECT_LE(r.solver.residual, 1e-12) << "trial " << trial;
       const VectorX D = contact_velocities(p, r);
       bool matched = false;
-      for (const auto& v : ref.velocities) matched = matched || (v - D).cwiseAbs().maxCoeff() < 1e-9;
+      for (const auto& v : ref.velocities)
+        matched = matched || (v - D).cwiseAbs().maxCoeff() < 1e-9;
       EXPECT_TRUE(matched) << "trial " << trial;
       EXPECT_EQ(r.unique, all.size() == 1) << "trial " << trial;
     }
@@ -381,15 +384,16 @@ TEST(ClassicalEnumeration, FindsEverySolutionAndAgreesWithLemkeWhenUnique) {
   }
   EXPECT_GT(several, 5);  // large μ gives several solutions in part of the sample
   EXPECT_GT(single, 100);
-  EXPECT_GT(lemke_checked, single * 9 / 10);  // Lemke answers nearly everywhere a solution is unique
+  EXPECT_GT(lemke_checked,
+            single * 9 / 10);  // Lemke answers nearly everywhere a solution is unique
 }
 
 TEST(ClassicalEnumeration, SmallAndDynamicAgree) {
   std::mt19937 rng(9);
   for (int trial = 0; trial < 40; ++trial) {
     const ImpactProblem p = random_problem(rng, 1 + trial % 3);
-    for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.7, 0.6),
-                                 ImpactLaw::poisson_coulomb(0.7, 0.6)}) {
+    for (const ImpactLaw& law :
+         {ImpactLaw::newton_coulomb(0.7, 0.6), ImpactLaw::poisson_coulomb(0.7, 0.6)}) {
       const ImpactResult d = solve_impact(p, law);
       const SmallImpactResult s = solve_impact(to_small(p), law);
       ASSERT_EQ(d.solver.status, s.solver.status);

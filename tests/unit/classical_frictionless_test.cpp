@@ -17,8 +17,12 @@ using test::flat_bar;
 using test::kL;
 
 // G_NN = W_Nᵀ M⁻¹ W_N and D_NA = W_Nᵀ q̇_A from the data.
-MatrixX delassus_nn(const ImpactProblem& p) { return p.W_N.transpose() * p.M.llt().solve(p.W_N); }
-VectorX dna(const ImpactProblem& p) { return p.W_N.transpose() * p.qdot_A; }
+MatrixX delassus_nn(const ImpactProblem& p) {
+  return p.W_N.transpose() * p.M.llt().solve(p.W_N);
+}
+VectorX dna(const ImpactProblem& p) {
+  return p.W_N.transpose() * p.qdot_A;
+}
 
 TEST(ClassicalNewton, OneContactMatchesEquation6AndTheLcp) {
   const ImpactProblem p = bar_first_impact(false);
@@ -45,7 +49,8 @@ TEST(ClassicalNewton, OneContactMatchesEquation6AndTheLcp) {
 }
 
 TEST(ClassicalNewton, RestitutionZeroAndOneAreExact) {
-  for (const ImpactProblem& p : {bar_first_impact(false), test::point_mass(0.7, -2.0, 3.0, false)}) {
+  for (const ImpactProblem& p :
+       {bar_first_impact(false), test::point_mass(0.7, -2.0, 3.0, false)}) {
     const double d = dna(p)(0);
     const ImpactResult plastic = solve_impact(p, ImpactLaw::newton(0.0));
     EXPECT_LE(std::fabs(plastic.D_NE(0)), 1e-15 * std::fabs(d));
@@ -108,8 +113,8 @@ TEST(ClassicalNewton, SeparatingContactsGetNoPercussion) {
   // One contact left: eq. (6) with G_NN = 1 + l²/J = 4 for the end (0, 1, −l).
   EXPECT_NEAR(r.P_N(0), -1.5 * (-0.5 - kL * 3) / 4, 1e-14);
   // Everything separating: nothing happens.
-  const ImpactResult none = solve_impact(flat_bar(Eigen::Vector3d(0, 1, 0), false),
-                                         ImpactLaw::newton(0.5));
+  const ImpactResult none =
+      solve_impact(flat_bar(Eigen::Vector3d(0, 1, 0), false), ImpactLaw::newton(0.5));
   EXPECT_EQ(none.solver.method, SolverMethod::trivial);
   EXPECT_TRUE(none.ok());
   EXPECT_EQ(none.qdot_E, Eigen::Vector3d(0, 1, 0));
@@ -169,7 +174,8 @@ TEST(ClassicalNewton, RandomProblemsMatchTheActiveSetSolution) {
     ASSERT_TRUE(s.ok()) << "trial " << trial << ": " << s.solver.message;
     EXPECT_LE((r.P_N - P).cwiseAbs().maxCoeff(), 1e-11 * (1 + P.cwiseAbs().maxCoeff()))
         << "trial " << trial;
-    EXPECT_LE((VectorX(s.P_N) - r.P_N).cwiseAbs().maxCoeff(), 1e-14 * (1 + P.cwiseAbs().maxCoeff()));
+    EXPECT_LE((VectorX(s.P_N) - r.P_N).cwiseAbs().maxCoeff(),
+              1e-14 * (1 + P.cwiseAbs().maxCoeff()));
     lemke_used += r.solver.method == SolverMethod::lemke;
   }
   EXPECT_GT(lemke_used, 10);  // the sample reaches the LCP, not only the closed forms
@@ -239,7 +245,8 @@ TEST(ClassicalPoisson, NonUniqueCompressionUsesTheMinimumNorm) {
   // A point mass on two coincident contacts (W_N = (0, 1) twice, G_NN = [[1, 1], [1, 1]] singular),
   // q̇_A = (0, −1), e = (1, 0). Compression needs P_NC,1 + P_NC,2 = 1: any split solves it, the
   // minimum-norm one is (1/2, 1/2). Expansion: P_NE = e∘P_NC = (1/2, 0) gives D_NE = 1/2 > 0, so
-  // ΔP = 0 and q̇_E = (0, −1/2 + 1). The split (1, 0) would give D_NE = 1: the outcome depends on it.
+  // ΔP = 0 and q̇_E = (0, −1/2 + 1). The split (1, 0) would give D_NE = 1: the outcome depends on
+  // it.
   ImpactProblem p;
   p.M = Eigen::Matrix2d::Identity();
   p.W_N.resize(2, 2);

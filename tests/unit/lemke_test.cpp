@@ -106,8 +106,9 @@ TEST(Lemke, PMatricesMatchTheBruteForceSolution) {
 
 TEST(Lemke, DegenerateSingularProblemsDoNotCycle) {
   // M = B Bᵀ with B n×k, k < n (singular, positive semidefinite), small integers so that ratios tie
-  // exactly; q = w* − M z* with z*, w* ≥ 0, complementary, and both zero on some indices (degenerate
-  // at the solution). A solution exists, so lexicographic Lemke must find one in few pivots.
+  // exactly; q = w* − M z* with z*, w* ≥ 0, complementary, and both zero on some indices
+  // (degenerate at the solution). A solution exists, so lexicographic Lemke must find one in few
+  // pivots.
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> small(-2, 2), pick(0, 2);
   int degenerate_seen = 0;
@@ -121,9 +122,12 @@ TEST(Lemke, DegenerateSingularProblemsDoNotCycle) {
     int both_zero = 0;
     for (int i = 0; i < n; ++i) {
       const int c = pick(rng);
-      if (c == 0) zs(i) = 1 + pick(rng);
-      else if (c == 1) ws(i) = 1 + pick(rng);
-      else ++both_zero;
+      if (c == 0)
+        zs(i) = 1 + pick(rng);
+      else if (c == 1)
+        ws(i) = 1 + pick(rng);
+      else
+        ++both_zero;
     }
     degenerate_seen += both_zero > 0;
     const VectorX q = ws - M * zs;

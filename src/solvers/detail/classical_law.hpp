@@ -61,8 +61,10 @@ struct Factored {
       regular = d.minCoeff() > 1e-7 * d.maxCoeff();
     }
     // A small pivot is only a hint: the eigenvalues decide what null(G) is.
-    if (regular) null.resize(G.rows(), 0);
-    else null = null_space<C>(G);
+    if (regular)
+      null.resize(G.rows(), 0);
+    else
+      null = null_space<C>(G);
   }
 };
 
@@ -75,9 +77,9 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Fact
   bool enumerate = false;
   if (ph.a == 1) {
     const bool f = ph.friction;
-    const OneContact oc = one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0,
-                                      ph.q(0), f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0,
-                                      f ? ph.b0(0) : 0.0, f, tol);
+    const OneContact oc =
+        one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0),
+                    f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0, f ? ph.b0(0) : 0.0, f, tol);
     if (!oc.degenerate) {
       for (int k = 0; k < oc.count; ++k) {
         u(0) = oc.x[k];
@@ -197,8 +199,8 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
       if (f) s->P_C(1) = tc;
     }
   };
-  const OneContact first = one_contact(gnn, gnt, gtt, poisson ? dna : (1 + e) * dna, dta, mu, 0.0,
-                                       f, tol);
+  const OneContact first =
+      one_contact(gnn, gnt, gtt, poisson ? dna : (1 + e) * dna, dta, mu, 0.0, f, tol);
   if (first.degenerate) return false;
   for (int k = 0; k < first.count; ++k) {
     const double xc = first.x[k], tc = first.t[k];
@@ -215,8 +217,7 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
       out.solutions.clear();
       return false;
     }
-    for (int j = 0; j < second.count; ++j)
-      push(xc, tc, xc + s + second.x[j], tc + second.t[j]);
+    for (int j = 0; j < second.count; ++j) push(xc, tc, xc + s + second.x[j], tc + second.t[j]);
   }
   if (out.solutions.size > 1) {
     // T_E − T_A = P·(Wᵀq̇_A) + ½ PᵀGP (eq. 9), to choose between several solutions.
@@ -271,8 +272,10 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   out.fallbacks = first.fallbacks;
   out.exhaustive = first.exhaustive;
   out.continuum = first.continuum;
-  if (poisson) out.compression_unique = first.percussion_unique;
-  else out.percussion_unique = first.percussion_unique;
+  if (poisson)
+    out.compression_unique = first.percussion_unique;
+  else
+    out.percussion_unique = first.percussion_unique;
 
   for (int k = 0; k < first.u.size; ++k) {
     const SolverMethod mk = k == 0 ? first.primary : first.others;

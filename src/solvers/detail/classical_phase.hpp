@@ -30,7 +30,9 @@
 
 namespace fremond::detail::classical {
 
-constexpr int times(int m, int k) { return m == Dynamic ? Dynamic : k * m; }
+constexpr int times(int m, int k) {
+  return m == Dynamic ? Dynamic : k * m;
+}
 
 /// A fixed-capacity list (no heap) whose items are constructed only when pushed, so that an empty
 /// list costs nothing to create: the solutions of one phase or one law.
@@ -68,8 +70,8 @@ struct FixedList {
   alignas(T) unsigned char storage_[sizeof(T) * Capacity];
 };
 
-/// How many solutions one phase or one law keeps. Enough for every case met in practice: one contact
-/// has at most 4 per phase; more contacts are only enumerated up to 3.
+/// How many solutions one phase or one law keeps. Enough for every case met in practice: one
+/// contact has at most 4 per phase; more contacts are only enumerated up to 3.
 inline constexpr int kMaxSolutions = 24;
 
 template <int MaxC>
@@ -135,9 +137,12 @@ inline OneContact one_contact(double gnn, double gnt, double gtt, double qn, dou
   OneContact s;
   if (!friction || (mu == 0.0 && b0 == 0.0)) {
     // Frictionless (eq. 6 for one contact): x = max(0, −q_N/G_NN).
-    if (qn >= 0.0) one_contact_push(s, 0.0, 0.0, tol);
-    else if (gnn > 0.0) one_contact_push(s, -qn / gnn, 0.0, tol);
-    else if (qn >= -tol.v) one_contact_push(s, 0.0, 0.0, tol);
+    if (qn >= 0.0)
+      one_contact_push(s, 0.0, 0.0, tol);
+    else if (gnn > 0.0)
+      one_contact_push(s, -qn / gnn, 0.0, tol);
+    else if (qn >= -tol.v)
+      one_contact_push(s, 0.0, 0.0, tol);
     return s;
   }
   const double det = gnn * gtt - gnt * gnt;
@@ -176,9 +181,9 @@ inline OneContact one_contact(double gnn, double gnt, double gtt, double qn, dou
 // ---------------------------------------------------------------------------------------------
 // Several contacts.
 
-/// The cheapest exact guess for several contacts (eq. 6 generalised): every contact closed and, with
-/// friction, sticking, u = −G⁻¹q. True when G is regular (`llt` is its Cholesky factor, `regular`
-/// says it is usable) and u satisfies the phase's inequalities.
+/// The cheapest exact guess for several contacts (eq. 6 generalised): every contact closed and,
+/// with friction, sticking, u = −G⁻¹q. True when G is regular (`llt` is its Cholesky factor,
+/// `regular` says it is usable) and u satisfies the phase's inequalities.
 template <int MaxC, class Llt>
 bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Llt& llt, bool regular,
                       typename Phase<MaxC>::Rows& u) {
@@ -209,8 +214,8 @@ bool frictionless(const Phase<MaxC>& ph) {
 /// whose matrix is copositive (zᵀMz = PᵀGP + λᵀμx) but not copositive-plus: a ray there is not a
 /// proof.
 template <int MaxC>
-LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt,
-                      typename Phase<MaxC>::Rows& u, int& pivots) {
+LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt, typename Phase<MaxC>::Rows& u,
+                      int& pivots) {
   constexpr int kMaxN = times(MaxC, 4);
   using Mat = MatT<kMaxN, kMaxN>;
   using Vec = VecT<kMaxN>;
@@ -270,7 +275,8 @@ bool project_polyhedron(const BMat& B, const Vec1& d, const Vec2& y0, VecT<times
   q.noalias() = B * y0;
   q -= d;
   int pivots = 0;
-  if (lcp::lemke<kMaxN>(BBt, q, LemkeOptions{}, lambda, w, pivots) != LcpStatus::solved) return false;
+  if (lcp::lemke<kMaxN>(BBt, q, LemkeOptions{}, lambda, w, pivots) != LcpStatus::solved)
+    return false;
   y.noalias() += B.transpose() * lambda;
   return true;
 }
@@ -346,8 +352,8 @@ void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangentia
 }
 
 /// Solves one mode: a point u of {K u = rhs, C u ≥ g − tolerance} if there is one. `moves` is set
-/// when K is singular and a direction of its null space changes the velocities (a possible continuum
-/// of solutions).
+/// when K is singular and a direction of its null space changes the velocities (a possible
+/// continuum of solutions).
 template <int MaxC>
 bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Tolerances& tol,
                 typename Phase<MaxC>::Rows& u, bool& moves) {
@@ -373,8 +379,7 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
   svd.setThreshold(1e-10);
   const typename Phase<MaxC>::Rows u0 = svd.solve(s.rhs);
-  if ((s.K * u0 - s.rhs).cwiseAbs().maxCoeff() >
-      std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff()))
+  if ((s.K * u0 - s.rhs).cwiseAbs().maxCoeff() > std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff()))
     return false;  // inconsistent equations
   const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
   MatT<times(MaxC, 3), kMaxRows> B = s.C.topRows(s.m) * N;
@@ -410,8 +415,8 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
       if (zero_bound || (!closed && ph.b0(i) == 0.0)) {
         modes[i][c++] = {closed, Tangential::zero};
       } else {
-        for (Tangential t : {Tangential::stick, Tangential::slide_positive,
-                             Tangential::slide_negative})
+        for (Tangential t :
+             {Tangential::stick, Tangential::slide_positive, Tangential::slide_negative})
           modes[i][c++] = {closed, t};
       }
     }
@@ -536,8 +541,7 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
   MatT<kMaxIneq, kMaxRows> BA(m, dim);
   int na = 0;
   for (int j = 0; j < m; ++j)
-    if (B.row(j).dot(y) - d(j) <= tol.p)
-      BA.row(na++) = B.row(j);
+    if (B.row(j).dot(y) - d(j) <= tol.p) BA.row(na++) = B.row(j);
   if (na == 0) return false;
   const VecT<kMaxIneq> zero = VecT<kMaxIneq>::Zero(na);
   for (int j = 0; j < dim; ++j)

@@ -3,10 +3,10 @@
 // with the lexicographic rule of §4.9), templated on the largest problem size so that the small
 // impact problems pivot on a stack-stored tableau.
 //
-// The tableau holds B⁻¹ [I | −M | −e | q] for the basis B of the system I w − M z − e z₀ = q, one row
-// per basic variable; its first n columns are B⁻¹ itself, which is what the lexicographic ratio test
-// compares. Because B⁻¹ is invertible no two rows are lexicographically equal, so each pivot row is
-// unique and the method cannot cycle, whatever the degeneracy of q.
+// The tableau holds B⁻¹ [I | −M | −e | q] for the basis B of the system I w − M z − e z₀ = q, one
+// row per basic variable; its first n columns are B⁻¹ itself, which is what the lexicographic ratio
+// test compares. Because B⁻¹ is invertible no two rows are lexicographically equal, so each pivot
+// row is unique and the method cannot cycle, whatever the degeneracy of q.
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -17,11 +17,13 @@
 
 namespace fremond::detail::lcp {
 
-constexpr int tableau_cols(int max_n) { return max_n == Dynamic ? Dynamic : 2 * max_n + 2; }
+constexpr int tableau_cols(int max_n) {
+  return max_n == Dynamic ? Dynamic : 2 * max_n + 2;
+}
 
 template <int MaxN>
-using Tableau =
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, MaxN, tableau_cols(MaxN)>;
+using Tableau = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, MaxN,
+                              tableau_cols(MaxN)>;
 
 /// ‖min(z, Mz + q)‖∞ (unscaled); w receives M z + q.
 template <int MaxN>
@@ -131,8 +133,10 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
     // Accumulated pivoting error: solve the final basis, B x_B = q, from the original data.
     MatT<MaxN, MaxN> B(n, n);
     for (int i = 0; i < n; ++i) {
-      if (basis(i) < n) B.col(i) = VecT<MaxN>::Unit(n, basis(i));
-      else B.col(i) = -M.col(basis(i) - n);
+      if (basis(i) < n)
+        B.col(i) = VecT<MaxN>::Unit(n, basis(i));
+      else
+        B.col(i) = -M.col(basis(i) - n);
     }
     const VecT<MaxN> x = B.fullPivLu().solve(q);
     VecT<MaxN> z2 = VecT<MaxN>::Zero(n), w2;
