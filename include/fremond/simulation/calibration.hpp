@@ -1,0 +1,56 @@
+#pragma once
+/// @file The first impact of a scene, and the calibration of Frémond's normal stiffness that SPEC §3
+/// asks for: k_N such that at the bar's first impact from the initial state of §5, with the normal
+/// law alone, the normal restitution −D_NE/D_NA is exactly the paper's e = 0.9 (k_N ≈ 85.36 for
+/// p = 3). It is computed at run time, never hard-coded.
+#include <array>
+
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/scenes/presets.hpp"
+#include "fremond/scenes/scene.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond {
+
+/// Where a scene's first free flight ends.
+struct FirstImpact {
+  bool found = false;
+  double t = 0.0;
+  PlanarState state;  ///< just before the impact.
+  int contact_count = 0;
+  std::array<int, kMaxSceneContacts> contacts{};
+};
+
+/// Flies the scene's initial state exactly until its first contact event, before `t_max`.
+/// Contacts within `simultaneity_tolerance` of the first event are included.
+FirstImpact first_impact(const Scene& scene, double t_max, double simultaneity_tolerance = 1e-12);
+
+/// The impact problem of contacts `contacts[0..n)` (n ≤ 4) of a validated scene at `state`.
+SmallImpactProblem impact_problem(const Scene& scene, const PlanarState& state, const int* contacts,
+                                  int n);
+
+/// The outcome of a calibration.
+struct StiffnessCalibration {
+  double k_N = 0.0;          ///< the stiffness found.
+  double restitution = 0.0;  ///< −D_NE/D_NA it gives.
+  int solves = 0;            ///< impact solves used.
+  bool converged = false;    ///< the root was bracketed and refined to rounding.
+};
+
+/// k such that under ImpactLaw::fremond(PowerPotential(k, p)) — the normal law alone, the
+/// problem's tangential rows dropped — contact `contact` of `problem` leaves with
+/// −D_NE/D_NA = restitution. The restitution grows from 0 (k = 0: the reaction alone, plastic) to
+/// 1 (k → ∞: z → 0, elastic), so one bracket in log k and Brent's method find it. Throws
+/// InvalidArgument unless 0 < restitution < 1, p > 1 and the contact approaches (D_NA < 0).
+StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& problem, double p,
+                                                double restitution, int contact = 0,
+                                                const SolverOptions& options = {});
+
+/// SPEC §3's k_N for the bar: calibrate_normal_stiffness at the bar's first impact (p = 3,
+/// restitution e = 0.9). Throws InvalidArgument if the calibration does not converge.
+double paper_bar_normal_stiffness(const BarParameters& bar = {});
+
+/// The paper's scene (SPEC §5) with one of its laws, Frémond's k_N calibrated as above.
+Scene paper_bar_scene(PaperLaw law, const BarParameters& bar = {});
+
+}  // namespace fremond
