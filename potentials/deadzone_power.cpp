@@ -47,6 +47,7 @@ double DeadZonePowerPotential::do_prox(double x, double tau, double* dprox) cons
 double DeadZonePowerPotential::do_conjugate(double s) const {
   if (k_ == 0.0) return s == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
   if (s == 0.0) return 0.0;
+  if (q_ == 2.0) return r_ * std::fabs(s) + s * s / (2.0 * k_);
   const double qc = q_ / (q_ - 1.0);  // in logarithms, as for the power law
   return r_ * std::fabs(s) +
          std::exp(qc * std::log(std::fabs(s)) - (qc - 1.0) * std::log(k_) - std::log(qc));

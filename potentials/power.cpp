@@ -37,6 +37,11 @@ double PowerPotential::do_prox(double x, double tau, double* dprox) const {
 double PowerPotential::do_conjugate(double s) const {
   if (k_ == 0.0) return s == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
   if (s == 0.0) return 0.0;
+  if (p_ == 2.0) return s * s / (2.0 * k_);
+  if (p_ == 3.0) {  // p' = 3/2
+    const double a = std::fabs(s);
+    return a * std::sqrt(a / k_) / 1.5;
+  }
   // |s|^{p'}/(p' k^{p'−1}) in logarithms: for p near 1 the exponent p' is large and each factor
   // alone over- or underflows although their ratio (≈ (1 − 1/p) k|z|^p at s = φ'(z)) is moderate.
   const double pc = p_ / (p_ - 1.0);  // conjugate exponent p'

@@ -29,6 +29,13 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
                                             const SolverOptions& options) {
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
+  // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
+  if (r.qdot_E.size() != pb.dofs() || r.P_N.size() != c || r.P_T.size() != c ||
+      r.D_NA.size() != c || r.D_NE.size() != c || r.D_TA.size() != c || r.D_TE.size() != c ||
+      r.takes_part.size() != c) {
+    rep.per_contact.setZero(c);
+    return rep;
+  }
   rep.kinetic_energy_A = 0.5 * pb.qdot_A.dot(pb.M * pb.qdot_A);
   rep.energy_change = r.energy_change;
   // An energy X is "negative" when X < −tol with tol relative to T_A (never below the rounding of

@@ -1,5 +1,7 @@
 #include "fremond/laws/impact_law.hpp"
 
+#include <cmath>
+
 #include "fremond/core/error.hpp"
 #include "fremond/potentials/detail/validate.hpp"
 
@@ -66,7 +68,38 @@ void check_count(const char* name, std::size_t size, int contacts) {
 }
 }  // namespace
 
+// The common case (a valid law) is checked without building any message; the detailed pass below,
+// which names the offending key, runs only when something is wrong.
+bool ImpactLaw::quick_valid(int contacts) const {
+  auto count_ok = [&](std::size_t n) { return n == 1 || static_cast<int>(n) == contacts; };
+  if (type != LawType::fremond) {
+    if (!count_ok(e.values.size())) return false;
+    for (double v : e.values)
+      if (!(v >= 0.0 && v <= 1.0)) return false;
+  }
+  const bool uses_mu = type == LawType::newton_coulomb || type == LawType::poisson_coulomb ||
+                       (type == LawType::fremond && tangential == TangentialLaw::coulomb);
+  if (uses_mu) {
+    if (!count_ok(mu.values.size())) return false;
+    for (double v : mu.values)
+      if (!(v >= 0.0 && std::isfinite(v))) return false;
+  }
+  if (type == LawType::fremond) {
+    if (normal.empty() || !count_ok(normal.potentials.size())) return false;
+    for (const auto& p : normal.potentials)
+      if (!p) return false;
+    if (tangential == TangentialLaw::potential) {
+      if (tangential_potential.empty() || !count_ok(tangential_potential.potentials.size()))
+        return false;
+      for (const auto& p : tangential_potential.potentials)
+        if (!p) return false;
+    }
+  }
+  return true;
+}
+
 void ImpactLaw::validate(int contacts) const {
+  if (quick_valid(contacts)) return;
   const bool classical = type != LawType::fremond;
   if (classical) {
     check_count("law.e", e.values.size(), contacts);

@@ -26,6 +26,13 @@ std::string dims(Eigen::Index r, Eigen::Index c) {
 
 template <int N, int C>
 void validate(const ImpactProblemT<N, C>& pb) {
+  detail::validate_shapes(pb);
+  Eigen::LLT<MatT<N, N>> llt(pb.M);
+  detail::require_positive_definite(pb.M, llt);
+}
+
+template <int N, int C>
+void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
   const auto n = pb.M.rows();
   if (n == 0) throw InvalidArgument("M", "the mass matrix is empty");
   if (pb.M.cols() != n) throw InvalidArgument("M", "must be square, got " + dims(n, pb.M.cols()));
@@ -38,13 +45,6 @@ void validate(const ImpactProblemT<N, C>& pb) {
                                        std::to_string(j) + "] = " + detail::format_number(pb.M(i, j)) +
                                        " but M[" + std::to_string(j) + "][" + std::to_string(i) +
                                        "] = " + detail::format_number(pb.M(j, i)));
-  Eigen::LLT<MatT<N, N>> llt(pb.M);
-  bool spd = llt.info() == Eigen::Success;
-  if (spd) {  // a positive pivot that is rounding noise is not positive definite either
-    const auto d = llt.matrixLLT().diagonal();
-    spd = d.minCoeff() > 1e-12 * std::sqrt(scale);
-  }
-  if (!spd) throw InvalidArgument("M", "must be positive definite (Cholesky factorisation failed)");
   if (pb.W_N.rows() != n)
     throw InvalidArgument("W_N", "must have " + std::to_string(n) + " rows (one per degree of "
                                  "freedom), got " + dims(pb.W_N.rows(), pb.W_N.cols()));
@@ -72,8 +72,24 @@ void validate(const ImpactProblemT<N, C>& pb) {
   require_all_finite("qdot_A", pb.qdot_A);
 }
 
+template <int N>
+void detail::require_positive_definite(const MatT<N, N>& M, const Eigen::LLT<MatT<N, N>>& llt) {
+  bool spd = llt.info() == Eigen::Success;
+  if (spd) {  // a positive pivot that is rounding noise is not positive definite either
+    const double scale = M.cwiseAbs().maxCoeff();
+    spd = llt.matrixLLT().diagonal().minCoeff() > 1e-12 * std::sqrt(scale);
+  }
+  if (!spd) throw InvalidArgument("M", "must be positive definite (Cholesky factorisation failed)");
+}
+
 template void validate(const ImpactProblemT<Dynamic, Dynamic>&);
 template void validate(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
+template void detail::validate_shapes(const ImpactProblemT<Dynamic, Dynamic>&);
+template void detail::validate_shapes(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
+template void detail::require_positive_definite(const MatT<Dynamic, Dynamic>&,
+                                                const Eigen::LLT<MatT<Dynamic, Dynamic>>&);
+template void detail::require_positive_definite(const MatT<kSmallDofs, kSmallDofs>&,
+                                                const Eigen::LLT<MatT<kSmallDofs, kSmallDofs>>&);
 
 bool fits_small(const ImpactProblem& pb) {
   return pb.M.rows() <= kSmallDofs && pb.M.cols() <= kSmallDofs && pb.W_N.rows() <= kSmallDofs &&

@@ -459,6 +459,12 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                         const ImpactResultT<N, C>& r) {
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
+  double off_trivial = 0.0;
+  if (cs.rows() == 0) {  // nothing takes part: every percussion must be zero
+    for (int i = 0; i < cs.contacts; ++i)
+      off_trivial = std::max({off_trivial, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
+    return off_trivial;
+  }
   FremondRowsT<N, C> rows;
   rows.init(cs, law);
   Rows<N, C> P(cs.rows()), z, R;

@@ -11,7 +11,7 @@ namespace fremond {
 template <int N, int C>
 ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                  const SolverOptions& options) {
-  validate(pb);
+  detail::validate_shapes(pb);
   law.validate(pb.contacts());
   options.validate();
   ImpactResultT<N, C> out;
@@ -19,6 +19,7 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   // Frémond's law has tangential rows whenever it has a tangential law (it may be "none").
   build_contact_space(pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none
                                                        : law.has_friction(), cs);
+  detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
   if (law.type == LawType::fremond) {
     detail::solve_fremond(pb, cs, law, options, out);
   } else {

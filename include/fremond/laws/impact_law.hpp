@@ -82,6 +82,8 @@ struct ImpactLaw {
   /// Checks parameters and their counts against the number of contacts; throws InvalidArgument
   /// naming `law.e`, `law.mu`, `law.normal`, `law.tangential`.
   void validate(int contacts) const;
+  /// True when validate(contacts) would not throw (no message is built).
+  bool quick_valid(int contacts) const;
   /// A one-line description, e.g. "fremond(normal=power(k=85.36, p=3), tangential=coulomb(mu=1))".
   std::string describe() const;
 };

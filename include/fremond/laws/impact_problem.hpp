@@ -1,5 +1,7 @@
 #pragma once
 /// @file One impact problem (SPEC §1): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
+#include <Eigen/Cholesky>
+
 #include "fremond/core/types.hpp"
 
 namespace fremond {
@@ -38,6 +40,16 @@ using SmallImpactProblem = ImpactProblemT<kSmallDofs, kSmallContacts>;
 /// the member (`M`, `W_N`, `W_T`, `w_N`, `w_T`, `qdot_A`) and the reason.
 template <int MaxDofs, int MaxContacts>
 void validate(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
+
+namespace detail {
+/// validate() without the positive-definiteness test, for callers that factorise M anyway.
+template <int MaxDofs, int MaxContacts>
+void validate_shapes(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
+/// The positive-definiteness test of validate() on a Cholesky factorisation of M.
+template <int MaxDofs>
+void require_positive_definite(const MatT<MaxDofs, MaxDofs>& M,
+                               const Eigen::LLT<MatT<MaxDofs, MaxDofs>>& llt);
+}  // namespace detail
 
 /// Copies a problem into the stack-stored small form; throws InvalidArgument if it does not fit.
 SmallImpactProblem to_small(const ImpactProblem& problem);

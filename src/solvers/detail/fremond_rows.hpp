@@ -42,7 +42,7 @@ struct FremondRowsT {
       for (const auto& p : l.tangential_potential.potentials)
         all_prox = all_prox && p->capabilities().prox;
     const int r = space.rows();
-    tau.resize(r);
+    tau.setZero(r);
     double gmax = 0.0;
     for (int j = 0; j < r; ++j) gmax = std::max(gmax, space.G(j, j));
     const double fallback = gmax > 0.0 ? 0.5 * gmax : 1.0;
@@ -50,7 +50,7 @@ struct FremondRowsT {
       const double g = space.G(j, j);
       tau(j) = g > 1e-14 * gmax ? 0.5 * g : fallback;
     }
-    weight.resize(r);
+    weight.setZero(r);
     const double tmax = r ? tau.maxCoeff() : 1.0;
     for (int j = 0; j < r; ++j) weight(j) = tmax / tau(j);
   }
