@@ -417,6 +417,25 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       return;
     }
   }
+  // One contact with a tangential potential whose dead zone holds the answer (the paper's viscous
+  // bar): with P_T = 0 the normal row alone is one prox; it is the solution when 0 ∈ ∂φ_T(z_T).
+  if (has_prox && cs.active == 1 && cs.tangential && law.tangential == TangentialLaw::potential &&
+      (automatic || want == SolverMethod::scalar_newton || want == SolverMethod::closed_form) &&
+      cs.G(0, 0) > 0.0) {
+    const double zN = rows.prox(0, cs.D_A(0), 0.0);
+    const double PN = 2.0 * (zN - cs.D_A(0)) / cs.G(0, 0);
+    const double zT = cs.D_A(1) + 0.5 * cs.G(1, 0) * PN;
+    if (law.tangential_potential[rows.contact(1)].subdifferential(zT).contains(0.0)) {
+      P(0) = PN;
+      P(1) = 0.0;
+      MethodOutcome o;
+      o.status = SolverStatus::converged;
+      o.criterion = StopCriterion::exact;
+      o.message = "one contact inside the tangential dead zone: one exact prox";
+      finish(o, law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+      return;
+    }
+  }
   if (!automatic && (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
                      want == SolverMethod::mode_enumeration))
     return unsupported("the requested exact method does not apply to this problem");
