@@ -11,12 +11,11 @@ namespace {
 using fremond::PaperLaw;
 
 const fremond::Scene& paper_scene(PaperLaw law) {
-  static const fremond::Scene scenes[] = {
-      fremond::paper_bar_scene(PaperLaw::newton),
-      fremond::paper_bar_scene(PaperLaw::newton_coulomb),
-      fremond::paper_bar_scene(PaperLaw::poisson_coulomb),
-      fremond::paper_bar_scene(PaperLaw::fremond_coulomb),
-      fremond::paper_bar_scene(PaperLaw::fremond_viscous)};
+  static const fremond::Scene scenes[] = {fremond::paper_bar_scene(PaperLaw::newton),
+                                          fremond::paper_bar_scene(PaperLaw::newton_coulomb),
+                                          fremond::paper_bar_scene(PaperLaw::poisson_coulomb),
+                                          fremond::paper_bar_scene(PaperLaw::fremond_coulomb),
+                                          fremond::paper_bar_scene(PaperLaw::fremond_viscous)};
   return scenes[static_cast<int>(law)];
 }
 
@@ -36,8 +35,8 @@ void run(benchmark::State& state, PaperLaw law, fremond::Integrator integrator) 
   state.counters["mj_steps"] = static_cast<double>(steps);
   if (integrator == fremond::Integrator::moreau_jean)
     state.counters["per_step"] = benchmark::Counter(
-        static_cast<double>(steps), benchmark::Counter::kIsIterationInvariantRate |
-                                        benchmark::Counter::kInvert);
+        static_cast<double>(steps),
+        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_EventDriven(benchmark::State& state) {

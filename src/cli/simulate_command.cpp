@@ -1,13 +1,443 @@
-// Placeholder: the 'simulate' command is not implemented yet.
-#include <stdexcept>
+// `fremond simulate SCENE.json --out DIR` and `fremond simulate --preset paper-bar --law LAW --out
+// DIR`: runs a scene (simulation/simulate.hpp), writes the trajectory (CSV) and the impact log
+// (JSON), and prints a short summary.
+//
+// Exit status: 0 the run reached its end time (or --max-impacts); 1 input refused (the message
+// names the key or option; nothing written); 2 the run stopped early because an impact or a
+// persistent contact could not be solved (the files are written up to there, and the summary says
+// why); 3 the output could not be written.
+//
+// Output files are complete or absent: each is written to a temporary file in DIR and renamed.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "fremond/core/error.hpp"
+#include "fremond/io/scene_file.hpp"
+#include "fremond/potentials/registry.hpp"
+#include "fremond/scenes/presets.hpp"
+#include "fremond/simulation/calibration.hpp"
+#include "fremond/simulation/simulate.hpp"
 
 namespace fremond::cli {
 
+namespace {
+
+constexpr int kExitRefused = 1;
+constexpr int kExitRunFailed = 2;
+constexpr int kExitWriteFailed = 3;
+
+using ojson = nlohmann::ordered_json;
+
+struct SimulateArguments {
+  std::string scene_file;
+  std::string preset;
+  std::string law;
+  std::string out;
+  std::string integrator;
+  double t_end = std::nan("");
+  double step = std::nan("");
+  double sample_interval = std::nan("");
+  long max_impacts = -1;
+  bool no_progress = false;
+};
+
+[[noreturn]] void exit_with(int code) {
+  throw CLI::RuntimeError(code);
+}
+
+[[noreturn]] void refuse(const std::string& what) {
+  std::fprintf(stderr, "fremond simulate: error: %s\n", what.c_str());
+  exit_with(kExitRefused);
+}
+
+// ---- the scene --------------------------------------------------------------------------------
+
+struct Setup {
+  Scene scene;
+  SimulationOptions options;
+  std::string name;  // for the summary
+};
+
+Setup preset_scene(const std::string& preset, const std::string& law_name) {
+  if (law_name.empty())
+    throw InvalidArgument("--law",
+                          "required with --preset (one of: newton, newton_coulomb, "
+                          "poisson_coulomb, fremond_coulomb, fremond_viscous)");
+  PaperLaw law;
+  try {
+    law = paper_law_from_string(law_name);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument("--law", std::string(e.what()).substr(e.name().size() + 2));
+  }
+  const bool fremond = law == PaperLaw::fremond_coulomb || law == PaperLaw::fremond_viscous;
+  // Frémond's k_N as SPEC §3 asks: e = 0.9 at the scene's own first impact, computed here.
+  const auto with_law = [&](const auto& make, const auto& params) {
+    const Scene probe = make(params, ImpactLaw::newton(PaperConstants::e));
+    const double k_N =
+        fremond ? first_impact_normal_stiffness(probe, PaperConstants::p, PaperConstants::e) : 0.0;
+    return make(params, paper_law(law, k_N));
+  };
+  Setup s;
+  s.name = preset + " (" + law_name + ")";
+  if (preset == "paper-bar")
+    s.scene = with_law(bar_scene, BarParameters{});
+  else if (preset == "ball")
+    s.scene = with_law(ball_scene, BallParameters{});
+  else if (preset == "block")
+    s.scene = with_law(block_scene, BlockParameters{});
+  else
+    throw InvalidArgument("--preset",
+                          "unknown preset '" + preset + "' (one of: paper-bar, ball, block)");
+  return s;
+}
+
+Setup load(const SimulateArguments& a) {
+  Setup s;
+  if (!a.scene_file.empty() && !a.preset.empty())
+    throw InvalidArgument("--preset", "give a scene file or a preset, not both");
+  if (a.scene_file.empty() && a.preset.empty())
+    throw InvalidArgument("SCENE", "give a scene file, or --preset paper-bar --law LAW");
+  if (a.out.empty()) throw InvalidArgument("--out", "required: the directory to write into");
+  if (!a.preset.empty()) {
+    s = preset_scene(a.preset, a.law);
+  } else {
+    if (!a.law.empty())
+      throw InvalidArgument("--law", "only with --preset: a scene file names its own law");
+    std::error_code ec;
+    if (std::filesystem::is_directory(a.scene_file, ec))
+      throw InvalidArgument(a.scene_file, "is a directory, not a scene file");
+    try {
+      io::SceneFile f = io::read_scene_file(a.scene_file, PotentialRegistry::with_builtins());
+      s.scene = std::move(f.scene);
+      s.options = f.options;
+    } catch (const InvalidArgument& e) {  // name the file, then the key
+      if (e.name() == a.scene_file) throw;
+      throw InvalidArgument(a.scene_file + ": " + e.name(),
+                            std::string(e.what()).substr(e.name().size() + 2));
+    }
+    s.name = a.scene_file;
+  }
+  // Command-line options override the file's.
+  SimulationOptions& o = s.options;
+  if (!std::isnan(a.t_end)) o.t_end = a.t_end;
+  if (!std::isnan(a.step)) o.step = a.step;
+  if (!std::isnan(a.sample_interval)) o.sample_interval = a.sample_interval;
+  if (a.max_impacts >= 0) o.max_impacts = a.max_impacts;
+  if (!a.integrator.empty()) {
+    try {
+      o.integrator = integrator_from_string(a.integrator);
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument("--integrator", std::string(e.what()).substr(e.name().size() + 2));
+    }
+  }
+  std::string why;
+  if (!o.is_valid(&why)) {
+    // Name the command-line option when it was one.
+    const std::string key = why.substr(0, why.find(':'));
+    const std::string reason = why.substr(why.find(':') + 2);
+    if (key == "t_end" && !std::isnan(a.t_end)) throw InvalidArgument("--t-end", reason);
+    if (key == "integrator.step" && !std::isnan(a.step)) throw InvalidArgument("--step", reason);
+    if (key == "integrator.max_impacts" && a.max_impacts >= 0)
+      throw InvalidArgument("--max-impacts", reason);
+    if (key == "output.sample_interval" && !std::isnan(a.sample_interval))
+      throw InvalidArgument("--sample-interval", reason);
+    throw InvalidArgument(key, reason);
+  }
+  return s;
+}
+
+// ---- recording the run ------------------------------------------------------------------------
+
+ojson number(double v) {
+  return std::isfinite(v) ? ojson(v) : ojson(nullptr);
+}
+
+template <class V>
+ojson numbers(const V& v, Eigen::Index n) {
+  ojson a = ojson::array();
+  for (Eigen::Index i = 0; i < n; ++i) a.push_back(number(v(i)));
+  return a;
+}
+
+ojson impact_json(const ImpactRecord& r) {
+  const Eigen::Index n = r.contact_count;
+  ojson j;
+  j["index"] = r.index;
+  j["t"] = number(r.t);
+  j["kind"] = std::string(to_string(r.kind));
+  ojson contacts = ojson::array();
+  for (int i = 0; i < r.contact_count; ++i) contacts.push_back(r.contacts[i]);
+  j["contacts"] = contacts;
+  j["q"] = numbers(r.q, 3);
+  j["qdot_A"] = numbers(r.qdot_A, 3);
+  j["qdot_E"] = numbers(r.qdot_E, 3);
+  j["P_N"] = numbers(r.P_N, n);
+  j["P_T"] = numbers(r.P_T, n);
+  j["D_NA"] = numbers(r.D_NA, n);
+  j["D_NE"] = numbers(r.D_NE, n);
+  j["D_TA"] = numbers(r.D_TA, n);
+  j["D_TE"] = numbers(r.D_TE, n);
+  j["energy_A"] = number(r.energy_A);
+  j["energy_E"] = number(r.energy_E);
+  j["admissible"] = r.admissible;
+  j["failed"] = std::string(to_string(r.failed));
+  j["failed_contact"] = r.failed_contact;
+  j["violation"] = number(r.violation);
+  j["unique"] = r.unique;
+  ojson solver;
+  solver["method"] = std::string(to_string(r.solver.method));
+  solver["status"] = std::string(to_string(r.solver.status));
+  solver["iterations"] = r.solver.iterations;
+  solver["residual"] = number(r.solver.residual);
+  solver["message"] = std::string(r.solver.message);
+  j["solver"] = solver;
+  if (r.kind == ImpactKind::accumulation) j["accumulation_limit"] = number(r.accumulation_limit);
+  return j;
+}
+
+// A progress bar on standard error, drawn only when it is a terminal and the run lasts; the clock
+// here paces the drawing only, never the run.
+class Recorder final : public SimulationObserver {
+ public:
+  explicit Recorder(bool progress) : progress_(progress && isatty(STDERR_FILENO)) {}
+  ~Recorder() override { clear(); }
+
+  void on_sample(const TrajectorySample& s) override {
+    char line[512];
+    const int n =
+        std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t,
+                      s.state.q.x(), s.state.q.y(), s.state.q.z(), s.state.qdot.x(),
+                      s.state.qdot.y(), s.state.qdot.z(), s.energy);
+    csv_.append(line, static_cast<std::size_t>(n));
+    ++rows_;
+  }
+  void on_impact(const ImpactRecord& r) override { impacts_.push_back(impact_json(r)); }
+  void on_phase(double t, Phase from, Phase to, std::string_view why) override {
+    ojson j;
+    j["t"] = number(t);
+    j["from"] = std::string(to_string(from));
+    j["to"] = std::string(to_string(to));
+    j["why"] = std::string(why);
+    phases_.push_back(j);
+  }
+  void on_progress(double t, double t_end) override {
+    if (!progress_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::milliseconds(500) ||
+        now - last_ < std::chrono::milliseconds(100))
+      return;
+    last_ = now;
+    const int width = 40, done = static_cast<int>(width * t / t_end);
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  t = %.3f s", done,
+                 "########################################", width - done, "", 100.0 * t / t_end,
+                 t);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void clear() {
+    if (drawn_) std::fprintf(stderr, "\r%*s\r", 70, "");
+    drawn_ = false;
+  }
+
+  const std::string& csv() const { return csv_; }
+  long rows() const { return rows_; }
+  const ojson& impacts() const { return impacts_; }
+  const ojson& phases() const { return phases_; }
+
+ private:
+  bool progress_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_;
+  std::string csv_ = "t,x,y,theta,xdot,ydot,thetadot,energy\n";
+  long rows_ = 0;
+  ojson impacts_ = ojson::array();
+  ojson phases_ = ojson::array();
+};
+
+// ---- writing ----------------------------------------------------------------------------------
+
+// Writes `text` to DIR/name through a temporary file in DIR and a rename, so that the file is
+// either absent or complete, never half-written.
+void write_atomically(const std::filesystem::path& dir, const std::string& name,
+                      const std::string& text) {
+  std::string tmpl = (dir / ("." + name + ".XXXXXX")).string();
+  const int fd = mkstemp(tmpl.data());
+  if (fd < 0)
+    throw InvalidArgument((dir / name).string(),
+                          std::string("cannot write: ") + std::strerror(errno));
+  // mkstemp makes the file private; give it the permissions of an ordinary new file.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  std::size_t off = 0;
+  bool ok = true;
+  while (ok && off < text.size()) {
+    const ssize_t w = ::write(fd, text.data() + off, text.size() - off);
+    if (w < 0 && errno == EINTR) continue;
+    ok = w > 0;
+    if (ok) off += static_cast<std::size_t>(w);
+  }
+  const int err = ok ? 0 : errno;
+  ok = ok && ::fsync(fd) == 0;
+  ok = (::close(fd) == 0) && ok;
+  if (ok && std::rename(tmpl.c_str(), (dir / name).c_str()) == 0) return;
+  const int e = err ? err : errno;
+  std::remove(tmpl.c_str());
+  throw InvalidArgument((dir / name).string(), std::string("cannot write: ") + std::strerror(e));
+}
+
+ojson summary_json(const Setup& s, const SimulationResult& r) {
+  ojson j;
+  j["scene"] = s.name;
+  j["law"] = s.scene.law.describe();
+  j["integrator"] = std::string(to_string(s.options.integrator));
+  j["t_end"] = number(s.options.t_end);
+  j["step"] = number(s.options.step);
+  j["status"] = std::string(to_string(r.status));
+  j["message"] = std::string(r.message);
+  j["t"] = number(r.t);
+  j["q"] = numbers(r.state.q, 3);
+  j["qdot"] = numbers(r.state.qdot, 3);
+  j["phase"] = std::string(to_string(r.phase));
+  j["energy_initial"] = number(r.energy_initial);
+  j["energy_final"] = number(r.energy_final);
+  j["max_energy_rise"] = number(r.max_energy_rise);
+  j["impacts"] = r.impacts;
+  j["event_impacts"] = r.event_impacts;
+  j["inadmissible_impacts"] = r.inadmissible_impacts;
+  j["first_inadmissible_time"] = number(r.first_inadmissible_time);
+  j["accumulations"] = r.accumulations;
+  j["first_accumulation_time"] = number(r.first_accumulation_time);
+  j["moreau_jean_steps"] = r.steps;
+  j["phase_switches"] = r.phase_switches;
+  return j;
+}
+
+void print_summary(const Setup& s, const SimulationResult& r, const std::filesystem::path& dir,
+                   const Recorder& rec) {
+  const auto& q = r.state.q;
+  const auto& v = r.state.qdot;
+  std::printf("scene:        %s\n", s.name.c_str());
+  std::printf("law:          %s\n", s.scene.law.describe().c_str());
+  std::printf("integrator:   %s (Moreau-Jean step %g s), t_end %g s\n",
+              std::string(to_string(s.options.integrator)).c_str(), s.options.step,
+              s.options.t_end);
+  std::printf("status:       %s (%s) at t = %.9g s\n", std::string(to_string(r.status)).c_str(),
+              std::string(r.message).c_str(), r.t);
+  std::printf("impacts:      %ld (%ld event-driven, %ld in Moreau-Jean steps)\n", r.impacts,
+              r.event_impacts, r.impacts - r.event_impacts);
+  if (r.inadmissible_impacts > 0)
+    std::printf("inadmissible: %ld impacts fail SPEC 4 (first at t = %.9g s)\n",
+                r.inadmissible_impacts, r.first_inadmissible_time);
+  else
+    std::printf("inadmissible: none\n");
+  if (r.accumulations > 0)
+    std::printf("accumulation: %d (first limit t = %.12g s)\n", r.accumulations,
+                r.first_accumulation_time);
+  else
+    std::printf("accumulation: none\n");
+  std::printf("steps:        %ld Moreau-Jean steps, %d phase switches\n", r.steps,
+              r.phase_switches);
+  std::printf("energy:       %.12g J -> %.12g J (largest rise outside flagged impacts %.3g J)\n",
+              r.energy_initial, r.energy_final, r.max_energy_rise);
+  std::printf("final state:  q = (%.9g, %.9g, %.9g), qdot = (%.9g, %.9g, %.9g)\n", q.x(), q.y(),
+              q.z(), v.x(), v.y(), v.z());
+  std::printf("wrote:        %s (%ld rows), %s (%zu impacts), %s\n",
+              (dir / "trajectory.csv").c_str(), rec.rows(), (dir / "impacts.json").c_str(),
+              rec.impacts().size(), (dir / "summary.json").c_str());
+  std::fflush(stdout);
+}
+
+void run(const SimulateArguments& args) {
+  Setup setup;
+  std::filesystem::path dir;
+  try {
+    setup = load(args);
+    dir = args.out;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (!std::filesystem::is_directory(dir, ec))
+      throw InvalidArgument("--out", "cannot create the directory '" + args.out + "'");
+  } catch (const InvalidArgument& e) {
+    refuse(e.what());
+  }
+
+  Recorder rec(!args.no_progress);
+  SimulationResult result;
+  try {
+    result = simulate(setup.scene, setup.options, &rec);
+  } catch (const InvalidArgument& e) {
+    rec.clear();
+    refuse(e.what());
+  }
+  rec.clear();
+
+  try {
+    ojson summary = summary_json(setup, result);
+    summary["phases"] = rec.phases();
+    write_atomically(dir, "trajectory.csv", rec.csv());
+    // One impact a line: a list that reads as a table and still parses as JSON.
+    std::string impacts = "[";
+    for (std::size_t i = 0; i < rec.impacts().size(); ++i)
+      impacts += (i ? ",\n " : "\n ") + rec.impacts()[i].dump();
+    impacts += rec.impacts().empty() ? "]\n" : "\n]\n";
+    write_atomically(dir, "impacts.json", impacts);
+    write_atomically(dir, "summary.json", summary.dump(1) + "\n");
+  } catch (const InvalidArgument& e) {
+    std::fprintf(stderr, "fremond simulate: error: %s\n", e.what());
+    exit_with(kExitWriteFailed);
+  }
+  print_summary(setup, result, dir, rec);
+  if (!result.ok()) {
+    std::fprintf(stderr, "fremond simulate: the run stopped at t = %.9g s: %s (%s)\n", result.t,
+                 std::string(to_string(result.status)).c_str(),
+                 std::string(result.message).c_str());
+    exit_with(kExitRunFailed);
+  }
+}
+
+}  // namespace
+
 void add_simulate_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("simulate", "(not implemented yet)");
-  cmd->callback([] { throw std::runtime_error("'simulate' is not implemented yet"); });
+  auto args = std::make_shared<SimulateArguments>();
+  auto* cmd = app.add_subcommand(
+      "simulate",
+      "Simulate a scene (a planar rigid body against half-planes): trajectory, every impact, "
+      "accumulations");
+  cmd->add_option("SCENE", args->scene_file, "The scene file (JSON)");
+  cmd->add_option("--preset", args->preset, "A ready-made scene: paper-bar (SPEC 5), ball, block");
+  cmd->add_option("--law", args->law,
+                  "With --preset: newton, newton_coulomb, poisson_coulomb, fremond_coulomb, "
+                  "fremond_viscous, with the paper's parameters (SPEC 5)");
+  cmd->add_option("--out", args->out,
+                  "The directory to write trajectory.csv, impacts.json and "
+                  "summary.json into (created if needed)");
+  cmd->add_option("--t-end", args->t_end, "End time (s)");
+  cmd->add_option("--max-impacts", args->max_impacts, "Stop after this many impacts");
+  cmd->add_option("--integrator", args->integrator, "event_driven (default) or moreau_jean");
+  cmd->add_option("--step", args->step, "Moreau-Jean step (s)");
+  cmd->add_option("--sample-interval", args->sample_interval,
+                  "Interval of the trajectory rows (s); impacts add rows just before and after");
+  cmd->add_flag("--no-progress", args->no_progress, "No progress bar on standard error");
+  cmd->footer(
+      "Exit status: 0 the run reached its end time (or --max-impacts); 1 input refused (message "
+      "on stderr naming the key or option, nothing written); 2 the run stopped early (files "
+      "written up to there, reason on stderr); 3 the output could not be written. Files are "
+      "complete or absent.");
+  cmd->callback([args] { run(*args); });
 }
 
 }  // namespace fremond::cli

@@ -27,7 +27,9 @@ Scene on_ground(PlanarBody body, double gravity, const PlanarState& initial, Imp
 }
 }  // namespace
 
-std::string_view to_string(PaperLaw l) { return detail::enum_to_string(kPaperLaws, l); }
+std::string_view to_string(PaperLaw l) {
+  return detail::enum_to_string(kPaperLaws, l);
+}
 PaperLaw paper_law_from_string(std::string_view s) {
   return detail::enum_from_string(kPaperLaws, s, "law");
 }
@@ -54,8 +56,8 @@ Scene block_scene(const BlockParameters& block, ImpactLaw law) {
   const double w = 0.5 * block.width, h = 0.5 * block.height;
   body.mass = block.mass;
   body.inertia = block.mass * (block.width * block.width + block.height * block.height) / 12.0;
-  body.points = {ContactPoint{{-w, -h}, 0.0}, ContactPoint{{w, -h}, 0.0},
-                 ContactPoint{{w, h}, 0.0}, ContactPoint{{-w, h}, 0.0}};
+  body.points = {ContactPoint{{-w, -h}, 0.0}, ContactPoint{{w, -h}, 0.0}, ContactPoint{{w, h}, 0.0},
+                 ContactPoint{{-w, h}, 0.0}};
   return on_ground(std::move(body), block.gravity, block.initial, std::move(law));
 }
 

@@ -62,8 +62,8 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
   detail::require_finite_above("p", p, 1.0);
   detail::require_finite("restitution", restitution);
   if (!(restitution > 0.0 && restitution < 1.0))
-    throw InvalidArgument("restitution", "must lie in (0, 1), got " +
-                                             detail::format_number(restitution));
+    throw InvalidArgument("restitution",
+                          "must lie in (0, 1), got " + detail::format_number(restitution));
   if (contact < 0 || contact >= problem_in.contacts())
     throw InvalidArgument("contact", "no contact " + std::to_string(contact));
   SmallImpactProblem problem = problem_in;
@@ -77,8 +77,8 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
   // f(u) = restitution at k = e^u, minus the target; increasing in u.
   const auto f = [&](double u) {
     ++out.solves;
-    const auto r = solve_impact(problem, ImpactLaw::fremond(PowerPotential(std::exp(u), p)),
-                                options);
+    const auto r =
+        solve_impact(problem, ImpactLaw::fremond(PowerPotential(std::exp(u), p)), options);
     if (!r.ok()) return std::numeric_limits<double>::quiet_NaN();
     return -r.D_NE(contact) / d_na - restitution;
   };
@@ -151,17 +151,20 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
   return out;
 }
 
-double paper_bar_normal_stiffness(const BarParameters& bar) {
-  const Scene scene = bar_scene(bar, ImpactLaw::newton(PaperConstants::e));
-  const FirstImpact first = first_impact(scene, 1e3);
-  if (!first.found) throw InvalidArgument("bar", "never reaches the ground");
-  const SmallImpactProblem pb =
-      impact_problem(scene, first.state, first.contacts.data(), first.contact_count);
-  const StiffnessCalibration cal =
-      calibrate_normal_stiffness(pb, PaperConstants::p, PaperConstants::e, 0);
+double first_impact_normal_stiffness(const Scene& scene, double p, double restitution) {
+  const FirstImpact first = first_impact(scene, 1e4);
+  if (!first.found) throw InvalidArgument("scene", "never reaches an obstacle");
+  const int n = std::min(first.contact_count, kSmallContacts);
+  const SmallImpactProblem pb = impact_problem(scene, first.state, first.contacts.data(), n);
+  const StiffnessCalibration cal = calibrate_normal_stiffness(pb, p, restitution, 0);
   if (!cal.converged)
     throw InvalidArgument("k_N", "the calibration of Frémond's normal stiffness did not converge");
   return cal.k_N;
+}
+
+double paper_bar_normal_stiffness(const BarParameters& bar) {
+  return first_impact_normal_stiffness(bar_scene(bar, ImpactLaw::newton(PaperConstants::e)),
+                                       PaperConstants::p, PaperConstants::e);
 }
 
 Scene paper_bar_scene(PaperLaw law, const BarParameters& bar) {

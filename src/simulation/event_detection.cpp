@@ -46,7 +46,9 @@ double ulp(double x) {
   x = std::fabs(x);
   return std::nextafter(x, std::numeric_limits<double>::infinity()) - x;
 }
-double min_width(double b, double floor) { return std::max(4.0 * ulp(b), floor); }
+double min_width(double b, double floor) {
+  return std::max(4.0 * ulp(b), floor);
+}
 
 // The single root of a decreasing g on [lo, hi] with g(lo) > 0 ≥ g(hi): Newton from the last
 // point, kept inside the bracket, bisection when it leaves it. Returns the left-most point found
@@ -65,18 +67,27 @@ double refine(const GapFunction& f, Point lo, Point hi, int& evaluations) {
         hi = p;
         const double left = std::max(lo.s, x - min_width(x));
         const Point q = sample(f, left, evaluations);
-        if (q.g > 0.0) lo = q; else hi = q;
+        if (q.g > 0.0)
+          lo = q;
+        else
+          hi = q;
       } else {
         lo = p;
         const double right = std::min(hi.s, x + min_width(x));
         const Point q = sample(f, right, evaluations);
-        if (q.g <= 0.0) hi = q; else lo = q;
+        if (q.g <= 0.0)
+          hi = q;
+        else
+          lo = q;
       }
       last = hi;
       continue;
     }
     const Point p = sample(f, x, evaluations);
-    if (p.g <= 0.0) hi = p; else lo = p;
+    if (p.g <= 0.0)
+      hi = p;
+    else
+      lo = p;
     last = p;
     if (p.g == 0.0) break;
   }
@@ -89,7 +100,8 @@ EventSearchResult find_first_event(const GapFunction& f, double s_max, bool touc
   EventSearchResult out;
   if (!(s_max >= 0.0)) return out;
   Point start = sample(f, 0.0, out.evaluations);
-  if (touching_start) start.gd = std::max(start.gd, 0.0);
+  if (touching_start)
+    start.gd = std::max(start.gd, 0.0);
   else if (start.g <= 0.0 && start.gd < 0.0) {  // already closed and closing: an event now
     out.s = 0.0;
     return out;

@@ -20,12 +20,16 @@ constexpr detail::EnumNames<StepVelocity, 2> kStepVelocity{
     {{StepVelocity::end, "end"}, {StepVelocity::mean, "mean"}}};
 }  // namespace
 
-std::string_view to_string(StepVelocity v) { return detail::enum_to_string(kStepVelocity, v); }
+std::string_view to_string(StepVelocity v) {
+  return detail::enum_to_string(kStepVelocity, v);
+}
 StepVelocity step_velocity_from_string(std::string_view s) {
   return detail::enum_from_string(kStepVelocity, s, "step velocity");
 }
 
-std::string_view to_string(ContactMode m) { return detail::enum_to_string(kModes, m); }
+std::string_view to_string(ContactMode m) {
+  return detail::enum_to_string(kModes, m);
+}
 ContactMode contact_mode_from_string(std::string_view s) {
   return detail::enum_from_string(kModes, s, "contact mode");
 }

@@ -360,8 +360,7 @@ class Run {
     bool geometric = true, stuck = true;
     for (int j = 0; j < N; ++j) {
       const double d = tt[j + 1] - tt[j];
-      geometric = geometric && d <= opt_.accumulation_interval &&
-                  (j == 0 || d < tt[j] - tt[j - 1]);
+      geometric = geometric && d <= opt_.accumulation_interval && (j == 0 || d < tt[j] - tt[j - 1]);
       stuck = stuck && d <= 16.0 * ulp(t_);
     }
     if (!geometric && !stuck) return false;
@@ -428,7 +427,8 @@ class Run {
       rec.solver.method = SolverMethod::closed_form;
       rec.solver.status = SolverStatus::converged;
       rec.solver.criterion = StopCriterion::exact;
-      rec.solver.message = "accumulation closed: normal velocities of the touching contacts set to 0";
+      rec.solver.message =
+          "accumulation closed: normal velocities of the touching contacts set to 0";
       rec.solver.iterations = 0;
       rec.accumulation_limit = t_ + tail;
       obs_->on_impact(rec);
@@ -525,7 +525,8 @@ class Run {
         const Eigen::Vector2d Rr(cth * p.r.x() - sth * p.r.y(), sth * p.r.x() + cth * p.r.y());
         const double n_Rr = nn.dot(Rr);
         const double gap = nn.dot(q.head<2>()) + n_Rr - o.offset - p.radius;
-        const double gd = nn.x() * v.x() + nn.y() * v.y() + v.z() * (Rr.x() * nn.y() - Rr.y() * nn.x());
+        const double gd =
+            nn.x() * v.x() + nn.y() * v.y() + v.z() * (Rr.x() * nn.y() - Rr.y() * nn.x());
         const double gdd = -nn.y() * g - w2 * n_Rr;
         if (gap + h * gd + 0.5 * h * h * gdd <= 0.0) {
           f[na] = contact_frame(p, o, q.head<2>(), cth, sth);
@@ -568,7 +569,8 @@ class Run {
       }
       // 5. Midpoint positions.
       const Eigen::Vector3d q1 = q + (0.5 * hk) * (v_e + v1);
-      const bool fixed_point = contact_step && q1 == q && v1 == v && v_e == v && t_next != opt_.t_end;
+      const bool fixed_point =
+          contact_step && q1 == q && v1 == v && v_e == v && t_next != opt_.t_end;
       st_.q = q1;
       st_.qdot = v1;
       t_ = t_next;

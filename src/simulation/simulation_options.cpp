@@ -12,10 +12,10 @@ namespace fremond {
 
 namespace {
 using detail::EnumNames;
-constexpr EnumNames<Integrator, 2> kIntegrators{{{Integrator::event_driven, "event_driven"},
-                                                {Integrator::moreau_jean, "moreau_jean"}}};
-constexpr EnumNames<Phase, 2> kPhases{{{Phase::event_driven, "event_driven"},
-                                      {Phase::moreau_jean, "moreau_jean"}}};
+constexpr EnumNames<Integrator, 2> kIntegrators{
+    {{Integrator::event_driven, "event_driven"}, {Integrator::moreau_jean, "moreau_jean"}}};
+constexpr EnumNames<Phase, 2> kPhases{
+    {{Phase::event_driven, "event_driven"}, {Phase::moreau_jean, "moreau_jean"}}};
 constexpr EnumNames<SimulationStatus, 5> kStatus{
     {{SimulationStatus::not_run, "not_run"},
      {SimulationStatus::completed, "completed"},
@@ -23,21 +23,31 @@ constexpr EnumNames<SimulationStatus, 5> kStatus{
      {SimulationStatus::impact_failed, "impact_failed"},
      {SimulationStatus::contact_failed, "contact_failed"}}};
 constexpr EnumNames<ImpactKind, 3> kKinds{{{ImpactKind::event, "event"},
-                                          {ImpactKind::time_step, "time_step"},
-                                          {ImpactKind::accumulation, "accumulation"}}};
+                                           {ImpactKind::time_step, "time_step"},
+                                           {ImpactKind::accumulation, "accumulation"}}};
 }  // namespace
 
-std::string_view to_string(Integrator i) { return detail::enum_to_string(kIntegrators, i); }
+std::string_view to_string(Integrator i) {
+  return detail::enum_to_string(kIntegrators, i);
+}
 Integrator integrator_from_string(std::string_view s) {
   return detail::enum_from_string(kIntegrators, s, "integrator.method");
 }
-std::string_view to_string(Phase p) { return detail::enum_to_string(kPhases, p); }
-Phase phase_from_string(std::string_view s) { return detail::enum_from_string(kPhases, s, "phase"); }
-std::string_view to_string(SimulationStatus s) { return detail::enum_to_string(kStatus, s); }
+std::string_view to_string(Phase p) {
+  return detail::enum_to_string(kPhases, p);
+}
+Phase phase_from_string(std::string_view s) {
+  return detail::enum_from_string(kPhases, s, "phase");
+}
+std::string_view to_string(SimulationStatus s) {
+  return detail::enum_to_string(kStatus, s);
+}
 SimulationStatus simulation_status_from_string(std::string_view s) {
   return detail::enum_from_string(kStatus, s, "simulation status");
 }
-std::string_view to_string(ImpactKind k) { return detail::enum_to_string(kKinds, k); }
+std::string_view to_string(ImpactKind k) {
+  return detail::enum_to_string(kKinds, k);
+}
 ImpactKind impact_kind_from_string(std::string_view s) {
   return detail::enum_from_string(kKinds, s, "impact kind");
 }
@@ -48,7 +58,8 @@ std::pair<std::string, std::string> first_invalid(const SimulationOptions& o) {
   using detail::format_number;
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  if (!positive(o.t_end)) return {"t_end", "must be a finite number > 0, got " + format_number(o.t_end)};
+  if (!positive(o.t_end))
+    return {"t_end", "must be a finite number > 0, got " + format_number(o.t_end)};
   if (!positive(o.step) || !(o.step <= o.t_end))
     return {"integrator.step", "must be in (0, t_end], got " + format_number(o.step)};
   if (o.max_impacts < 1)

@@ -16,9 +16,8 @@ namespace fremond {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr PaperLaw kLaws[] = {PaperLaw::newton, PaperLaw::newton_coulomb,
-                              PaperLaw::poisson_coulomb, PaperLaw::fremond_coulomb,
-                              PaperLaw::fremond_viscous};
+constexpr PaperLaw kLaws[] = {PaperLaw::newton, PaperLaw::newton_coulomb, PaperLaw::poisson_coulomb,
+                              PaperLaw::fremond_coulomb, PaperLaw::fremond_viscous};
 
 struct Log : SimulationObserver {
   std::vector<ImpactRecord> impacts;
@@ -129,7 +128,8 @@ TEST(SimulationBar, RunsRepeatBitForBit) {
       ASSERT_EQ(a.impacts.size(), b.impacts.size());
       for (std::size_t i = 0; i < a.samples.size(); ++i) {
         ASSERT_EQ(std::memcmp(a.samples[i].state.q.data(), b.samples[i].state.q.data(), 24), 0);
-        ASSERT_EQ(std::memcmp(a.samples[i].state.qdot.data(), b.samples[i].state.qdot.data(), 24), 0);
+        ASSERT_EQ(std::memcmp(a.samples[i].state.qdot.data(), b.samples[i].state.qdot.data(), 24),
+                  0);
         ASSERT_EQ(a.samples[i].t, b.samples[i].t);
       }
       for (std::size_t i = 0; i < a.impacts.size(); ++i) ASSERT_EQ(a.impacts[i].t, b.impacts[i].t);

@@ -15,8 +15,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// One contact, normal law alone, leaving with D_NE = e a from D_NA = −a (no reaction): z = −a(1−e)/2,
-// P = k |z|^(p−1), and D_NE − D_NA = (1 + e) a = G P give k = (1 + e) a / (G (a(1 − e)/2)^(p−1)).
+// One contact, normal law alone, leaving with D_NE = e a from D_NA = −a (no reaction): z =
+// −a(1−e)/2, P = k |z|^(p−1), and D_NE − D_NA = (1 + e) a = G P give k = (1 + e) a / (G (a(1 −
+// e)/2)^(p−1)).
 double closed_form_k(double G, double a, double e, double p) {
   return (1 + e) * a / (G * std::pow(a * (1 - e) / 2, p - 1));
 }

@@ -22,7 +22,10 @@ TEST(FreeFlight, GapFunctionMatchesTheKinematicsAlongTheFlight) {
   for (int trial = 0; trial < 200; ++trial) {
     ContactPoint p{{u(rng), u(rng)}, std::fabs(u(rng)) / 3};
     HalfPlane o{Eigen::Vector2d(u(rng), u(rng)).normalized(), u(rng)};
-    FreeFlight f{0.0, {Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), 5 * u(rng))}, 9.81};
+    FreeFlight f{
+        0.0,
+        {Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), 5 * u(rng))},
+        9.81};
     const GapFunction g = GapFunction::make(p, o, f);
     for (double s : {0.0, 0.1, 0.37, 1.5}) {
       const PlanarState st = f.at_elapsed(s);
@@ -51,7 +54,8 @@ TEST(FreeFlight, SpecSection5ContactDirectionsOfTheBar) {
   EXPECT_NEAR(f.gap, 1.0 - l * std::sin(th), 1e-15);
   EXPECT_NEAR((f.W_N - Eigen::Vector3d(0, 1, -l * std::cos(th))).norm(), 0.0, 1e-15);
   EXPECT_NEAR((f.W_T - Eigen::Vector3d(1, 0, l * std::sin(th))).norm(), 0.0, 1e-15);
-  // The Delassus matrix of eqs. (7)-(8): G_NN = (1 + 3cos²θ)/m, G_NT = −3 sinθ cosθ/m, G_TT = (1 + 3sin²θ)/m.
+  // The Delassus matrix of eqs. (7)-(8): G_NN = (1 + 3cos²θ)/m, G_NT = −3 sinθ cosθ/m, G_TT = (1 +
+  // 3sin²θ)/m.
   const Eigen::Matrix3d Minv = bar.body.mass_matrix().inverse();
   EXPECT_NEAR(f.W_N.dot(Minv * f.W_N), 1 + 3 * std::cos(th) * std::cos(th), 1e-14);
   EXPECT_NEAR(f.W_N.dot(Minv * f.W_T), -3 * std::sin(th) * std::cos(th), 1e-14);
@@ -160,7 +164,8 @@ TEST(EventDetection, ALeavingContactDoesNotRetrigger) {
   ASSERT_TRUE(r.found());
   EXPECT_NEAR(r.s, 2 * 2.0 / 9.81, 1e-15);
   // Touching, at rest, and lifted by the rotation (g'' > 0): no event either.
-  const FreeFlight spin{0.0, {Eigen::Vector3d(0, 0.5, -kPi / 2), Eigen::Vector3d(0, 0, 10.0)}, 9.81};
+  const FreeFlight spin{
+      0.0, {Eigen::Vector3d(0, 0.5, -kPi / 2), Eigen::Vector3d(0, 0, 10.0)}, 9.81};
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   const GapFunction g1 = GapFunction::make(bar.body.points[1], bar.obstacles[0], spin);
   double g, gd, gdd;

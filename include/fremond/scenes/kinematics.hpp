@@ -17,16 +17,19 @@ namespace fremond {
 
 /// The gap and the contact directions of one contact at one configuration.
 struct ContactFrame {
-  double gap = 0.0;                                 ///< signed distance (m), < 0 in penetration.
-  Eigen::Vector3d W_N = Eigen::Vector3d::Zero();    ///< normal direction in q̇-space.
-  Eigen::Vector3d W_T = Eigen::Vector3d::Zero();    ///< tangential direction in q̇-space.
+  double gap = 0.0;                               ///< signed distance (m), < 0 in penetration.
+  Eigen::Vector3d W_N = Eigen::Vector3d::Zero();  ///< normal direction in q̇-space.
+  Eigen::Vector3d W_T = Eigen::Vector3d::Zero();  ///< tangential direction in q̇-space.
 };
 
 /// The tangent of a half-plane, t = (n_y, −n_x).
-inline Eigen::Vector2d tangent_of(const Eigen::Vector2d& n) { return {n.y(), -n.x()}; }
+inline Eigen::Vector2d tangent_of(const Eigen::Vector2d& n) {
+  return {n.y(), -n.x()};
+}
 
 /// Contact frame of `point` against `plane` with the body at centre c and angle θ given by its
-/// cosine and sine (so that one sin/cos serves every contact). `plane.normal` must be a unit vector.
+/// cosine and sine (so that one sin/cos serves every contact). `plane.normal` must be a unit
+/// vector.
 inline ContactFrame contact_frame(const ContactPoint& point, const HalfPlane& plane,
                                   const Eigen::Vector2d& c, double cos_theta, double sin_theta) {
   const Eigen::Vector2d& n = plane.normal;

@@ -18,12 +18,12 @@ struct BarParameters {
 };
 Scene bar_scene(const BarParameters& bar, ImpactLaw law);
 
-/// A ball (a solid sphere moving in the plane, J = 2 m ρ²/5): one point at the centre with radius ρ.
-/// Defaults: dropped at rest from a height of 1 m (its lowest point), not spinning.
+/// A ball (a solid sphere moving in the plane, J = 2 m ρ²/5): one point at the centre with radius
+/// ρ. Defaults: dropped at rest from a height of 1 m (its lowest point), not spinning.
 struct BallParameters {
-  double mass = 1.0;     ///< kg
-  double radius = 0.1;   ///< ρ (m)
-  double gravity = 9.81; ///< m/s²
+  double mass = 1.0;      ///< kg
+  double radius = 0.1;    ///< ρ (m)
+  double gravity = 9.81;  ///< m/s²
   PlanarState initial{Eigen::Vector3d(0.0, 1.1, 0.0), Eigen::Vector3d::Zero()};
 };
 Scene ball_scene(const BallParameters& ball, ImpactLaw law);
@@ -32,10 +32,10 @@ Scene ball_scene(const BallParameters& ball, ImpactLaw law);
 /// (in the order (−w/2, −h/2), (w/2, −h/2), (w/2, h/2), (−w/2, h/2)).
 /// Defaults: dropped from 0.5 m, tilted by 0.3 rad, sliding at 1 m/s.
 struct BlockParameters {
-  double mass = 1.0;     ///< kg
-  double width = 0.4;    ///< m
-  double height = 0.2;   ///< m
-  double gravity = 9.81; ///< m/s²
+  double mass = 1.0;      ///< kg
+  double width = 0.4;     ///< m
+  double height = 0.2;    ///< m
+  double gravity = 9.81;  ///< m/s²
   PlanarState initial{Eigen::Vector3d(0.0, 0.5, 0.3), Eigen::Vector3d(1.0, 0.0, 0.0)};
 };
 Scene block_scene(const BlockParameters& block, ImpactLaw law);
@@ -57,10 +57,10 @@ PaperLaw paper_law_from_string(std::string_view s);
 struct PaperConstants {
   static constexpr double e = 0.9;
   static constexpr double mu = 1.0;
-  static constexpr double p = 3.0;           ///< Frémond's normal exponent.
-  static constexpr double k_T = 1.5;         ///< viscous dead zone, SPEC scaling (paper: 0.75).
+  static constexpr double p = 3.0;    ///< Frémond's normal exponent.
+  static constexpr double k_T = 1.5;  ///< viscous dead zone, SPEC scaling (paper: 0.75).
   static constexpr double q = 2.0;
-  static constexpr double r = 0.2;           ///< SPEC scaling (paper: 0.4).
+  static constexpr double r = 0.2;  ///< SPEC scaling (paper: 0.4).
 };
 
 /// The paper's law with its parameters; `k_N` is Frémond's normal stiffness (unused by the

@@ -55,9 +55,7 @@ struct Scene {
   ImpactLaw law;
 
   /// Number of (point, obstacle) pairs.
-  int contact_count() const {
-    return static_cast<int>(body.points.size() * obstacles.size());
-  }
+  int contact_count() const { return static_cast<int>(body.points.size() * obstacles.size()); }
   int point_of(int contact) const { return contact / static_cast<int>(obstacles.size()); }
   int obstacle_of(int contact) const { return contact % static_cast<int>(obstacles.size()); }
 

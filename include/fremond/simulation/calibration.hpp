@@ -1,8 +1,8 @@
 #pragma once
-/// @file The first impact of a scene, and the calibration of Frémond's normal stiffness that SPEC §3
-/// asks for: k_N such that at the bar's first impact from the initial state of §5, with the normal
-/// law alone, the normal restitution −D_NE/D_NA is exactly the paper's e = 0.9 (k_N ≈ 85.36 for
-/// p = 3). It is computed at run time, never hard-coded.
+/// @file The first impact of a scene, and the calibration of Frémond's normal stiffness that SPEC
+/// §3 asks for: k_N such that at the bar's first impact from the initial state of §5, with the
+/// normal law alone, the normal restitution −D_NE/D_NA is exactly the paper's e = 0.9 (k_N ≈ 85.36
+/// for p = 3). It is computed at run time, never hard-coded.
 #include <array>
 
 #include "fremond/laws/impact_problem.hpp"
@@ -46,8 +46,14 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
                                                 double restitution, int contact = 0,
                                                 const SolverOptions& options = {});
 
-/// SPEC §3's k_N for the bar: calibrate_normal_stiffness at the bar's first impact (p = 3,
-/// restitution e = 0.9). Throws InvalidArgument if the calibration does not converge.
+/// The k_N that gives `restitution` at the first impact of `scene` from its initial state, with
+/// the normal law alone: calibrate_normal_stiffness at the first contact of that impact. The
+/// scene's own law is not used. Throws InvalidArgument if the scene never touches before 10⁴ s
+/// or the calibration does not converge.
+double first_impact_normal_stiffness(const Scene& scene, double p, double restitution);
+
+/// SPEC §3's k_N for the bar: first_impact_normal_stiffness of the bar of §5 (p = 3,
+/// restitution e = 0.9).
 double paper_bar_normal_stiffness(const BarParameters& bar = {});
 
 /// The paper's scene (SPEC §5) with one of its laws, Frémond's k_N calibrated as above.

@@ -28,10 +28,10 @@ namespace fremond {
 
 /// A contact mode of the persistent-contact step.
 enum class ContactMode {
-  open,          ///< P = 0, V_N ≥ 0.
-  stick,         ///< V_N = 0, V_T = 0, |P_T| ≤ μP_N.
-  slide_forward, ///< V_N = 0, V_T ≥ 0, P_T = −μP_N.
-  slide_back,    ///< V_N = 0, V_T ≤ 0, P_T = +μP_N.
+  open,           ///< P = 0, V_N ≥ 0.
+  stick,          ///< V_N = 0, V_T = 0, |P_T| ≤ μP_N.
+  slide_forward,  ///< V_N = 0, V_T ≥ 0, P_T = −μP_N.
+  slide_back,     ///< V_N = 0, V_T ≤ 0, P_T = +μP_N.
 };
 std::string_view to_string(ContactMode m);
 ContactMode contact_mode_from_string(std::string_view s);
@@ -50,15 +50,15 @@ struct PersistentContactProblem {
   Eigen::Vector3d minv = Eigen::Vector3d::Ones();  ///< diagonal of M⁻¹.
   int contacts = 0;                                ///< ≤ kMax.
   std::array<Eigen::Vector3d, kMax> W_N{}, W_T{};
-  std::array<double, kMax> mu{};                   ///< μ ≥ 0 per contact (0: frictionless).
+  std::array<double, kMax> mu{};                       ///< μ ≥ 0 per contact (0: frictionless).
   Eigen::Vector3d v_before = Eigen::Vector3d::Zero();  ///< velocity at the start of the step.
   Eigen::Vector3d v_free = Eigen::Vector3d::Zero();    ///< v_before + h M⁻¹ f.
-  StepVelocity normal = StepVelocity::end;    ///< V_N of Signorini's condition.
-  StepVelocity friction = StepVelocity::end;  ///< V_T of Coulomb's law.
+  StepVelocity normal = StepVelocity::end;             ///< V_N of Signorini's condition.
+  StepVelocity friction = StepVelocity::end;           ///< V_T of Coulomb's law.
 };
 
 struct PersistentContactResult {
-  bool solved = false;  ///< a mode satisfying every condition was found.
+  bool solved = false;                          ///< a mode satisfying every condition was found.
   Eigen::Vector3d v = Eigen::Vector3d::Zero();  ///< v⁺.
   std::array<double, PersistentContactProblem::kMax> P_N{}, P_T{};
   std::array<ContactMode, PersistentContactProblem::kMax> mode{};

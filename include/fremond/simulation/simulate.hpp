@@ -92,12 +92,13 @@ struct ImpactRecord {
   Eigen::Vector3d qdot_A = Eigen::Vector3d::Zero(), qdot_E = Eigen::Vector3d::Zero();
   CVec P_N, P_T, D_NA, D_NE, D_TA, D_TE;
   double energy_A = 0.0, energy_E = 0.0;  ///< total energy just before and just after.
-  bool admissible = true;                  ///< SPEC §4 certificate of the law's answer.
-  Inequality failed = Inequality::none;    ///< the first inequality that failed.
-  int failed_contact = -1;                 ///< scene contact index of a per-contact failure.
+  bool admissible = true;                 ///< SPEC §4 certificate of the law's answer.
+  Inequality failed = Inequality::none;   ///< the first inequality that failed.
+  int failed_contact = -1;                ///< scene contact index of a per-contact failure.
   double violation = 0.0;
   bool unique = true;
-  SolverReport solver;  ///< the impact solver's report (method `closed_form` for kind accumulation).
+  SolverReport
+      solver;  ///< the impact solver's report (method `closed_form` for kind accumulation).
   /// kind accumulation: the accumulation time t∞ the run continues from (t is the last impact).
   double accumulation_limit = std::numeric_limits<double>::quiet_NaN();
 };
@@ -127,15 +128,15 @@ struct SimulationResult {
   long event_impacts = 0;         ///< of which in the event-driven phase.
   long inadmissible_impacts = 0;  ///< impacts whose SPEC §4 certificate failed.
   double first_inadmissible_time = std::numeric_limits<double>::quiet_NaN();
-  int accumulations = 0;          ///< accumulations of impacts closed.
+  int accumulations = 0;  ///< accumulations of impacts closed.
   double first_accumulation_time = std::numeric_limits<double>::quiet_NaN();  ///< its t∞.
-  long steps = 0;                 ///< Moreau–Jean steps.
+  long steps = 0;  ///< Moreau–Jean steps.
   int phase_switches = 0;
   /// The largest energy increase over any flight, step, accumulation or admissible impact (J):
   /// rounding only. Inadmissible impacts are left out: their gain is the law's, and they are
   /// counted in inadmissible_impacts.
   double max_energy_rise = 0.0;
-  long gap_evaluations = 0;       ///< work of the event search.
+  long gap_evaluations = 0;  ///< work of the event search.
 
   bool ok() const {
     return status == SimulationStatus::completed || status == SimulationStatus::max_impacts;

@@ -1,0 +1,49 @@
+#pragma once
+/// @file The scene file: a body, its obstacles, the initial state, the law and the integrator's
+/// options, as one JSON object (the input of `fremond simulate SCENE.json`).
+///
+///     {
+///       "body": {"shape": "bar", "mass": 1, "half_length": 0.5},
+///       "obstacles": [{"normal": [0, 1], "offset": 0}],
+///       "gravity": 9.81,
+///       "initial": {"q": [0, 1, 0.7853981633974483], "qdot": [2, 0, 0]},
+///       "law": {"type": "newton_coulomb", "e": 0.9, "mu": 1.0},
+///       "t_end": 3,
+///       "integrator": {"method": "event_driven", "step": 0.001},
+///       "output": {"sample_interval": 0.001}
+///     }
+///
+/// `body` is either a shape with its dimensions — "bar" (mass, half_length: J = m l²/3, ends at
+/// (∓l, 0)), "ball" (mass, radius: J = 2mρ²/5), "block" (mass, width, height: J = m(w² + h²)/12,
+/// corners as in presets.hpp) — or a general body {"mass", "inertia", "points": [{"r": [x, y],
+/// "radius": ρ}, ...]} ("radius" optional, 0). Required: body, initial, law. Optional, with their
+/// defaults: obstacles (the ground y ≥ 0), gravity (9.81), t_end (3), integrator (every key of
+/// SimulationOptions: method, step, max_impacts, simultaneity_tolerance, gap_tolerance,
+/// velocity_tolerance, accumulation_interval, accumulation_impacts, return_after_free_steps; the
+/// defaults of simulation_options.hpp), output (sample_interval). The law is read exactly as in
+/// the impact-problem file (SPEC §7), with one value per contact in the order of
+/// Scene::contact_count(). Unknown keys, missing keys, wrong types and out-of-range values are
+/// refused with an InvalidArgument naming the key (`body.mass`, `integrator.step`, `law.e`, ...).
+#include <string>
+#include <string_view>
+
+#include "fremond/potentials/registry.hpp"
+#include "fremond/scenes/scene.hpp"
+#include "fremond/simulation/simulation_options.hpp"
+
+namespace fremond::io {
+
+/// What a scene file holds.
+struct SceneFile {
+  Scene scene;                ///< validated.
+  SimulationOptions options;  ///< validated.
+};
+
+/// Reads a scene file from its text. A message without a key (empty input, not an object) is
+/// named "scene".
+SceneFile parse_scene_file(std::string_view json_text, const PotentialRegistry& registry);
+
+/// Reads the scene file at `path`; a file that cannot be read is refused naming the path.
+SceneFile read_scene_file(const std::string& path, const PotentialRegistry& registry);
+
+}  // namespace fremond::io
