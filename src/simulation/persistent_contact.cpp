@@ -2,7 +2,7 @@
 #include "fremond/simulation/persistent_contact.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -118,8 +118,9 @@ bool try_mode(const PersistentContactProblem& pb, const ContactMode* mode, const
     Rhs sol = A.partialPivLu().solve(b);
     if (!consistent(sol)) {
       // Dependent rows (a flat bar sticking at both ends: four rows, three degrees of freedom).
-      Eigen::CompleteOrthogonalDecomposition<Sys> cod(A);
-      sol = cod.solve(b);
+      // (An SVD: Eigen's complete orthogonal decomposition allocates in its solve.)
+      const Eigen::JacobiSVD<Sys> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+      sol = svd.solve(b);
       if (!consistent(sol)) return false;
     }
     for (int r = 0; r < n; ++r) x[r] = sol(r);

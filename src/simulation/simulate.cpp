@@ -1,7 +1,7 @@
 // The run of a scene: event-driven flights and impacts, accumulations, Moreau–Jean (simulate.hpp).
 #include "fremond/simulation/simulate.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -395,8 +395,9 @@ class Run {
     Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxC> Wc(3, n);
     for (int i = 0; i < n; ++i) Wc.col(i) = f[i].W_N;
     const Small G = Wc.transpose() * minv_.asDiagonal() * Wc;
-    const Eigen::CompleteOrthogonalDecomposition<Small> cod(G);
-    const auto lambda = cod.solve((Wc.transpose() * st_.qdot).eval()).eval();
+    // Minimum-norm multipliers: G is singular when the touching contacts are dependent.
+    const Eigen::JacobiSVD<Small> svd(G, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const auto lambda = svd.solve((Wc.transpose() * st_.qdot).eval()).eval();
     PlanarState after = st_;
     after.qdot = st_.qdot - minv_.cwiseProduct(Wc * lambda);
     const double e_a = energy(sc_, st_), e_e = energy(sc_, after);
