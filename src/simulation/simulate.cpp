@@ -108,6 +108,7 @@ class Run {
       res_.message = "reached the end time";
     }
     if (last_sample_t_ != t_) emit_sample(t_, st_);
+    if (obs_) obs_->on_progress(t_, opt_.t_end);
     res_.t = t_;
     res_.state = st_;
     res_.phase = phase_;

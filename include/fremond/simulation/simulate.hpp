@@ -112,7 +112,8 @@ class SimulationObserver {
   virtual void on_impact(const ImpactRecord& /*impact*/) {}
   /// A change of phase at time t.
   virtual void on_phase(double /*t*/, Phase /*from*/, Phase /*to*/, std::string_view /*why*/) {}
-  /// Called at most about a hundred times per run, for a progress bar.
+  /// Called at most about a hundred times per run as time advances, and once at the end, for a
+  /// progress bar.
   virtual void on_progress(double /*t*/, double /*t_end*/) {}
 };
 
