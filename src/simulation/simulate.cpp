@@ -67,6 +67,20 @@ PersistentContactResult dissipative_step(PersistentContactProblem& pp, const Con
   return m.solved ? m : r;
 }
 
+// The frames of a step's active contacts. ContactFrame zero-initialises its members; an array of
+// them for every possible contact would be cleared at every step for nothing.
+struct StepFrame {
+  double gap;
+  Eigen::Vector3d W_N, W_T;
+  StepFrame& operator=(const ContactFrame& f) {
+    gap = f.gap;
+    W_N = f.W_N;
+    W_T = f.W_T;
+    return *this;
+  }
+};
+using Frames = std::array<StepFrame, kMaxC>;
+
 double ulp(double x) {
   x = std::fabs(x);
   return std::nextafter(x, kInf) - x;
@@ -450,8 +464,8 @@ class Run {
   //    approaches;
   //  - h > 0: the step against gravity on every active contact (dissipative_step).
   // Returns false when the run must stop.
-  bool persistent_impulse(const std::array<ContactFrame, kMaxC>& f, const int* active, int na,
-                          const Eigen::Vector3d& v, double h, Eigen::Vector3d& v_out) {
+  bool persistent_impulse(const Frames& f, const int* active, int na, const Eigen::Vector3d& v,
+                          double h, Eigen::Vector3d& v_out) {
     PersistentContactProblem pp;
     pp.minv = minv_;
     std::array<int, PersistentContactProblem::kMax> idx;
@@ -517,7 +531,7 @@ class Run {
       //    adds at most L h³/6 with L = |ω|³|r|, far below any gap that matters). A full step
       //    also for a shortened last one: which contacts are active must not depend on where
       //    t_end falls. With R(θ)r: g' = n·ċ + ω (R(θ)r × n), g'' = −n_y g − ω² n·R(θ)r.
-      std::array<ContactFrame, kMaxC> f;
+      Frames f;  // filled for the active contacts only
       int na = 0;
       const double w2 = v.z() * v.z();
       for (int j = 0; j < nc_; ++j) {
