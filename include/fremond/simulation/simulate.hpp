@@ -17,7 +17,10 @@
 ///  - a persistent contact: a contact touching at rest (|D_N| ≤ velocity_tolerance) that free
 ///    flight would push into its obstacle. Moreau–Jean handles the resting, sliding or rocking.
 /// The Moreau–Jean phase hands back to event-driven once options.return_after_free_steps steps in
-/// a row had no contact.
+/// a row had no contact. Time-stepping rather than a smooth persistent-contact phase, because after
+/// an accumulation the contacts of a bar stick, slip, rock, lift off and come down again in any
+/// order: a time-stepping scheme takes every such change in its stride, where a smooth phase would
+/// need an event search for each contact-mode switch and a Painlevé-safe force law.
 ///
 /// Moreau–Jean step (θ = 1/2, Jean 1999; Acary & Brogliato 2008), from (q_k, v_k), step h:
 ///  1. active contacts: those that free flight would close within the step (g + hg' + h²g''/2 ≤ 0);
