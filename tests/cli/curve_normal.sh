@@ -1,0 +1,59 @@
+# `fremond curve normal` (Fig. 8): the p = 2 curve is eq. (24)'s straight line in either scaling,
+# p = 3 follows its closed form, and the output says which scaling its constants are in.
+source "$(dirname "$0")/curve_common.bash" "$1"
+
+run_curve normal
+expect_status "default run" 0
+check_csv "default: scaling named, four p, 101 speeds each" '
+assert any(c.startswith("# scaling: spec") for c in comments), comments
+assert sorted({r["p"] for r in rows}) == [1.5, 2.0, 3.0, 4.0]
+assert len(rows) == 4 * 101
+assert all(r["status"] == "converged" and r["admissible"] == 1 for r in rows)
+assert rows[0]["abs_D_NA"] == 0 and max(r["abs_D_NA"] for r in rows) == 5'
+# Eq. (24) in SPEC's scaling: ε = (k − 2m)/(k + 2m), here k = 4, m = 1: ε = 1/3.
+check_csv "p = 2 is eq. (24)" '
+for r in rows:
+    if r["p"] == 2:
+        near(r["D_NE"], r["abs_D_NA"] / 3)
+        near(r["D_NA"], -r["abs_D_NA"], 0, 0)
+assert any("eq. (24): D_NE = 0.333333 |D_NA|" in c for c in comments), comments'
+
+# The paper's scaling: ε = (k_paper − m)/(k_paper + m); k_paper = 19, m = 2 → 17/21.
+run_curve normal --scaling paper --k 19 --p 2 --mass 2 --max-speed 3 --points 7
+expect_status "paper scaling" 0
+check_csv "paper scaling: eq. (24) as the paper writes it" '
+assert any(c.startswith("# scaling: paper") for c in comments), comments
+assert any("k = 38 (spec) = 19 (paper)" in c for c in comments), comments
+assert len(rows) == 7 and all(r["k"] == 19 for r in rows)
+for r in rows:
+    near(r["D_NE"], 17 / 21 * r["abs_D_NA"])
+    near(r["P_N"], 2 * (1 + 17 / 21) * r["abs_D_NA"])'
+
+# p = 3, k = 4, m = 1: the mass stops while |D_NA| ≤ 4m/k = 1 (the reaction takes m|D_NA|);
+# above, D_NE = a − u with (k/4)u² + m u − 2ma = 0.
+run_curve normal --p 3 --points 21
+expect_status "p = 3" 0
+check_csv "p = 3 closed form" '
+for r in rows:
+    a = r["abs_D_NA"]
+    if a <= 1:
+        near(r["D_NE"], 0.0)
+        near(r["P_N"], a)
+    else:
+        u = (-1 + math.sqrt(1 + 8 * a)) / 2
+        near(r["D_NE"], a - u, 1e-11)
+        near(r["P_N_reaction"], 0.0)'
+
+# --out writes the file and says so on stdout, with the scaling.
+run_curve normal --p 2 --points 3 --out "$TMP/fig8.csv"
+expect_status "--out" 0
+if grep -qF "wrote $TMP/fig8.csv: Fig. 8 data" "$TMP/out" && grep -qF "spec scaling" "$TMP/out"; then
+  pass
+else
+  fail "--out: no message naming the file and scaling: $(cat "$TMP/out")"
+fi
+check_csv "--out file" '
+assert len(rows) == 3
+near(rows[2]["D_NE"], 5 / 3)' "$TMP/fig8.csv"
+
+finish
