@@ -3,6 +3,7 @@
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/core/types.hpp"
+#include "fremond/curves/curves.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/io/scene_file.hpp"
 #include "fremond/laws/impact_law.hpp"
