@@ -1,0 +1,15 @@
+// The compiled part of the Python package `fremond` (imported by fremond/__init__.py). It only
+// wires up the binding units; each binds one layer of the library.
+#include "bind_helpers.hpp"
+#include "docstrings.hpp"
+
+PYBIND11_MODULE(_fremond, m) {
+  namespace fp = fremond::python;
+  m.doc() = fp::doc::kModule;
+  fp::bind_enums(m);
+  fp::bind_potentials(m);
+  fp::bind_impacts(m);
+  fp::bind_scenes(m);
+  fp::bind_simulation(m);
+  fp::bind_curves(m);
+}
