@@ -10,7 +10,6 @@ its results (matplotlib and Pillow).
     fremond.plots.energy_plot(run, title="Newton + Coulomb")
 """
 from ._fremond import *  # noqa: F401,F403
-from ._fremond import __doc__ as _compiled_doc  # noqa: F401
 
 __version__ = "0.1.0"
 
