@@ -207,8 +207,9 @@ def main(argv=None):
     (out / "comparison.txt").write_text(table)
     (out / "comparison.json").write_text(json.dumps(
         {"t_end": args.t_end, "laws": rows, "files": sorted(written)}, indent=1))
-    print(f"\nwrote {len(written) + 2} files to {out} in {time.time() - started:.1f} s:")
-    for name in sorted(written):
+    files = sorted(p.name for p in out.iterdir() if p.is_file())
+    print(f"\n{out} holds {len(files)} files ({time.time() - started:.1f} s):")
+    for name in files:
         print(f"  {name}")
     return 0
 

@@ -168,6 +168,10 @@ def energy_plot(run, ax=None, title=None, label_inadmissible: int = 3, show_init
         ax.axvspan(a, b, color=MOREAU_JEAN, alpha=0.25, lw=0,
                    label="Moreau–Jean (persistent contact)" if i == 0 else None)
 
+    low, high = (float(energy.min()), float(energy.max())) if len(energy) else (0.0, 1.0)
+    span = high - low + 1e-9
+    ax.set_ylim(low - 0.05 * span, high + 0.25 * span)
+
     impacts = [im for im in run.impacts if im.kind != _f.ImpactKind.accumulation]
     good = [im for im in impacts if im.admissible]
     bad = [im for im in impacts if not im.admissible]
@@ -181,19 +185,19 @@ def energy_plot(run, ax=None, title=None, label_inadmissible: int = 3, show_init
         t_mid = 0.5 * (t[0] + t[-1])
         for im in bad[:label_inadmissible]:
             gain = im.energy_E - im.energy_A
-            left = im.t > t_mid  # keep the label inside the axes
+            # Keep the label inside the axes: left of late impacts, above low ones.
+            left = im.t > t_mid
+            above = im.energy_E < low + 0.5 * span
             ax.annotate(f"impact at t = {im.t:.3f} s creates {gain:+.3g} J:\n"
                         f"({str(im.failed).split('_')[-1]}) fails ({im.failed})",
-                        xy=(im.t, im.energy_E), xytext=(-14 if left else 14, -30),
+                        xy=(im.t, im.energy_E), xytext=(-14 if left else 14, 24 if above else -34),
                         textcoords="offset points", ha="right" if left else "left",
                         color=INADMISSIBLE, fontsize=8,
+                        bbox=dict(boxstyle="round,pad=0.25", fc="white", ec=INADMISSIBLE, lw=0.5),
                         arrowprops=dict(arrowstyle="-", color=INADMISSIBLE, lw=0.6))
     if acc:
         ax.plot([im.t for im in acc], [im.energy_E for im in acc], "v", ms=6, color=ACCUMULATION,
                 label=f"accumulation of impacts closed ({len(acc)})")
-    if len(energy):
-        low, high = float(energy.min()), float(energy.max())
-        ax.set_ylim(low - 0.05 * (high - low + 1e-9), high + 0.25 * (high - low + 1e-9))
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("energy (J)")
     ax.set_xlim(t[0] if len(t) else 0, t[-1] if len(t) else 1)
