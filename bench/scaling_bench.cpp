@@ -1,0 +1,243 @@
+// Scaling (issue 6, item 4): the cost of one impact solve as the contacts grow, and the throughput
+// of a batch of independent impacts on both cores.
+//
+//  - BM_Contacts/<law>/<c>: a flat plate (the bar of SPEC §5 lying at θ = 0) touching the ground at
+//    c = 1, 2, 4, 8, 16, 32 points at once; 3 degrees of freedom, so G is singular from c = 4 on.
+//    Heap-stored problem (ImpactProblem); for c ≤ 4 also the stack-stored one ("storage=small").
+//  - BM_RandomSize/<law>/<n>: random bodies with n = 6, 12, 18, 24, 30 degrees of freedom and n/2
+//    contacts (fremond_suite.hpp's generator), cycling through 8 problems.
+//  - BM_Siconos_*: Siconos Numerics on the Newton and Newton + Coulomb cases (LCP by Lemke, and the
+//    2-D friction-contact NSGS), from the data like every peer, labelled alike for compare.py.
+//  - BM_Throughput/<law>/threads:T: 4096 independent impacts of the bar (its first impact with
+//    q̇_A spread around the paper's), split over T threads; items_per_second is impacts per second.
+// solve_impact runs with check_uniqueness off (the Siconos peers do not look for other solutions).
+// Each benchmark reports the fraction of solves that converged and the worst law residual.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "fremond_suite.hpp"
+#ifdef FREMOND_HAVE_SICONOS
+#include "siconos_peers.hpp"
+#endif
+
+namespace {
+
+using namespace fremond;
+using namespace fremond::bench;
+
+struct Law {
+  std::string name;
+  ImpactLaw law;
+  bool friction;
+};
+
+const std::vector<Law>& laws() {
+  static const std::vector<Law> all = [] {
+    const double k3 = bar_fremond_k_normal(3.0);
+    return std::vector<Law>{
+        {"fremond_p3", ImpactLaw::fremond(PowerPotential(k3, 3.0)), false},
+        {"fremond_p3_viscous",
+         ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2)), true},
+        {"fremond_p3_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), kFriction), true},
+        {"newton", ImpactLaw::newton(kRestitution), false},
+        {"newton_coulomb", ImpactLaw::newton_coulomb(kRestitution, kFriction), true}};
+  }();
+  return all;
+}
+
+SolverOptions options() {
+  SolverOptions o;
+  o.check_uniqueness = false;
+  return o;
+}
+
+template <class Problem>
+void solve_loop(benchmark::State& state, const std::vector<Problem>& problems, const Law& law,
+                const std::string& label) {
+  const SolverOptions opt = options();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const auto r = solve_impact(problems[k], law.law, opt);
+    k = k + 1 == problems.size() ? 0 : k + 1;
+    benchmark::DoNotOptimize(r.qdot_E.data());
+  }
+  int converged = 0;
+  double residual = 0.0;
+  std::string method;
+  for (const Problem& p : problems) {
+    const auto r = solve_impact(p, law.law, opt);
+    if (r.ok()) {
+      ++converged;
+      residual = std::max(residual, law_residual(p, law.law, r));
+    }
+    method = std::string(to_string(r.solver.method));
+  }
+  state.counters["contacts"] = problems[0].contacts();
+  state.counters["dofs"] = problems[0].dofs();
+  state.counters["converged"] = static_cast<double>(converged) / static_cast<double>(problems.size());
+  state.counters["residual"] = residual;
+  state.SetLabel(label + " method=" + method);
+}
+
+std::string plate_name(int c) {
+  return "plate_c" + std::to_string(c);
+}
+std::string random_name(int n) {
+  return "random_n" + std::to_string(n) + "_c" + std::to_string(n / 2);
+}
+
+void BM_Contacts(benchmark::State& state, const Law* law, bool small) {
+  const int c = static_cast<int>(state.range(0));
+  const ImpactProblem p = plate_many_contacts(c, law->friction);
+  const std::string label = bench_label(plate_name(c), law->name) + " stage=solve_impact" +
+                            (small ? " storage=small" : "");
+  if (small) solve_loop(state, std::vector<SmallImpactProblem>{to_small(p)}, *law, label);
+  else solve_loop(state, std::vector<ImpactProblem>{p}, *law, label);
+}
+
+std::vector<ImpactProblem> random_set(int n, bool friction) {
+  std::vector<ImpactProblem> v;
+  for (int i = 0; i < 8; ++i) v.push_back(random_problem_any(n, n / 2, i, friction));
+  return v;
+}
+
+void BM_RandomSize(benchmark::State& state, const Law* law) {
+  const int n = static_cast<int>(state.range(0));
+  solve_loop(state, random_set(n, law->friction), *law,
+             bench_label(random_name(n), law->name) + " stage=solve_impact");
+}
+
+/// The bar's first impact with q̇_A spread around the paper's: a batch of independent problems.
+const std::vector<SmallImpactProblem>& batch() {
+  static const std::vector<SmallImpactProblem> v = [] {
+    std::vector<SmallImpactProblem> b;
+    SplitMix64 rng(kRandomSeed);
+    for (int i = 0; i < 4096; ++i) {
+      SmallImpactProblem p = bar_first_impact(true);
+      p.qdot_A(0) += rng.uniform(-1.0, 1.0);
+      p.qdot_A(1) *= rng.uniform(0.5, 1.5);
+      p.qdot_A(2) = rng.uniform(-2.0, 2.0);
+      b.push_back(p);
+    }
+    return b;
+  }();
+  return v;
+}
+
+void BM_Throughput(benchmark::State& state, const Law* law) {
+  const auto& b = batch();
+  const SolverOptions opt = options();
+  const std::size_t per = b.size() / static_cast<std::size_t>(state.threads());
+  const std::size_t first = per * static_cast<std::size_t>(state.thread_index());
+  long failed = 0;
+  for (auto _ : state) {
+    for (std::size_t i = first; i < first + per; ++i) {
+      const SmallImpactResult r = solve_impact(b[i], law->law, opt);
+      failed += r.ok() ? 0 : 1;
+      benchmark::DoNotOptimize(r.qdot_E.data());
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(per));
+  state.counters["failed"] = static_cast<double>(failed);
+  state.SetLabel("problem=bar_batch4096 law=" + law->name + " stage=solve_impact");
+}
+
+#ifdef FREMOND_HAVE_SICONOS
+/// G = Wᵀ M⁻¹ W and D_A in Siconos's row order (N, T per contact), dynamic sizes.
+void assemble(const ImpactProblem& p, bool friction, Eigen::MatrixXd& G, Eigen::VectorXd& D) {
+  const int c = p.contacts(), r = friction ? 2 : 1;
+  Eigen::MatrixXd W(p.dofs(), r * c);
+  for (int i = 0; i < c; ++i) {
+    W.col(r * i) = p.W_N.col(i);
+    if (friction) W.col(r * i + 1) = p.W_T.col(i);
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(p.M);
+  G.noalias() = W.transpose() * llt.solve(W);
+  D.noalias() = W.transpose() * p.qdot_A;
+}
+
+/// Newton as an LCP (z = P_N, w = G_NN P_N + (1 + e) D_NA), Lemke; Newton + Coulomb as a 2-D
+/// friction-contact problem (q = ((1 + e) D_NA, D_TA) per contact), NSGS.
+void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& problems, bool friction,
+                  const std::string& label) {
+  const int c = problems[0].contacts(), n = friction ? 2 * c : c;
+  Eigen::MatrixXd G;
+  Eigen::VectorXd D, q(n), z(n), w(n);
+  std::vector<double> mu(c, kFriction);
+  siconos::SolveInfo info;
+  std::unique_ptr<siconos::Lcp> lcp;
+  std::unique_ptr<siconos::FrictionContact2d> fc;
+  if (friction) fc = std::make_unique<siconos::FrictionContact2d>(c, siconos::Fc2dSolver::nsgs, 1e-12);
+  else lcp = std::make_unique<siconos::Lcp>(c, siconos::LcpSolver::lemke);
+  int failed = 0, runs = 0;
+  std::size_t k = 0;
+  auto solve = [&](const ImpactProblem& p) {
+    assemble(p, friction, G, D);
+    for (int j = 0; j < n; ++j) q(j) = (friction && j % 2 == 1 ? 1.0 : 1.0 + kRestitution) * D(j);
+    info = friction ? fc->solve(G.data(), q.data(), mu.data(), z.data(), w.data())
+                    : lcp->solve(G.data(), q.data(), z.data(), w.data());
+  };
+  for (auto _ : state) {
+    solve(problems[k]);
+    k = k + 1 == problems.size() ? 0 : k + 1;
+    benchmark::DoNotOptimize(z.data());
+  }
+  for (const ImpactProblem& p : problems) {
+    solve(p);
+    ++runs;
+    failed += info.info != 0;
+  }
+  state.counters["contacts"] = c;
+  state.counters["converged"] = 1.0 - static_cast<double>(failed) / runs;
+  state.counters["iter"] = info.iterations;
+  state.SetLabel(label + (friction ? " solver=fc2d_nsgs" : " solver=lcp_lemke"));
+}
+
+void BM_Siconos_Contacts(benchmark::State& state, bool friction) {
+  const int c = static_cast<int>(state.range(0));
+  siconos_loop(state, {plate_many_contacts(c, friction)}, friction,
+               bench_label(plate_name(c), friction ? "newton_coulomb" : "newton"));
+}
+
+void BM_Siconos_RandomSize(benchmark::State& state, bool friction) {
+  const int n = static_cast<int>(state.range(0));
+  siconos_loop(state, random_set(n, friction), friction,
+               bench_label(random_name(n), friction ? "newton_coulomb" : "newton"));
+}
+#endif
+
+const bool registered = [] {
+  for (const Law& law : laws()) {
+    benchmark::RegisterBenchmark(("BM_Contacts/" + law.name).c_str(), BM_Contacts, &law, false)
+        ->RangeMultiplier(2)
+        ->Range(1, 32);
+    benchmark::RegisterBenchmark(("BM_Contacts/" + law.name + "/small").c_str(), BM_Contacts, &law,
+                                 true)
+        ->RangeMultiplier(2)
+        ->Range(1, 4);
+    benchmark::RegisterBenchmark(("BM_RandomSize/" + law.name).c_str(), BM_RandomSize, &law)
+        ->DenseRange(6, 30, 6);
+    benchmark::RegisterBenchmark(("BM_Throughput/" + law.name).c_str(), BM_Throughput, &law)
+        ->Threads(1)
+        ->Threads(2)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+#ifdef FREMOND_HAVE_SICONOS
+  for (const bool friction : {false, true}) {
+    benchmark::RegisterBenchmark(friction ? "BM_Siconos_Contacts/newton_coulomb" : "BM_Siconos_Contacts/newton",
+                                 BM_Siconos_Contacts, friction)
+        ->RangeMultiplier(2)
+        ->Range(1, 32);
+    benchmark::RegisterBenchmark(
+        friction ? "BM_Siconos_RandomSize/newton_coulomb" : "BM_Siconos_RandomSize/newton",
+        BM_Siconos_RandomSize, friction)
+        ->DenseRange(6, 30, 6);
+  }
+#endif
+  return true;
+}();
+
+}  // namespace
