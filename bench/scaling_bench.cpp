@@ -11,7 +11,8 @@
 //  - BM_Throughput/<law>/threads:T: 4096 independent impacts of the bar (its first impact with
 //    q̇_A spread around the paper's), split over T threads; items_per_second is impacts per second.
 // solve_impact runs with check_uniqueness off (the Siconos peers do not look for other solutions).
-// Each benchmark reports the fraction of solves that converged and the worst law residual.
+// Each benchmark reports the fraction of solves that converged, the worst law residual, and for
+// Frémond's law without Coulomb the worst error of q̇_E against the quad reference (`err`).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -31,18 +32,21 @@ struct Law {
   std::string name;
   ImpactLaw law;
   bool friction;
+  FremondLawSpec spec;  ///< for the quad reference (Frémond without Coulomb)
+  bool has_reference;
 };
 
 const std::vector<Law>& laws() {
   static const std::vector<Law> all = [] {
     const double k3 = bar_fremond_k_normal(3.0);
+    const FremondLawSpec p3 = normal_only(k3, 3.0), viscous = with_dead_zone(k3, 3.0, 1.5, 2.0, 0.2);
     return std::vector<Law>{
-        {"fremond_p3", ImpactLaw::fremond(PowerPotential(k3, 3.0)), false},
-        {"fremond_p3_viscous",
-         ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2)), true},
-        {"fremond_p3_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), kFriction), true},
-        {"newton", ImpactLaw::newton(kRestitution), false},
-        {"newton_coulomb", ImpactLaw::newton_coulomb(kRestitution, kFriction), true}};
+        {"fremond_p3", p3.law(), false, p3, true},
+        {"fremond_p3_viscous", viscous.law(), true, viscous, true},
+        {"fremond_p3_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), kFriction), true,
+         {}, false},
+        {"newton", ImpactLaw::newton(kRestitution), false, {}, false},
+        {"newton_coulomb", ImpactLaw::newton_coulomb(kRestitution, kFriction), true, {}, false}};
   }();
   return all;
 }
@@ -51,6 +55,30 @@ SolverOptions options() {
   SolverOptions o;
   o.check_uniqueness = false;
   return o;
+}
+
+/// ‖q̇_E − q̇_E,ref‖_M / ‖q̇_A‖_M against the quad reference (fremond_several), as in the suite.
+template <class Problem, class Vec>
+double reference_error(const Problem& p, const Law& law, const Vec& qdot_E) {
+  const Eigen::MatrixXd M = p.M, WN = p.W_N;
+  const Eigen::MatrixXd WT = law.spec.tangential == FremondLawSpec::Tangential::none
+                                 ? Eigen::MatrixXd(p.dofs(), 0)
+                                 : Eigen::MatrixXd(p.W_T);
+  const Eigen::VectorXd qA = p.qdot_A;
+  const ref::Solution s =
+      ref::fremond_several(ref::problem_from(M, WN, WT, qA), {law.spec.ref_normal()},
+                           {law.spec.ref_tangential()});
+  if (!s.ok) return std::nan("");
+  const int n = p.dofs();
+  ref::quad num = 0, den = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const ref::quad di = static_cast<ref::quad>(qdot_E(i)) - s.qdot_E[i];
+      const ref::quad dj = static_cast<ref::quad>(qdot_E(j)) - s.qdot_E[j];
+      num += di * static_cast<ref::quad>(M(i, j)) * dj;
+      den += static_cast<ref::quad>(qA(i)) * static_cast<ref::quad>(M(i, j)) * static_cast<ref::quad>(qA(j));
+    }
+  return static_cast<double>(sqrtq(num / den));
 }
 
 template <class Problem>
@@ -64,16 +92,18 @@ void solve_loop(benchmark::State& state, const std::vector<Problem>& problems, c
     benchmark::DoNotOptimize(r.qdot_E.data());
   }
   int converged = 0;
-  double residual = 0.0;
+  double residual = 0.0, err = 0.0;
   std::string method;
   for (const Problem& p : problems) {
     const auto r = solve_impact(p, law.law, opt);
     if (r.ok()) {
       ++converged;
       residual = std::max(residual, law_residual(p, law.law, r));
+      if (law.has_reference) err = std::max(err, reference_error(p, law, r.qdot_E));
     }
     method = std::string(to_string(r.solver.method));
   }
+  if (law.has_reference) state.counters["err"] = err;
   state.counters["contacts"] = problems[0].contacts();
   state.counters["dofs"] = problems[0].dofs();
   state.counters["converged"] = static_cast<double>(converged) / static_cast<double>(problems.size());
@@ -159,7 +189,9 @@ void assemble(const ImpactProblem& p, bool friction, Eigen::MatrixXd& G, Eigen::
 }
 
 /// Newton as an LCP (z = P_N, w = G_NN P_N + (1 + e) D_NA), Lemke; Newton + Coulomb as a 2-D
-/// friction-contact problem (q = ((1 + e) D_NA, D_TA) per contact), NSGS.
+/// friction-contact problem (q = ((1 + e) D_NA, D_TA) per contact), NSGS. There is no closed form
+/// here: `err` is the distance of Siconos's q̇_E to ours (‖Δq̇‖_M/‖q̇_A‖_M; q̇_E is unique for these
+/// laws and data even where the percussions are not).
 void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& problems, bool friction,
                   const std::string& label) {
   const int c = problems[0].contacts(), n = friction ? 2 * c : c;
@@ -184,11 +216,25 @@ void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& pro
     k = k + 1 == problems.size() ? 0 : k + 1;
     benchmark::DoNotOptimize(z.data());
   }
+  double err = 0.0;
+  const ImpactLaw law = friction ? ImpactLaw::newton_coulomb(kRestitution, kFriction)
+                                 : ImpactLaw::newton(kRestitution);
   for (const ImpactProblem& p : problems) {
     solve(p);
     ++runs;
     failed += info.info != 0;
+    if (info.info != 0) continue;
+    Eigen::MatrixXd W(p.dofs(), n);
+    for (int i = 0; i < c; ++i) {
+      W.col(friction ? 2 * i : i) = p.W_N.col(i);
+      if (friction) W.col(2 * i + 1) = p.W_T.col(i);
+    }
+    const Eigen::VectorXd qE = p.qdot_A + p.M.llt().solve(W * z);
+    const ImpactResult ours = solve_impact(p, law, options());
+    const Eigen::VectorXd d = qE - ours.qdot_E;
+    err = std::max(err, std::sqrt(d.dot(p.M * d) / p.qdot_A.dot(p.M * p.qdot_A)));
   }
+  state.counters["err"] = err;
   state.counters["contacts"] = c;
   state.counters["converged"] = 1.0 - static_cast<double>(failed) / runs;
   state.counters["iter"] = info.iterations;
