@@ -2,6 +2,8 @@
 // (19) for the dissipative part, Fenchel–Young gaps and non-penetration.
 #include "fremond/admissibility/admissibility.hpp"
 
+#include "detail/admissibility.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,23 +12,62 @@ namespace fremond {
 
 namespace {
 
-// Fenchel–Young gap of φ at (z, s), scaled by the size of its terms and by `energy`, the impact's
-// energy scale (|P|·|D_A|), so that terms that are rounding noise near z = 0 or s = 0 do not
-// count as a gap; 0 when the conjugate is unknown.
-double scaled_gap(const Potential& phi, double z, double s, double energy) {
+// How much f can change when its argument x moves by up to d (the larger one-sided change; an
+// infinite side, e.g. across an indicator's boundary, does not count).
+double change_within(const auto& f, double x, double d) {
+  const double fx = f(x);
+  double worst = 0.0;
+  for (double y : {x - d, x + d}) {
+    const double fy = f(y);
+    if (std::isfinite(fy)) worst = std::max(worst, std::fabs(fy - fx));
+  }
+  return worst;
+}
+
+// Fenchel–Young gap of φ at (z, s) beyond what the rounding of z and s explains, scaled by the size
+// of its terms and by `energy`, the impact's energy scale (|P|·|D_A|); 0 when the conjugate is
+// unknown. z = (D_A + D_E)/2 is known to δz ≈ ε·|D| and s to δs ≈ ε·|P|: near z = 0 a potential
+// with p close to 1 (φ ≈ k|z|) turns rounding noise δz into a gap φ(δz) ≈ k·δz comparable to
+// |P|·|D_A| itself (the exact z underflows), which is not a violation of the law.
+double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
   if (!phi.capabilities().conjugate) return 0.0;
   const double fz = phi.value(z), fs = phi.conjugate(s);
   if (!std::isfinite(fz) || !std::isfinite(fs)) return std::numeric_limits<double>::infinity();
+  const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) +
+                       change_within([&](double x) { return phi.conjugate(x); }, s, ds) +
+                       dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
-  return std::max(0.0, fz + fs - s * z) / scale;
+  return std::max(0.0, fz + fs - s * z - noise) / scale;
 }
 
 }  // namespace
 
+namespace detail {
+
+template <int N, int C>
+VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, C>& r) {
+  VecT<C> out = VecT<C>::Zero(cs.contacts);
+  const int rows = cs.rows();
+  if (r.P_N.size() != cs.contacts || r.P_T.size() != cs.contacts) return out;
+  typename ContactSpaceT<N, C>::Rows P = ContactSpaceT<N, C>::Rows::Zero(rows);
+  for (int k = 0; k < cs.active; ++k) {
+    P(cs.normal_row(k)) = r.P_N(cs.index(k));
+    if (cs.tangential) P(cs.tangential_row(k)) = r.P_T(cs.index(k));
+  }
+  const double eps16 = 16 * std::numeric_limits<double>::epsilon();
+  for (int j = 0; j < rows; ++j) {
+    const double d = eps16 * (std::fabs(cs.D_A(j)) + cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
+    const int i = cs.index(j < cs.active ? j : j - cs.active);
+    out(i) = std::max(out(i), d);
+  }
+  return out;
+}
+
 template <int N, int C>
 AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                             const ImpactResultT<N, C>& r,
-                                            const SolverOptions& options) {
+                                            const SolverOptions& options,
+                                            const VecT<C>& rounding) {
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
   // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
@@ -52,6 +93,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   for (int i = 0; i < c; ++i) p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
   const bool fremond = law.type == LawType::fremond;
+  const double solved_to =
+      r.solver.method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
   double worst_contact_value = 0.0;
@@ -70,13 +113,21 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     reaction += -Pr * zN;
     dissipation += -(r.P_N(i) - Pr) * zN - r.P_T(i) * zT;
     if (fremond) {
+      // How well z = (D_A + D_E)/2 and the percussions are known (see scaled_gap): to the
+      // solver's stopping tolerance on the law's residual (relative to the velocities), and never
+      // better than rounding.
+      const double dz =
+          std::max(rounding.size() == c ? rounding(i) : 0.0,
+                   std::max(8 * eps, 2 * solved_to) *
+                       std::max({v_scale, std::fabs(r.D_NE(i)), std::fabs(r.D_TE(i))}));
+      const double ds = 8 * eps * p_scale;
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       compl_viol = std::max({compl_viol, std::max(0.0, -Pr) / pscale,
                              std::fabs(Pr * r.D_NE(i)) / (pscale * v_scale)});
-      fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy));
+      fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
       if (law.tangential == TangentialLaw::potential)
-        fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy));
+        fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
       if (law.tangential == TangentialLaw::coulomb) {
         // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
         // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
@@ -89,7 +140,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         if (over > 1e-12 * (b + std::fabs(s)))
           fy = std::max(fy, over / (b + std::fabs(s) + p_scale));
         else
-          fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT) / scale);
+          fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT -
+                                         (b + std::fabs(s)) * dz - law.mu[i] * ds * std::fabs(zT)) /
+                                scale);
       }
     }
   }
@@ -119,12 +172,39 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   return rep;
 }
 
-template AdmissibilityReportT<Dynamic> check_admissibility(const ImpactProblemT<Dynamic, Dynamic>&,
-                                                           const ImpactLaw&,
-                                                           const ImpactResultT<Dynamic, Dynamic>&,
-                                                           const SolverOptions&);
-template AdmissibilityReportT<kSmallContacts> check_admissibility(
-    const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&,
-    const ImpactResultT<kSmallDofs, kSmallContacts>&, const SolverOptions&);
+}  // namespace detail
+
+template <int N, int C>
+AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                            const ImpactResultT<N, C>& r,
+                                            const SolverOptions& options) {
+  // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
+  // cannot be factorised (M not positive definite) gets no rounding allowance.
+  VecT<C> rounding = VecT<C>::Zero(pb.contacts());
+  const bool shapes = pb.M.rows() == pb.dofs() && pb.M.cols() == pb.dofs() &&
+                      pb.W_N.rows() == pb.dofs() && pb.W_N.cols() == pb.contacts() &&
+                      (pb.W_T.cols() == 0 || (pb.W_T.rows() == pb.dofs() && pb.W_T.cols() == pb.contacts()));
+  if (shapes && pb.qdot_A.size() == pb.dofs()) {
+    detail::ContactSpaceT<N, C> cs;
+    detail::build_contact_space(pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none
+                                                         : law.has_friction(), cs);
+    if (cs.llt.info() == Eigen::Success) rounding = detail::velocity_rounding(cs, r);
+  }
+  return detail::check_admissibility(pb, law, r, options, rounding);
+}
+
+#define FREMOND_INSTANTIATE(N, C)                                                                  \
+  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&,                   \
+                                             const ImpactResultT<N, C>&);                         \
+  template AdmissibilityReportT<C> detail::check_admissibility(                                    \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,                   \
+      const SolverOptions&, const VecT<C>&);                                                       \
+  template AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>&,               \
+                                                       const ImpactLaw&,                          \
+                                                       const ImpactResultT<N, C>&,                \
+                                                       const SolverOptions&);
+FREMOND_INSTANTIATE(Dynamic, Dynamic)
+FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
+#undef FREMOND_INSTANTIATE
 
 }  // namespace fremond

@@ -5,6 +5,7 @@
 #include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
 #include "detail/fremond.hpp"
+#include "../admissibility/detail/admissibility.hpp"
 
 namespace fremond {
 
@@ -25,7 +26,8 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   } else {
     detail::solve_classical(pb, cs, law, options, out);
   }
-  out.admissibility = check_admissibility(pb, law, out, options);
+  out.admissibility =
+      detail::check_admissibility(pb, law, out, options, detail::velocity_rounding(cs, out));
   return out;
 }
 
@@ -39,14 +41,10 @@ std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const Impact
   validate(pb);
   law.validate(pb.contacts());
   options.validate();
-  std::vector<ImpactResult> all;
-  if (law.type == LawType::fremond) {
-    all = detail::solve_fremond_all(pb, law, options);
-    for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
-  } else {
-    all = detail::solve_classical_all(pb, law, options);
-    for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
-  }
+  std::vector<ImpactResult> all = law.type == LawType::fremond
+                                      ? detail::solve_fremond_all(pb, law, options)
+                                      : detail::solve_classical_all(pb, law, options);
+  for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
   return all;
 }
 

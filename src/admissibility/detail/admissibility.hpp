@@ -1,0 +1,28 @@
+#pragma once
+/// @file The admissibility check with the contact velocities' rounding supplied by the caller, who
+/// already has the Delassus matrix (solve_impact); the public check_admissibility computes it.
+#include "fremond/admissibility/admissibility_report.hpp"
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/detail/contact_space.hpp"
+#include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond::detail {
+
+/// Per contact of the problem, how well its velocities D_E (hence z = (D_A + D_E)/2) are known
+/// from rounding alone: 16ε (|D_A,j| + Σ_k |G_jk||P_k|) over its rows. With an ill-conditioned G
+/// the terms G_jk P_k cancel to a D_E much smaller than themselves (a mass ratio of 1e6), so z
+/// carries their rounding, not ε|D_E|. Contacts that do not take part get 0.
+template <int MaxDofs, int MaxContacts>
+VecT<MaxContacts> velocity_rounding(const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                                    const ImpactResultT<MaxDofs, MaxContacts>& result);
+
+/// check_admissibility with `rounding` from velocity_rounding.
+template <int MaxDofs, int MaxContacts>
+AdmissibilityReportT<MaxContacts> check_admissibility(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const ImpactResultT<MaxDofs, MaxContacts>& result, const SolverOptions& options,
+    const VecT<MaxContacts>& rounding);
+
+}  // namespace fremond::detail
