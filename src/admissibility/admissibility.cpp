@@ -31,7 +31,22 @@ double change_within(const auto& f, double x, double d) {
 // |P|·|D_A| itself (the exact z underflows), which is not a violation of the law.
 double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
   if (!phi.capabilities().conjugate) return 0.0;
-  const double fz = phi.value(z), fs = phi.conjugate(s);
+  // A point outside the domain of φ or φ* (an indicator's boundary, |s| ≤ b for b|z|, s = 0 when
+  // k = 0) by less than its rounding is taken on the boundary: moved toward 0 by that rounding.
+  auto on_domain = [](const auto& f, double& x, double d) {
+    double fx = f(x);
+    if (!std::isfinite(fx)) {
+      const double y = x - std::copysign(std::min(d, std::fabs(x)), x);
+      const double fy = f(y);
+      if (std::isfinite(fy)) {
+        x = y;
+        fx = fy;
+      }
+    }
+    return fx;
+  };
+  const double fz = on_domain([&](double x) { return phi.value(x); }, z, dz);
+  const double fs = on_domain([&](double x) { return phi.conjugate(x); }, s, ds);
   if (!std::isfinite(fz) || !std::isfinite(fs)) return std::numeric_limits<double>::infinity();
   const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) +
                        change_within([&](double x) { return phi.conjugate(x); }, s, ds) +
@@ -87,6 +102,15 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   double v_scale = std::numeric_limits<double>::min();
   for (int i = 0; i < c; ++i)
     if (r.takes_part(i)) v_scale = std::max({v_scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
+  // Nor below the rounding of the energies P·z themselves: z carries the rounding of forming it
+  // (`rounding`, 16ε Σ|G_jk P_k| when G is ill-conditioned), which at velocities near 1e-10 is
+  // above the relative tolerance times T_A.
+  double energy_rounding = 0.0;
+  for (int i = 0; i < c; ++i) {
+    const double dz = std::max(rounding.size() == c ? rounding(i) : 0.0, 8 * eps * v_scale);
+    energy_rounding += (std::fabs(r.P_N(i)) + std::fabs(r.P_T(i))) * dz;
+  }
+  rep.tolerance = std::max(rep.tolerance, energy_rounding);
 
   rep.per_contact.setZero(c);
   double p_scale = 0.0;
@@ -123,8 +147,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       const double ds = 8 * eps * p_scale;
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
+      // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
       compl_viol = std::max({compl_viol, std::max(0.0, -Pr) / pscale,
-                             std::fabs(Pr * r.D_NE(i)) / (pscale * v_scale)});
+                             std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) /
+                                 (pscale * v_scale)});
       fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
       if (law.tangential == TangentialLaw::potential)
         fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));

@@ -33,12 +33,13 @@ constexpr EnumNames<SolverMethod, 9> kMethods{{{SolverMethod::automatic, "automa
                                               {SolverMethod::semismooth_newton, "semismooth_newton"},
                                               {SolverMethod::proximal, "proximal"},
                                               {SolverMethod::nlopt, "nlopt"}}};
-constexpr EnumNames<StopCriterion, 6> kCriteria{{{StopCriterion::none, "none"},
+constexpr EnumNames<StopCriterion, 7> kCriteria{{{StopCriterion::none, "none"},
                                                 {StopCriterion::exact, "exact"},
                                                 {StopCriterion::residual, "residual"},
                                                 {StopCriterion::step, "step"},
                                                 {StopCriterion::iterations, "iterations"},
-                                                {StopCriterion::nlopt, "nlopt"}}};
+                                                {StopCriterion::nlopt, "nlopt"},
+                                                {StopCriterion::rounding, "rounding"}}};
 constexpr EnumNames<Inequality, 8> kInequalities{
     {{Inequality::none, "none"},
      {Inequality::total_15, "total_15"},

@@ -320,8 +320,36 @@ void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double targe
   if (std::isfinite(rows.residual(Q, z, R)) && rows.converged(Q, R, target)) P = Q;
 }
 
+/// An exact method (one prox per row, mode enumeration) is exact in exact arithmetic; on
+/// ill-conditioned data (cond(M) ~ 1e13 with μ = 1e8) its answer can miss the tolerance. Its
+/// answer P is checked by the shared stopping test and, if it misses, polished by semismooth
+/// Newton from there; if that fails too, the outcome says `stalled` (never a silent "converged").
 template <int N, int C>
-void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, ImpactResultT<N, C>& out) {
+MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOptions& opt,
+                          MethodOutcome o) {
+  if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return o;
+  Rows<N, C> z, R;
+  const double target = opt.tolerance * rows.cs->v_scale;
+  if (std::isfinite(rows.residual(P, z, R)) && rows.converged(P, R, target)) return o;
+  Rows<N, C> Q = P;
+  if (law_has_prox(*rows.law)) {
+    MethodOutcome n = semismooth_newton(rows, Q, opt);
+    if (n.status == SolverStatus::converged) {
+      P = Q;
+      n.message = "the exact answer missed the tolerance (ill-conditioned data): polished by "
+                  "semismooth Newton";
+      return n;
+    }
+  }
+  o.status = SolverStatus::stalled;
+  o.message = "the exact answer misses the tolerance (ill-conditioned data) and semismooth Newton "
+              "could not polish it";
+  return o;
+}
+
+template <int N, int C>
+void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, const SolverOptions& opt,
+                   ImpactResultT<N, C>& out) {
   out.solver.method = m;
   out.solver.status = o.status;
   out.solver.criterion = o.criterion;
@@ -329,6 +357,12 @@ void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, Impac
   out.solver.message = o.message;
   out.solver.native_code = o.native_code;
   out.solver.residual = o.residual / v_scale;
+  // A method that stopped on FremondRows::converged's rounding floors has a residual above the
+  // tolerance: say so by the criterion (SolverStatus::converged's second clause), so "converged"
+  // never hides a residual above tolerance.
+  const double promised = m == SolverMethod::nlopt ? opt.nlopt_tolerance : opt.tolerance;
+  if (o.status == SolverStatus::converged && !(out.solver.residual <= promised))
+    out.solver.criterion = StopCriterion::rounding;
 }
 
 }  // namespace
@@ -342,7 +376,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   const SolverMethod want = opt.method;
   auto finish = [&](MethodOutcome o, SolverMethod m) {
     if (cs.rows() && P.allFinite()) o.residual = rows.plain_residual(P);  // the law's residual
-    write_outcome(o, m, cs.v_scale, out);
+    write_outcome(o, m, cs.v_scale, opt, out);
     scatter_solution(pb, cs, P, out);
     split_reaction(rows, P, out);
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
@@ -372,7 +406,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   const bool is_decoupled = decoupled(cs);
   if (has_prox && is_decoupled &&
       (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton)) {
-    const auto o = solve_decoupled(rows, P);
+    const auto o = check_exact(rows, P, opt, solve_decoupled(rows, P));
     finish(o, law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
     return;
   }
@@ -412,7 +446,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
                          : "one contact with Coulomb: several solutions; the most dissipative one";
       out.solutions_found = n;
       out.unique = (n == 1) && exhaustive;
-      finish(o, SolverMethod::mode_enumeration);
+      finish(check_exact(rows, P, opt, o), SolverMethod::mode_enumeration);
       if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, out);
       return;
     }
@@ -432,7 +466,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       o.status = SolverStatus::converged;
       o.criterion = StopCriterion::exact;
       o.message = "one contact inside the tangential dead zone: one exact prox";
-      finish(o, law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+      finish(check_exact(rows, P, opt, o), law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
       return;
     }
   }
@@ -524,7 +558,9 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
       o.criterion = StopCriterion::exact;
       o.message = "one contact with Coulomb: every mode tried";
       o.residual = rows.residual(P, z, R);
-      write_outcome(o, SolverMethod::mode_enumeration, cs.v_scale, r);
+      o = check_exact(rows, P, opt, o);
+      o.residual = rows.plain_residual(P);
+      write_outcome(o, SolverMethod::mode_enumeration, cs.v_scale, opt, r);
       scatter_solution(pb, cs, P, r);
       split_reaction(rows, P, r);
       r.unique = n == 1 && exhaustive;

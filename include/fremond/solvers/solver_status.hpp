@@ -7,7 +7,8 @@ namespace fremond {
 /// How a solve ended. Every value is documented by the test that sets it.
 enum class SolverStatus {
   not_run,         ///< the default: nothing was solved.
-  converged,       ///< the law's residual (laws/residual.hpp) ≤ tolerance × velocity scale.
+  converged,       ///< the law's residual (laws/residual.hpp) ≤ tolerance × velocity scale, or
+                   ///< (criterion `rounding`) each row above it is at its own rounding floor.
   max_iterations,  ///< the iteration budget ran out with the residual above tolerance.
   stalled,         ///< no further decrease of the residual was possible in floating point and
                    ///< the residual is above tolerance.
@@ -37,6 +38,9 @@ enum class StopCriterion {
   step,        ///< the step became smaller than rounding; residual checked after.
   iterations,  ///< the iteration budget.
   nlopt,       ///< NLopt's own criterion (its code is kept in the report).
+  rounding,    ///< converged, but the tolerance asked for is below what floating point can
+               ///< resolve: each row above it is within 16ε (|D_A,j| + ½Σ_k|G_jk P_k| + τ_j|P_j|),
+               ///< the rounding of forming it; the reported residual is then above tolerance.
 };
 
 std::string_view to_string(SolverStatus s);

@@ -1,0 +1,637 @@
+// Stress: many random impact problems per law, each answer checked against the contract of
+// invariants.hpp, and a share of them against the quad-precision reference (tests/reference).
+//
+//   fremond_stress --law fremond_coulomb --count 100000 [--seed 1] [--reference-every 10]
+//                  [--methods-every 10] [--hang 60] [--show 5] [--known FILE] [--quiet]
+//   fremond_stress --law all --count 5000
+//   fremond_stress --law fremond --case 1234     # one case, in this process, result printed
+//
+// Laws: newton, poisson, newton_coulomb, poisson_coulomb, fremond (normal law only),
+// fremond_viscous (dead zone, sometimes b|y| or a sum), fremond_coulomb, or all.
+// --count: problems per law. For a slower build (sanitizers), the environment variables
+// FREMOND_STRESS_SCALE (in (0, 1]) scales the count and FREMOND_STRESS_HANG replaces --hang.
+//
+// Problems (stress_problems.hpp): random SPD M with condition up to 1e12, n ≤ 6, up to 4 contacts,
+// velocities from 1e-12 to 1e8; the paper's bar near θ = 0 and θ = π/2 with one or both ends; point
+// masses; exact degeneracies (repeated rows, W_T ∥ W_N, a contact that cannot move, D_NA = 0);
+// moving obstacles; contacts that take no part or separate during the impact. Parameters over their
+// whole valid ranges with the edge values exactly: e = 0 and 1, μ = 0 and μ → ∞ (1e8), p and q near
+// 1 and large, k = 0, r = 0 and r above every velocity.
+//
+// Each case runs in a child process (fork), so that a solve that never returns or a crash is
+// recorded with its reproducer and the run goes on: --hang SECONDS (60) is the deadline of one case.
+// Every case is solved in the heap-stored form, every other one in the stack-stored form too;
+// every --methods-every-th also with each method forced (Frémond: semismooth Newton, proximal,
+// NLopt; classical: Lemke, mode enumeration), whose results must satisfy the same contract (a
+// method may fail, but must say so). On every --reference-every-th case the reference checks that
+// are cheap (Frémond on one contact with any tangential law, Newton frictionless) compare the
+// velocities after impact; every 10th of those also Frémond without Coulomb on several contacts
+// (about a second in quad precision).
+//
+// --known FILE: failures that are known library issues (known_issues.hpp; the file
+// tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
+// issue no longer seen is said so. --show N: reproducers printed, one per kind of failure.
+//
+// Exit status 0 when nothing but known issues broke: no invariant, no hang, no crash, no reference
+// disagreement. The summary lists the statuses, methods, non-convergence by problem shape,
+// inadmissible answers by inequality, the worst residual against its bound, the slowest solve,
+// and each kind of failure once with its count and a reproducer (an impact-problem file for
+// `fremond impact`).
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "invariants.hpp"
+#include "known_issues.hpp"
+#include "problem_json.hpp"
+#include "reference/fremond_reference.hpp"
+#include "stress_problems.hpp"
+
+using namespace fremond;
+using namespace fremond::robust;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ---------------------------------------------------------------------------------------------
+// Arguments
+
+struct Args {
+  std::vector<std::string> laws;
+  long count = 5000;
+  unsigned long seed = 1;
+  long reference_every = 10;
+  long methods_every = 10;
+  std::size_t show = 5;
+  double hang = 60.0;
+  std::string known;
+  long single_case = -1;
+  bool quiet = false;
+};
+
+const std::vector<std::string> kLaws = {"newton",          "poisson", "newton_coulomb",
+                                        "poisson_coulomb", "fremond", "fremond_viscous",
+                                        "fremond_coulomb"};
+
+[[noreturn]] void usage(const std::string& why) {
+  std::fprintf(stderr,
+               "fremond_stress: %s\nusage: fremond_stress --law LAW|all [--count N] [--seed S] "
+               "[--reference-every K] [--methods-every K] [--hang SECONDS] [--show N] "
+               "[--known FILE] [--case K] [--quiet]\nlaws:",
+               why.c_str());
+  for (const auto& l : kLaws) std::fprintf(stderr, " %s", l.c_str());
+  std::fprintf(stderr, "\n");
+  std::exit(2);
+}
+
+long non_negative(const char* s, const std::string& name) {
+  char* end = nullptr;
+  const long v = std::strtol(s, &end, 10);
+  if (!*s || !end || *end || v < 0) usage(name + ": not a non-negative integer: '" + s + "'");
+  return v;
+}
+
+Args parse(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) usage(k + " needs a value");
+      return argv[++i];
+    };
+    if (k == "--law") {
+      const std::string l = value();
+      if (l == "all") {
+        a.laws = kLaws;
+      } else {
+        bool known = false;
+        for (const auto& x : kLaws) known = known || x == l;
+        if (!known) usage("unknown law '" + l + "'");
+        a.laws.push_back(l);
+      }
+    } else if (k == "--count") {
+      a.count = non_negative(value(), k);
+    } else if (k == "--seed") {
+      a.seed = static_cast<unsigned long>(non_negative(value(), k));
+    } else if (k == "--reference-every") {
+      a.reference_every = non_negative(value(), k);
+    } else if (k == "--methods-every") {
+      a.methods_every = non_negative(value(), k);
+    } else if (k == "--show") {
+      a.show = static_cast<std::size_t>(non_negative(value(), k));
+    } else if (k == "--hang") {
+      a.hang = static_cast<double>(non_negative(value(), k));
+    } else if (k == "--known") {
+      a.known = value();
+    } else if (k == "--case") {
+      a.single_case = non_negative(value(), k);
+    } else if (k == "--quiet") {
+      a.quiet = true;
+    } else {
+      usage("unknown argument '" + k + "'");
+    }
+  }
+  // A slower build (sanitizers) runs a share of the count, with a longer deadline.
+  if (const char* env = std::getenv("FREMOND_STRESS_SCALE"); env && *env) {
+    char* end = nullptr;
+    const double scale = std::strtod(env, &end);
+    if (*end || !(scale > 0.0 && scale <= 1.0)) usage(std::string("FREMOND_STRESS_SCALE: not in (0, 1]: ") + env);
+    a.count = std::max(1L, static_cast<long>(std::lround(static_cast<double>(a.count) * scale)));
+  }
+  if (const char* env = std::getenv("FREMOND_STRESS_HANG"); env && *env)
+    a.hang = static_cast<double>(non_negative(env, "FREMOND_STRESS_HANG"));
+  if (a.laws.empty()) usage("--law is required");
+  return a;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One case, in the child: solves, checks, and one line per fact on the pipe to the parent.
+//
+//   T <label>   (a solve starts)
+//   S <status> <method> <ok> <admissible> <inequality> <unique> <residual/bound> <seconds> <label>
+//   B <forced method or -> <label>\t<broken invariant>
+//   R <checked|skipped|mismatch> <velocity error>\t<what>
+
+class Sink {
+ public:
+  explicit Sink(int fd) : fd_(fd) {}
+  void line(std::string s) {
+    for (char& ch : s)
+      if (ch == '\n') ch = ' ';
+    s += '\n';
+    std::size_t done = 0;
+    while (done < s.size()) {
+      const ssize_t w = ::write(fd_, s.data() + done, s.size() - done);
+      if (w <= 0) return;  // the parent is gone
+      done += static_cast<std::size_t>(w);
+    }
+  }
+
+ private:
+  int fd_;
+};
+
+std::string fmt(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+template <int N, int C>
+void solve_and_check(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const SolverOptions& opt,
+                     const std::string& label, Sink& out, ImpactResult* keep = nullptr) {
+  out.line("T " + label);  // which solve is running, should it never return
+  const auto t0 = Clock::now();
+  const auto r = solve_impact(pb, law, opt);
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  CheckStats st;
+  const std::string broken = check_result(pb, law, opt, r, &st);
+  out.line("S " + std::string(to_string(r.solver.status)) + " " +
+           std::string(to_string(r.solver.method)) + " " + (r.ok() ? "1" : "0") + " " +
+           (r.admissibility.admissible ? "1" : "0") + " " +
+           std::string(to_string(r.admissibility.failed)) + " " + (r.unique ? "1" : "0") + " " +
+           fmt(st.residual_bound > 0 ? st.residual / st.residual_bound : 0.0) + " " + fmt(seconds) +
+           " " + label);
+  const std::string forced =
+      opt.method == SolverMethod::automatic ? "-" : std::string(to_string(opt.method));
+  if (!broken.empty()) out.line("B " + forced + " " + label + "\t" + broken);
+  if (keep) {
+    if constexpr (N == Dynamic && C == Dynamic) *keep = r;
+  }
+}
+
+namespace ref = fremond_reference;
+
+double velocity_error(const ImpactResult& r, const ref::Solution& s) {
+  // The velocity scale: over the contacts that take part, or over all when none does.
+  double v = 0.0, all = 0.0, e = 0.0;
+  for (int i = 0; i < r.D_NA.size(); ++i) {
+    all = std::max({all, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
+    if (r.takes_part(i)) v = std::max({v, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
+    e = std::max(e, std::fabs(r.D_NE(i) - ref::to_double(s.D_NE[i])));
+    if (static_cast<std::size_t>(i) < s.D_TE.size())
+      e = std::max(e, std::fabs(r.D_TE(i) - ref::to_double(s.D_TE[i])));
+  }
+  if (v == 0.0) v = all;
+  return e / std::max(v, std::numeric_limits<double>::min());
+}
+
+/// The reference's laws for `law`, or false when the reference does not cover it.
+bool reference_laws(const ImpactLaw& law, int c, std::vector<ref::PowerLaw>& normal,
+                    std::vector<ref::TangentialLaw>& tangential) {
+  for (int i = 0; i < c; ++i) {
+    const auto* p = dynamic_cast<const PowerPotential*>(&law.normal[i]);
+    if (!p) return false;
+    normal.push_back({p->k(), p->p()});
+    switch (law.tangential) {
+      case TangentialLaw::none:
+        tangential.push_back(ref::TangentialLaw::none());
+        break;
+      case TangentialLaw::coulomb:
+        tangential.push_back(ref::TangentialLaw::coulomb(law.mu[i]));
+        break;
+      case TangentialLaw::potential: {
+        const auto* d = dynamic_cast<const DeadZonePowerPotential*>(&law.tangential_potential[i]);
+        if (!d) return false;
+        tangential.push_back(ref::TangentialLaw::dead_zone(d->k(), d->q(), d->r()));
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+/// The reference check where it applies (see the file comment). Cases its header leaves out
+/// (an exactly singular slide mode, W_T ∥ W_N on one contact) come back as exceptions or
+/// solutions marked not ok: skipped, not failed.
+void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactResult& r,
+                     bool several, Sink& out) {
+  const int c = pb.contacts();
+  std::vector<ref::Solution> sols;
+  try {
+    ref::Problem q = ref::problem_from(
+        pb.M, pb.W_N, pb.has_tangential() ? pb.W_T : Eigen::MatrixXd(pb.dofs(), 0), pb.qdot_A);
+    for (int i = 0; i < pb.w_N.size(); ++i) q.w_N.push_back(pb.w_N(i));
+    if (pb.has_tangential())
+      for (int i = 0; i < pb.w_T.size(); ++i) q.w_T.push_back(pb.w_T(i));
+    if (law.type == LawType::newton && !pb.has_tangential()) {
+      ref::QVec e;
+      for (double v : law.e.values) e.push_back(v);
+      sols = ref::newton_frictionless(q, e);
+    } else if (law.type == LawType::fremond) {
+      std::vector<ref::PowerLaw> normal;
+      std::vector<ref::TangentialLaw> tangential;
+      if (!reference_laws(law, c, normal, tangential)) return;
+      if (law.tangential != TangentialLaw::none && !pb.has_tangential()) return;
+      if (c == 1) {
+        sols = ref::fremond_one_contact(q, normal[0], tangential[0]);
+      } else if (law.tangential != TangentialLaw::coulomb && several) {
+        const auto s = ref::fremond_several(q, normal, tangential);
+        if (!s.ok) {
+          out.line("R skipped 0\tthe reference did not converge");
+          return;
+        }
+        sols.push_back(s);
+      } else {
+        return;
+      }
+    } else {
+      return;
+    }
+  } catch (const std::exception& e) {
+    out.line(std::string("R skipped 0\t") + e.what());
+    return;
+  }
+  // A reference solution is one whose own residual is at quad-precision level (its header: about
+  // 1e-33, up to cond(M)·1e-34); anything else it returns is its failure, not an answer.
+  const std::size_t returned = sols.size();
+  std::erase_if(sols, [](const ref::Solution& s) { return !(s.ok && s.residual <= 1e-20); });
+  if (sols.size() != returned) {
+    out.line("R skipped 0\tthe reference returned " + std::to_string(returned - sols.size()) +
+             " solution(s) whose own residual is above 1e-20");
+    return;
+  }
+  std::string problem;
+  double best = 0.0;
+  if (sols.empty()) {
+    if (r.solver.status != SolverStatus::no_solution && r.ok())
+      problem = "the reference finds no solution, the library converged to one";
+  } else if (r.solver.status == SolverStatus::no_solution) {
+    problem = "the library says no_solution, the reference finds " + std::to_string(sols.size());
+  } else if (r.ok()) {
+    best = std::numeric_limits<double>::infinity();
+    for (const auto& s : sols) best = std::min(best, velocity_error(r, s));
+    // Velocities after impact are well conditioned in contact space; 1e-7 of the velocity scale
+    // leaves room for M's condition (to 1e12) entering through G.
+    if (!(best <= 1e-7))
+      problem = "velocities after impact differ from the reference's by " + fmt(best) +
+                " of the velocity scale (" + std::to_string(sols.size()) + " reference solution(s))";
+  }
+  out.line(std::string(problem.empty() ? "R checked " : "R mismatch ") + fmt(best) + "\t" + problem);
+}
+
+std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
+  if (law.type == LawType::fremond)
+    return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt};
+  return {SolverMethod::lemke, SolverMethod::mode_enumeration};
+}
+
+void run_case(const StressCase& sc, long k, const Args& a, Sink& out) {
+  const SolverOptions opt;
+  if (k % 2 == 0 && fits_small(sc.problem))
+    solve_and_check(to_small(sc.problem), sc.law, opt, "[small]", out);
+  ImpactResult r;
+  solve_and_check(sc.problem, sc.law, opt, "", out, &r);
+  if (a.methods_every && k % a.methods_every == 0)
+    for (const SolverMethod m : forced_methods(sc.law)) {
+      SolverOptions o;
+      o.method = m;
+      solve_and_check(sc.problem, sc.law, o, "--method " + std::string(to_string(m)), out);
+    }
+  if (a.reference_every && k % a.reference_every == 0)
+    reference_check(sc.problem, sc.law, r, k % (10 * a.reference_every) == 0, out);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The parent: one child per case, its lines tallied.
+
+struct Failure {
+  std::string example;     // the first case's sentence
+  std::string reproducer;  // its problem file
+  std::string method;      // a forced method, or ""
+  long count = 0;
+  const KnownIssue* known = nullptr;
+};
+
+struct Tally {
+  long problems = 0, solves = 0;
+  std::map<std::string, long> statuses, methods, shapes;
+  std::map<std::string, long> not_converged_by_shape;  // automatic method only
+  std::map<std::string, long> inadmissible_by_inequality;
+  long inadmissible_converged = 0, not_unique = 0;
+  long broken = 0, broken_known = 0;
+  long reference_checked = 0, reference_mismatch = 0, reference_skipped = 0;
+  double worst_reference_error = 0.0;
+  double worst_residual_ratio = 0.0;
+  std::string worst_residual_case;
+  double slowest = 0.0, solve_seconds = 0.0;
+  std::string slowest_case;
+  std::map<std::string, Failure> failures;  // by kind
+  std::string running;                      // the solve the current case's child is in
+};
+
+/// The kind of a failure: its sentence with the numbers taken out, so that the summary lists each
+/// distinct failure once with its count.
+std::string kind_of(const std::string& what) {
+  std::string k;
+  bool in_number = false;
+  for (char ch : what) {
+    const bool numeric = std::isdigit(static_cast<unsigned char>(ch)) ||
+                         (in_number && (ch == '.' || ch == 'e' || ch == '-' || ch == '+'));
+    if (numeric) {
+      if (!in_number) k += '#';
+      in_number = true;
+      continue;
+    }
+    in_number = false;
+    k += ch;
+  }
+  return k;
+}
+
+void add_failure(Tally& t, std::vector<KnownIssue>& known, const std::string& law,
+                 const std::string& what, const std::string& label, const std::string& reproducer,
+                 const std::string& method) {
+  KnownIssue* match = match_known(known, law, what);
+  ++(match ? t.broken_known : t.broken);
+  if (match) ++match->seen;
+  auto [it, inserted] = t.failures.try_emplace(kind_of(what));
+  Failure& f = it->second;
+  if (inserted) {
+    f.example = label + ": " + what;
+    f.reproducer = reproducer;
+    f.method = method;
+    f.known = match;
+  }
+  ++f.count;
+}
+
+void tally_line(Tally& t, const std::string& line, const StressCase& sc, const std::string& law,
+                const std::string& label, std::vector<KnownIssue>& known) {
+  std::istringstream in(line);
+  std::string tag;
+  in >> tag;
+  if (tag == "T") {
+    std::getline(in, t.running);
+  } else if (tag == "S") {
+    std::string status, method, ok, admissible, inequality, unique, who;
+    double ratio = 0, seconds = 0;
+    in >> status >> method >> ok >> admissible >> inequality >> unique >> ratio >> seconds;
+    std::getline(in, who);
+    ++t.solves;
+    ++t.statuses[status];
+    ++t.methods[method];
+    t.solve_seconds += seconds;
+    if (seconds > t.slowest) {
+      t.slowest = seconds;
+      t.slowest_case = label + who + " (" + method + ", " + status + ")";
+    }
+    const bool automatic = who.find("--method") == std::string::npos;
+    if (ok != "1" && automatic) ++t.not_converged_by_shape[sc.shape + ":" + status];
+    if (ok == "1") {
+      if (ratio > t.worst_residual_ratio) {
+        t.worst_residual_ratio = ratio;
+        t.worst_residual_case = label + who;
+      }
+      if (admissible != "1") {
+        ++t.inadmissible_converged;
+        ++t.inadmissible_by_inequality[inequality];
+      }
+      if (unique != "1") ++t.not_unique;
+    }
+  } else if (tag == "B") {
+    std::string forced, rest;
+    in >> forced;
+    std::getline(in, rest);
+    const auto tab = rest.find('\t');
+    const std::string who = rest.substr(0, tab), what = rest.substr(tab + 1);
+    add_failure(t, known, law, what, label + who, problem_to_json(sc.problem, sc.law),
+                forced == "-" ? "" : forced);
+  } else if (tag == "R") {
+    std::string outcome, rest;
+    double error = 0;
+    in >> outcome >> error;
+    std::getline(in, rest);
+    const std::string what = rest.substr(rest.find('\t') + 1);
+    if (outcome == "skipped") {
+      ++t.reference_skipped;
+    } else {
+      ++t.reference_checked;
+      t.worst_reference_error = std::max(t.worst_reference_error, error);
+      if (outcome == "mismatch") {
+        ++t.reference_mismatch;
+        add_failure(t, known, law, "reference: " + what, label, problem_to_json(sc.problem, sc.law), "");
+      }
+    }
+  }
+}
+
+/// Runs case k in a child and tallies what it says; a child that overruns the deadline is killed
+/// and recorded as a hang, one that dies as a crash.
+void run_in_child(const StressCase& sc, long k, const std::string& law, const std::string& label,
+                  const Args& a, std::vector<KnownIssue>& known, Tally& t) {
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    std::perror("fremond_stress: pipe");
+    std::exit(2);
+  }
+  std::fflush(stdout);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    std::perror("fremond_stress: fork");
+    std::exit(2);
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    Sink out(fds[1]);
+    try {
+      run_case(sc, k, a, out);
+    } catch (const std::exception& e) {
+      out.line(std::string("B - \texception escaped: ") + e.what());
+    }
+    ::close(fds[1]);
+    std::_Exit(0);
+  }
+  ::close(fds[1]);
+  const auto deadline = Clock::now() + std::chrono::duration<double>(a.hang > 0 ? a.hang : 1e9);
+  std::string buffer;
+  bool hung = false;
+  for (;;) {
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (left <= 0) {
+      hung = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left * 1000.0, 1000.0)) + 1);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) continue;
+    char chunk[4096];
+    const ssize_t got = ::read(fds[0], chunk, sizeof chunk);
+    if (got <= 0) break;  // EOF: the child is done
+    buffer.append(chunk, static_cast<std::size_t>(got));
+    std::size_t nl;
+    while ((nl = buffer.find('\n')) != std::string::npos) {
+      tally_line(t, buffer.substr(0, nl), sc, law, label, known);
+      buffer.erase(0, nl + 1);
+    }
+  }
+  ::close(fds[0]);
+  if (hung) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const std::string repro = problem_to_json(sc.problem, sc.law);
+  std::string in_solve = t.running;
+  const auto forced = in_solve.find("--method ");
+  const std::string method = forced == std::string::npos ? "" : in_solve.substr(forced + 9);
+  t.running.clear();
+  if (hung) {
+    add_failure(t, known, law,
+                "HANG: the solve" + (method.empty() ? std::string(" (automatic)") : " with --method " + method) +
+                    " did not return within " + fmt(a.hang) + " s (the case was killed)",
+                label + in_solve, repro, method);
+  } else if (WIFSIGNALED(status)) {
+    add_failure(t, known, law, "CRASH: killed by signal " + std::to_string(WTERMSIG(status)), label,
+                repro, "");
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    add_failure(t, known, law, "CRASH: exit status " + std::to_string(WEXITSTATUS(status)), label,
+                repro, "");
+  }
+}
+
+bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& known) {
+  Tally t;
+  // One stream per law, so that a law's problems do not depend on which others run.
+  std::mt19937_64 rng(a.seed * 1000003ull + std::hash<std::string>{}(name) % 1000003ull);
+  const auto t0 = Clock::now();
+  for (long k = 0; k < a.count; ++k) {
+    const StressCase sc = draw_case(rng, name);
+    const std::string label = name + " #" + std::to_string(k) + " (" + sc.shape + ")";
+    ++t.shapes[sc.shape];
+    ++t.problems;
+    run_in_child(sc, k, name, label, a, known, t);
+    if (!a.quiet && (k + 1) % 10000 == 0)
+      std::fprintf(stderr, "  %s: %ld / %ld\n", name.c_str(), k + 1, a.count);
+  }
+  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  std::printf("%s: %ld problems, %ld solves (%.1f s solving, %.1f s in all); %ld broken invariant(s) "
+              "beside %ld known; reference: %ld checked, %ld mismatch(es), %ld skipped, worst "
+              "velocity error %.3g of the scale\n",
+              name.c_str(), t.problems, t.solves, t.solve_seconds, secs, t.broken, t.broken_known,
+              t.reference_checked, t.reference_mismatch, t.reference_skipped, t.worst_reference_error);
+  std::printf("  statuses:");
+  for (const auto& [s, n] : t.statuses) std::printf(" %s %ld", s.c_str(), n);
+  std::printf("\n  methods:");
+  for (const auto& [s, n] : t.methods) std::printf(" %s %ld", s.c_str(), n);
+  if (!a.quiet) {
+    std::printf("\n  shapes:");
+    for (const auto& [s, n] : t.shapes) std::printf(" %s %ld", s.c_str(), n);
+    std::printf("\n  not converged (automatic), by shape:");
+    for (const auto& [s, n] : t.not_converged_by_shape) std::printf(" %s %ld", s.c_str(), n);
+  }
+  std::printf("\n  converged but not admissible (SPEC §4): %ld", t.inadmissible_converged);
+  for (const auto& [s, n] : t.inadmissible_by_inequality) std::printf(" [%s %ld]", s.c_str(), n);
+  std::printf("; converged and not unique: %ld\n", t.not_unique);
+  std::printf("  worst residual / bound: %.3g (%s); slowest solve %.3f s (%s)\n",
+              t.worst_residual_ratio, t.worst_residual_case.c_str(), t.slowest, t.slowest_case.c_str());
+  std::size_t shown = 0;
+  for (const auto& [kind, f] : t.failures) {
+    std::printf("  %s x%ld: %s\n", f.known ? "KNOWN" : "BROKEN", f.count, f.example.c_str());
+    if (f.known) std::printf("    (known issue: %s)\n", f.known->note.c_str());
+    if (shown < a.show && !f.reproducer.empty() && !f.known) {
+      ++shown;
+      std::printf("  reproducer (fremond impact%s FILE):\n%s\n",
+                  f.method.empty() ? "" : (" --method " + f.method).c_str(), f.reproducer.c_str());
+    }
+  }
+  std::fflush(stdout);
+  return t.broken == 0;
+}
+
+/// --case K: case K of one law, in this process, with the result printed.
+int run_single(const Args& a) {
+  const std::string name = a.laws.front();
+  std::mt19937_64 rng(a.seed * 1000003ull + std::hash<std::string>{}(name) % 1000003ull);
+  StressCase sc;
+  for (long k = 0; k <= a.single_case; ++k) sc = draw_case(rng, name);
+  std::printf("%s #%ld (%s):\n%s\n", name.c_str(), a.single_case, sc.shape.c_str(),
+              problem_to_json(sc.problem, sc.law).c_str());
+  std::fflush(stdout);
+  Sink out(STDOUT_FILENO);
+  Args all = a;
+  all.methods_every = all.reference_every = 1;
+  run_case(sc, 0, all, out);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Args a = parse(argc, argv);
+  if (a.single_case >= 0) return run_single(a);
+  std::vector<KnownIssue> known;
+  if (!a.known.empty()) {
+    try {
+      known = read_known_issues(a.known);
+    } catch (const std::exception& e) {
+      usage(e.what());
+    }
+  }
+  bool ok = true;
+  for (const auto& law : a.laws) ok = run_law(law, a, known) && ok;
+  for (const KnownIssue& k : known) {
+    bool ran = k.law == "*";
+    for (const auto& l : a.laws) ran = ran || l == k.law;
+    if (ran && k.seen == 0)
+      std::printf("known issue not seen in this run (fixed?): %s | %s\n", k.law.c_str(), k.text.c_str());
+  }
+  std::printf("stress: %s\n", ok ? "PASSED" : "FAILED");
+  return ok ? 0 : 1;
+}

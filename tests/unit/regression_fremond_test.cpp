@@ -1,0 +1,248 @@
+// Regressions found by the stress runs (tests/stress) and the fuzz targets (fuzz/) in Frémond's
+// law: each test is the smallest input found, and states what must hold. Tests named DISABLED_ are
+// open library issues (listed in tests/stress/known_issues.txt so that the stress and fuzz stages
+// keep running meanwhile); enable the test and delete the known-issue line when the fix lands:
+//
+//   fremond_tests --gtest_also_run_disabled_tests --gtest_filter='RegressionFremond.*'
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "fremond/fremond.hpp"
+#include "stress/invariants.hpp"
+
+namespace fremond {
+namespace {
+
+// Runs `body` in a child process and reports whether it returned within `seconds`: a solve that
+// never returns must fail the test, not hang the suite. The child's gtest failures are reported
+// through its exit status.
+::testing::AssertionResult returns_within(double seconds, const std::function<void()>& body) {
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return ::testing::AssertionFailure() << "fork failed";
+  if (pid == 0) {
+    body();
+    std::_Exit(::testing::Test::HasFailure() ? 1 : 0);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      return ::testing::AssertionFailure() << "did not return within " << seconds << " s";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (WIFSIGNALED(status))
+    return ::testing::AssertionFailure() << "the child died of signal " << WTERMSIG(status);
+  if (WEXITSTATUS(status) != 0)
+    return ::testing::AssertionFailure() << "a check failed in the child (see above)";
+  return ::testing::AssertionSuccess();
+}
+
+ImpactProblem make(Eigen::MatrixXd M, Eigen::MatrixXd WN, Eigen::MatrixXd WT, Eigen::VectorXd qA) {
+  ImpactProblem pb;
+  pb.M = std::move(M);
+  pb.W_N = std::move(WN);
+  pb.W_T = WT.size() ? std::move(WT) : Eigen::MatrixXd(pb.M.rows(), 0);
+  pb.qdot_A = std::move(qA);
+  return pb;
+}
+
+SolverOptions method(SolverMethod m) {
+  SolverOptions o;
+  o.method = m;
+  return o;
+}
+
+// --- Hangs: the NLopt fallback with Coulomb (NLOPT_LD_MMA, whose dual subproblems nest without a
+// bound of their own) does not return on small problems. Found by the stress run: 11% of random
+// Frémond + Coulomb problems did not return within 10 s (automatic method).
+
+// A point mass: M = I, normal (0, 1), tangent (1, 0), k = 1 so the reaction is active.
+TEST(RegressionFremond, DISABLED_NloptWithCoulombReturnsOnAPointMass) {
+  const ImpactProblem pb = make(Eigen::Matrix2d::Identity(), Eigen::Vector2d(0, 1),
+                                Eigen::Vector2d(1, 0), Eigen::Vector2d(1, -1));
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 1.0);
+  EXPECT_TRUE(returns_within(30, [&] {
+    const auto r = solve_impact(pb, law, method(SolverMethod::nlopt));
+    EXPECT_NE(r.solver.status, SolverStatus::not_run);
+  }));
+}
+
+// Two identical contacts on one degree of freedom (G singular, W_T = −W_N), large μ: the
+// automatic chain falls through to NLopt and does not return (observed: > 10 min).
+TEST(RegressionFremond, DISABLED_AutomaticWithCoulombReturnsOnTwoIdenticalContacts) {
+  Eigen::MatrixXd WN(1, 2), WT(1, 2);
+  WN << -1, -1;
+  WT << 1, 1;
+  const ImpactProblem pb = make(Eigen::MatrixXd::Identity(1, 1), WN, WT, Eigen::VectorXd::Constant(1, 0.01));
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 100.0);
+  EXPECT_TRUE(returns_within(30, [&] {
+    const auto r = solve_impact(pb, law);
+    EXPECT_NE(r.solver.status, SolverStatus::not_run);
+    EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
+  }));
+}
+
+// --- "converged" must mean what SolverStatus says: the reported residual ≤ tolerance, or the
+// criterion `rounding` when the tolerance is below what floating point resolves for the data.
+
+// The paper's bar almost vertical (θ = π/2 − 5e-5) on both ends, p ≈ 1: semismooth Newton stopped
+// on its rows' rounding floors with a residual of 8.5e-13 against the tolerance 1e-13, and said
+// plain "converged" (75 of 1,800 solves in a 1,000-problem stress run). It now says so by the
+// criterion, and the residual it reports is the law's own.
+TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  M.diagonal() << 0.051971855102967493, 0.051971855102967493, 0.0043309879252472908;
+  Eigen::MatrixXd WN(3, 2);
+  WN << 0, 0, 1, 1, -2.4807983273377868e-05, 2.4807983273377868e-05;
+  const ImpactProblem pb =
+      make(M, WN, {}, Eigen::Vector3d(9.7320009170810643e-11, -1.4941908525781244e-11, 7.1585093386319647e-11));
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(216.70341609665434, 1.000001735884251));
+  const SolverOptions opt;
+  const auto r = solve_impact(to_small(pb), law, opt);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  if (r.solver.residual > opt.tolerance) {
+    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
+  }
+  EXPECT_NEAR(law_residual(to_small(pb), law, r), r.solver.residual, 1e-3 * r.solver.residual);
+  EXPECT_EQ(robust::check_result(to_small(pb), law, opt, r), "");
+}
+
+// One contact with Coulomb, μ = 1e8, M with condition ~1e13 (accepted by validate): the mode
+// enumeration said converged (criterion exact) with the law's residual at 1.1e-6, its exactness
+// unchecked. Its answer is now checked by the shared stopping test: here the residual is at the
+// rows' rounding floor (μ|P_N| and cond(G) make 16ε|G||P| of that size), which the criterion says.
+TEST(RegressionFremond, ModeEnumerationChecksItsResidual) {
+  Eigen::Matrix2d M;
+  M << 8632987.2039246373, -12094358.729443323, -12094358.729443323, 16943557.284278292;
+  const ImpactProblem pb = make(M, Eigen::Vector2d(0.63512214541751955, 0.85540948712427789),
+                                Eigen::Vector2d(-0.42956403512080144, -0.59841401906992542),
+                                Eigen::Vector2d(-421870.33482496656, -129738.38787028857));
+  const ImpactLaw law =
+      ImpactLaw::fremond_coulomb(PowerPotential(0.043589442005175921, 5.9418572998898842), 1e8);
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, law, opt);
+  ASSERT_NE(r.solver.status, SolverStatus::not_run);
+  if (r.ok() && r.solver.residual > opt.tolerance) {
+    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << r.solver.message;
+  }
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+}
+
+// --- The certificate (SPEC §4) refuses right answers.
+
+// p = 1.0001: the answer agrees with the quad-precision reference to 1e-7 (P_N = 9.16678e-11,
+// 5.22199e-11; law_residual 6e-17), yet the Fenchel–Young gap is reported as 0.077: the conjugate
+// |s|^p'/(p' k^(p'−1)) with p' ≈ 8000 is evaluated where it means nothing in double precision.
+TEST(RegressionFremond, CertificateAcceptsAnExactAnswerWithPNearOne) {
+  Eigen::Matrix4d M;
+  M << 0.61646031369758514, -4.7974685494302882, -4.95894918033731, -1.7851366827010329,
+      -4.7974685494302882, 94.635617052936837, 96.16395587489103, 35.386067666442486,
+      -4.95894918033731, 96.16395587489103, 97.83521339904685, 35.980908309699771,
+      -1.7851366827010329, 35.386067666442486, 35.980908309699771, 13.29152996337185;
+  Eigen::MatrixXd WN(4, 2);
+  WN << -0.0088422630996439766, 0.27853448548806248, -0.32346179647342221, -0.9780829196398747,
+      -0.9340283761486311, 0.5190779761188169, 0.024033844737829213, 0.091926221298752386;
+  const ImpactProblem pb =
+      make(M, WN, {},
+           Eigen::Vector4d(-3.3739256058043361e-10, 3.0175896392740109e-10, -9.5017461104082831e-11,
+                           -3.5699893127614161e-11));
+  PerContactPotential normal;
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(136391.4397486875, 1.0001215900628173));
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(0.0023136693335910055, 4.5995015226795326));
+  const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
+  const auto r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.P_N(0), 9.16678e-11, 1e-15);
+  EXPECT_NEAR(r.P_N(1), 5.22199e-11, 1e-15);
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+}
+
+// A potential whose conjugate is finite on a bounded set only (b|y|, or k = 0): the dual value is
+// outside that set by rounding and the gap is reported as infinite. Found by the fuzzer.
+TEST(RegressionFremond, CertificateToleratesRoundingAtTheEdgeOfTheConjugatesDomain) {
+  Eigen::MatrixXd WN(2, 2), WT(2, 2);
+  WN << 0, 0.1, 1, 1;
+  WT << 1, 1, 0, -0.1;
+  const ImpactProblem pb = make(Eigen::Matrix2d::Identity(), WN, WT, Eigen::Vector2d(2, -1));
+  PerContactPotential normal;
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(0.0, 1.000001));
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(1e6, 9.0));
+  const ImpactLaw law = ImpactLaw::fremond(std::move(normal), AbsoluteValuePotential(0.6));
+  const auto r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+}
+
+// --- No NaN leaves the library, whatever the status.
+
+// NLopt's budget runs out on the bar almost vertical with both ends: energy_change is not finite.
+TEST(RegressionFremond, DISABLED_NloptOutOfBudgetLeavesNoNaN) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  M.diagonal() << 54.31423032884171, 54.31423032884171, 4.5261858607368088;
+  Eigen::MatrixXd WN(3, 2), WT(3, 2);
+  WN << 0, 0, 1, 1, -4.5069809846358015e-12, 4.5069809846358015e-12;
+  WT << 1, 1, 0, 0, 0.5, -0.5;
+  const ImpactProblem pb =
+      make(M, WN, WT, Eigen::Vector3d(333132.62957404042, -136477.13684777945, -52814.881776933085));
+  PerContactPotential normal;
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(2.17499502540455, 2.9510247731208259));
+  normal.potentials.emplace_back(std::make_unique<PowerPotential>(0.00071796536218804593, 35.39201297913705));
+  const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
+  const SolverOptions opt = method(SolverMethod::nlopt);
+  EXPECT_TRUE(returns_within(120, [&] {
+    const auto r = solve_impact(pb, law, opt);
+    EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  }));
+}
+
+// --- The public API given a result of the wrong shape.
+
+// law_residual(problem, Frémond law, result) indexes the result's P_N and P_T by contact without
+// checking their sizes: a default-constructed result (or one of another problem) reads past the
+// end (a crash here). It should refuse it (InvalidArgument naming "result") or return infinity, as
+// the classical laws' residual does.
+TEST(RegressionFremond, DISABLED_LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
+  ImpactProblem pb = make(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 1, -0.5),
+                          Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, -2, 0.5));
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(6.0, 2.0));
+  EXPECT_TRUE(returns_within(30, [&] {
+    try {
+      EXPECT_FALSE(law_residual(pb, law, ImpactResult{}) <= 1e-3);
+    } catch (const InvalidArgument& e) {
+      EXPECT_FALSE(e.name().empty());
+    }
+  }));
+}
+
+// Where the library keeps every contact space vector empty (no contact takes part), its Cholesky
+// solve of M⁻¹W with W of no column binds a reference to a null pointer inside Eigen (UBSan:
+// "reference binding to null pointer", contact_space.hpp build_contact_space). Harmless in a
+// plain build; a sanitizer build stops here. Found by the fuzzer.
+TEST(RegressionFremond, NoContactTakesPart) {
+  Eigen::MatrixXd WN(1, 2), WT(1, 2);
+  WN << 1.1652840070182156, 0.24082765331720424;
+  WT << 0.21804852846310818, -0.046024192687695309;
+  const ImpactProblem pb = make(Eigen::MatrixXd::Constant(1, 1, 13694.930272810871), WN, WT,
+                                Eigen::VectorXd::Constant(1, 167.95236012224186));
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 2.0), 0.0);
+  const auto r = solve_impact(pb, law);
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(r.solver.method, SolverMethod::trivial);
+  EXPECT_EQ(r.qdot_E, pb.qdot_A);
+}
+
+}  // namespace
+}  // namespace fremond
