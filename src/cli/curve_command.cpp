@@ -7,7 +7,9 @@
 // with their status).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/curves/curves.hpp"
 
@@ -104,16 +107,24 @@ void refusing(const char* command, F&& body) {
   }
 }
 
-// Writes to --out or standard output; returns false when the file cannot be written.
+// Writes to --out (complete or absent: a temporary file and a rename) or to standard output;
+// throws InvalidArgument naming what could not be written.
 void write_output(const CommonArguments& a, const std::string& text, const std::string& what) {
   if (a.out.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
+    if (!write_stdout(text))
+      throw InvalidArgument("standard output", std::string("cannot write the curve: ") +
+                                                   (errno ? std::strerror(errno) : "write failed"));
     return;
   }
-  std::ofstream f(a.out, std::ios::binary);
-  if (f) f << text;
-  if (!f) throw InvalidArgument("--out", "cannot write '" + a.out + "'");
+  const std::filesystem::path out(a.out);
+  const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : ".";
+  try {
+    write_atomically(dir, out.filename().string(), text);
+  } catch (const InvalidArgument& e) {
+    const std::string why = e.what();
+    throw InvalidArgument("--out", "cannot write '" + a.out + "'" +
+                                       why.substr(why.find(": cannot write") + 14));
+  }
   std::printf("wrote %s: %s\n", a.out.c_str(), what.c_str());
 }
 

@@ -3,7 +3,8 @@
 //
 // Exit status: 0 solved; 1 input refused (the message names the key; nothing on stdout); 2 the
 // solver did not converge (the result is printed anyway, so the status can be seen); 3 the law has
-// no solution for these data (SPEC §2; the result is printed, with a message on stderr).
+// no solution for these data (SPEC §2; the result is printed, with a message on stderr); 4 the
+// result could not be written to standard output (message on stderr).
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/potentials/registry.hpp"
@@ -27,6 +29,7 @@ namespace {
 constexpr int kExitRefused = 1;
 constexpr int kExitNotConverged = 2;
 constexpr int kExitNoSolution = 3;
+constexpr int kExitWriteFailed = 4;
 
 struct ImpactArguments {
   std::string file;
@@ -73,10 +76,14 @@ SolverOptions solver_options(const ImpactArguments& args) {
   throw CLI::RuntimeError(code);
 }
 
+// A result that cannot be written in full (disk full, closed pipe, size limit) is a failure: a
+// caller reading only the exit status must not take a cut-off result for an answer.
 void print(const std::string& json) {
-  std::fwrite(json.data(), 1, json.size(), stdout);
-  std::fputc('\n', stdout);
-  std::fflush(stdout);
+  if (!write_stdout(json + "\n")) {
+    std::fprintf(stderr, "fremond impact: error: cannot write the result to standard output: %s\n",
+                 errno ? std::strerror(errno) : "write failed");
+    exit_with(kExitWriteFailed);
+  }
 }
 
 void run(const ImpactArguments& args) {
@@ -151,7 +158,8 @@ void add_impact_command(CLI::App& app) {
   cmd->footer(
       "Exit status: 0 solved; 1 input refused (message on stderr naming the key, nothing on "
       "stdout); 2 the solver did not converge (the result is printed anyway, with its status); "
-      "3 the law has no solution for these data (the result is printed, message on stderr).");
+      "3 the law has no solution for these data (the result is printed, message on stderr); "
+      "4 the result could not be written.");
   cmd->callback([args] { run(*args); });
 }
 

@@ -179,6 +179,10 @@ json parse_json(std::string_view text, const std::string& root) {
   if (std::all_of(text.begin(), text.end(),
                   [](char ch) { return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r'; }))
     throw InvalidArgument(root, "empty input (expected a JSON document)");
+  // nlohmann's iterator input ends at a NUL byte, so text after one would be silently ignored:
+  // a NUL is never part of JSON text (RFC 8259 §2), so refuse it where it is.
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos)
+    throw InvalidArgument(root, "not valid JSON: a NUL byte at offset " + std::to_string(nul));
   json doc;
   PathTrackingBuilder builder(doc, root);
   const bool ok = json::sax_parse(text.begin(), text.end(), &builder);

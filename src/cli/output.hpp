@@ -1,0 +1,17 @@
+#pragma once
+// Writing the commands' results: files are complete or absent, standard output is checked.
+#include <filesystem>
+#include <string>
+
+namespace fremond::cli {
+
+/// Writes `text` to DIR/name through a temporary file in DIR and a rename, so that the file is
+/// either absent or complete, never half-written. Throws InvalidArgument naming the file.
+void write_atomically(const std::filesystem::path& dir, const std::string& name,
+                      const std::string& text);
+
+/// Writes `text` to standard output and flushes; false when it could not be written in full
+/// (a full disk, a closed pipe, a size limit), so the caller can exit non-zero.
+bool write_stdout(const std::string& text);
+
+}  // namespace fremond::cli
