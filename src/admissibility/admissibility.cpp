@@ -52,7 +52,18 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
                        change_within([&](double x) { return phi.conjugate(x); }, s, ds) +
                        dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
-  return std::max(0.0, fz + fs - s * z - noise) / scale;
+  const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
+  if (gap == 0.0) return 0.0;
+  // Where φ* is too steep for double precision (p = 1.0001: conjugate exponent 10⁴, so its value
+  // within ds of s spans hundreds of orders of magnitude) the gap's noise cannot be bounded from
+  // values. The same statement, s ∈ ∂φ(z) (zero gap exactly then, SPEC §3), is then tested on the
+  // subdifferential, which is monotone: s within ds of ∂φ over [z − dz, z + dz].
+  const Interval lo = phi.subdifferential(z - dz), hi = phi.subdifferential(z + dz);
+  if (lo.is_empty() || hi.is_empty()) return gap;
+  const Interval hull{lo.lo, hi.hi};
+  const double miss = std::max(0.0, hull.distance(s) - ds) /
+                      (std::fabs(s) + std::fabs(hull.lo) + std::fabs(hull.hi) + ds + 1e-300);
+  return std::min(gap, miss);
 }
 
 }  // namespace
@@ -69,9 +80,13 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
     P(cs.normal_row(k)) = r.P_N(cs.index(k));
     if (cs.tangential) P(cs.tangential_row(k)) = r.P_T(cs.index(k));
   }
+  // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative: κ(M) estimated from the
+  // factor's diagonal, (max L_ii / min L_ii)², a lower bound that has the order of κ in practice.
+  const auto L = cs.llt.matrixLLT().diagonal().cwiseAbs();
+  const double kappa = L.size() && L.minCoeff() > 0 ? std::pow(L.maxCoeff() / L.minCoeff(), 2) : 1.0;
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   for (int j = 0; j < rows; ++j) {
-    const double d = eps16 * (std::fabs(cs.D_A(j)) + cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
+    const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
     const int i = cs.index(j < cs.active ? j : j - cs.active);
     out(i) = std::max(out(i), d);
   }
@@ -132,7 +147,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       worst_contact = i;
     }
     if (!r.takes_part(i)) continue;
-    pen = std::max(pen, std::max(0.0, -r.D_NE(i)) / v_scale);
+    // D_NE ≥ 0 to how well D_NE is known from rounding (velocity_rounding).
+    const double dv = std::max(rounding.size() == c ? rounding(i) : 0.0, 8 * eps * v_scale);
+    pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / v_scale);
     const double Pr = (fremond && r.P_N_reaction.size() == c) ? r.P_N_reaction(i) : 0.0;
     reaction += -Pr * zN;
     dissipation += -(r.P_N(i) - Pr) * zN - r.P_T(i) * zT;
@@ -144,7 +161,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
           std::max(rounding.size() == c ? rounding(i) : 0.0,
                    std::max(8 * eps, 2 * solved_to) *
                        std::max({v_scale, std::fabs(r.D_NE(i)), std::fabs(r.D_TE(i))}));
-      const double ds = 8 * eps * p_scale;
+      const double ds = std::max(8 * eps, 2 * solved_to) * p_scale;
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).

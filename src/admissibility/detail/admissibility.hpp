@@ -11,7 +11,8 @@
 namespace fremond::detail {
 
 /// Per contact of the problem, how well its velocities D_E (hence z = (D_A + D_E)/2) are known
-/// from rounding alone: 16ε (|D_A,j| + Σ_k |G_jk||P_k|) over its rows. With an ill-conditioned G
+/// from rounding alone: 16ε (|D_A,j| + κ(M) Σ_k |G_jk||P_k|) over its rows (G is formed by a
+/// solve with M, accurate to ε κ(M)). With an ill-conditioned G
 /// the terms G_jk P_k cancel to a D_E much smaller than themselves (a mass ratio of 1e6), so z
 /// carries their rounding, not ε|D_E|. Contacts that do not take part get 0.
 template <int MaxDofs, int MaxContacts>
