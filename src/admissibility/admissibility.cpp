@@ -147,8 +147,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       worst_contact = i;
     }
     if (!r.takes_part(i)) continue;
-    // D_NE ≥ 0 to how well D_NE is known from rounding (velocity_rounding).
-    const double dv = std::max(rounding.size() == c ? rounding(i) : 0.0, 8 * eps * v_scale);
+    // D_NE ≥ 0 to how well D_NE is known: rounding (velocity_rounding), or the solver's tolerance.
+    const double dv = std::max(rounding.size() == c ? rounding(i) : 0.0,
+                               std::max(8 * eps, solved_to) * v_scale);
     pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / v_scale);
     const double Pr = (fremond && r.P_N_reaction.size() == c) ? r.P_N_reaction(i) : 0.0;
     reaction += -Pr * zN;
