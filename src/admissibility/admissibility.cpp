@@ -83,10 +83,12 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative: κ(M) estimated from the
   // factor's diagonal, (max L_ii / min L_ii)², a lower bound that has the order of κ in practice.
   const auto L = cs.llt.matrixLLT().diagonal().cwiseAbs();
-  const double kappa = L.size() && L.minCoeff() > 0 ? std::pow(L.maxCoeff() / L.minCoeff(), 2) : 1.0;
+  const double kappa =
+      L.size() && L.minCoeff() > 0 ? std::pow(L.maxCoeff() / L.minCoeff(), 2) : 1.0;
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   for (int j = 0; j < rows; ++j) {
-    const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
+    const double d =
+        eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
     const int i = cs.index(j < cs.active ? j : j - cs.active);
     out(i) = std::max(out(i), d);
   }
@@ -96,8 +98,7 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
 template <int N, int C>
 AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                             const ImpactResultT<N, C>& r,
-                                            const SolverOptions& options,
-                                            const VecT<C>& rounding) {
+                                            const SolverOptions& options, const VecT<C>& rounding) {
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
   // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
@@ -129,7 +130,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
 
   rep.per_contact.setZero(c);
   double p_scale = 0.0;
-  for (int i = 0; i < c; ++i) p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
+  for (int i = 0; i < c; ++i)
+    p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
   const bool fremond = law.type == LawType::fremond;
   const double solved_to =
@@ -148,8 +150,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     }
     if (!r.takes_part(i)) continue;
     // D_NE ≥ 0 to how well D_NE is known: rounding (velocity_rounding), or the solver's tolerance.
-    const double dv = std::max(rounding.size() == c ? rounding(i) : 0.0,
-                               std::max(8 * eps, solved_to) * v_scale);
+    const double dv =
+        std::max(rounding.size() == c ? rounding(i) : 0.0, std::max(8 * eps, solved_to) * v_scale);
     pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / v_scale);
     const double Pr = (fremond && r.P_N_reaction.size() == c) ? r.P_N_reaction(i) : 0.0;
     reaction += -Pr * zN;
@@ -166,9 +168,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
-      compl_viol = std::max({compl_viol, std::max(0.0, -Pr) / pscale,
-                             std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) /
-                                 (pscale * v_scale)});
+      compl_viol = std::max(
+          {compl_viol, std::max(0.0, -Pr) / pscale,
+           std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) / (pscale * v_scale)});
       fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
       if (law.tangential == TangentialLaw::potential)
         fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
@@ -184,8 +186,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         if (over > 1e-12 * (b + std::fabs(s)))
           fy = std::max(fy, over / (b + std::fabs(s) + p_scale));
         else
-          fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT -
-                                         (b + std::fabs(s)) * dz - law.mu[i] * ds * std::fabs(zT)) /
+          fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT - (b + std::fabs(s)) * dz -
+                                              law.mu[i] * ds * std::fabs(zT)) /
                                 scale);
       }
     }
@@ -204,14 +206,20 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.violation = by;
     rep.failed_contact = contact;
   };
-  if (!std::isfinite(rep.total) || rep.total < -tol) fail(Inequality::total_15, rep.total);
+  if (!std::isfinite(rep.total) || rep.total < -tol)
+    fail(Inequality::total_15, rep.total);
   else if (worst_contact >= 0 && worst_contact_value < -tol)
     fail(Inequality::per_contact_15, worst_contact_value, worst_contact);
-  else if (fremond && rep.reaction < -tol) fail(Inequality::reaction_17, rep.reaction);
-  else if (fremond && rep.dissipation < -tol) fail(Inequality::dissipation_19, rep.dissipation);
-  else if (fremond && compl_viol > rel) fail(Inequality::complementarity_16, compl_viol);
-  else if (pen > rel) fail(Inequality::non_penetration, pen);
-  else if (fremond && fy > rel) fail(Inequality::fenchel_young, fy);
+  else if (fremond && rep.reaction < -tol)
+    fail(Inequality::reaction_17, rep.reaction);
+  else if (fremond && rep.dissipation < -tol)
+    fail(Inequality::dissipation_19, rep.dissipation);
+  else if (fremond && compl_viol > rel)
+    fail(Inequality::complementarity_16, compl_viol);
+  else if (pen > rel)
+    fail(Inequality::non_penetration, pen);
+  else if (fremond && fy > rel)
+    fail(Inequality::fenchel_young, fy);
   rep.admissible = rep.failed == Inequality::none;
   return rep;
 }
@@ -225,28 +233,30 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
   // cannot be factorised (M not positive definite) gets no rounding allowance.
   VecT<C> rounding = VecT<C>::Zero(pb.contacts());
-  const bool shapes = pb.M.rows() == pb.dofs() && pb.M.cols() == pb.dofs() &&
-                      pb.W_N.rows() == pb.dofs() && pb.W_N.cols() == pb.contacts() &&
-                      (pb.W_T.cols() == 0 || (pb.W_T.rows() == pb.dofs() && pb.W_T.cols() == pb.contacts()));
+  const bool shapes =
+      pb.M.rows() == pb.dofs() && pb.M.cols() == pb.dofs() && pb.W_N.rows() == pb.dofs() &&
+      pb.W_N.cols() == pb.contacts() &&
+      (pb.W_T.cols() == 0 || (pb.W_T.rows() == pb.dofs() && pb.W_T.cols() == pb.contacts()));
   if (shapes && pb.qdot_A.size() == pb.dofs()) {
     detail::ContactSpaceT<N, C> cs;
-    detail::build_contact_space(pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none
-                                                         : law.has_friction(), cs);
+    detail::build_contact_space(
+        pb,
+        law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
+        cs);
     if (cs.llt.info() == Eigen::Success) rounding = detail::velocity_rounding(cs, r);
   }
   return detail::check_admissibility(pb, law, r, options, rounding);
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                                  \
-  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&,                   \
-                                             const ImpactResultT<N, C>&);                         \
-  template AdmissibilityReportT<C> detail::check_admissibility(                                    \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,                   \
-      const SolverOptions&, const VecT<C>&);                                                       \
-  template AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>&,               \
-                                                       const ImpactLaw&,                          \
-                                                       const ImpactResultT<N, C>&,                \
-                                                       const SolverOptions&);
+#define FREMOND_INSTANTIATE(N, C)                                                \
+  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&, \
+                                             const ImpactResultT<N, C>&);        \
+  template AdmissibilityReportT<C> detail::check_admissibility(                  \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
+      const SolverOptions&, const VecT<C>&);                                     \
+  template AdmissibilityReportT<C> check_admissibility(                          \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
+      const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -5,9 +5,9 @@
 // header row and one row per impact. Exit status: 0 written; 1 a value refused (the message names
 // the option, nothing is written); 2 some impact did not converge (the rows are written anyway,
 // with their status).
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/curves/curves.hpp"
+#include "output.hpp"
 
 namespace fremond::cli {
 
@@ -122,8 +122,8 @@ void write_output(const CommonArguments& a, const std::string& text, const std::
     write_atomically(dir, out.filename().string(), text);
   } catch (const InvalidArgument& e) {
     const std::string why = e.what();
-    throw InvalidArgument("--out", "cannot write '" + a.out + "'" +
-                                       why.substr(why.find(": cannot write") + 14));
+    throw InvalidArgument(
+        "--out", "cannot write '" + a.out + "'" + why.substr(why.find(": cannot write") + 14));
   }
   std::printf("wrote %s: %s\n", a.out.c_str(), what.c_str());
 }

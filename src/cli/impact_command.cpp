@@ -16,11 +16,11 @@
 #include <string>
 
 #include "commands.hpp"
-#include "output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "output.hpp"
 
 namespace fremond::cli {
 

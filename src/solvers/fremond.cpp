@@ -164,9 +164,12 @@ ScalarRoots scalar_normal(const Potential& normal, const PowerPotential* phi, do
   std::sort(cuts.begin(), cuts.begin() + nc);
   // The unbounded last piece: walk out until f has its limiting sign.
   double limit_sign;
-  if (k == 0.0 || p < 2.0) limit_sign = -1.0;
-  else if (p > 2.0) limit_sign = 1.0;
-  else limit_sign = (k > a) ? 1.0 : (k < a ? -1.0 : (a * Dt > 0 ? 1.0 : -1.0));
+  if (k == 0.0 || p < 2.0)
+    limit_sign = -1.0;
+  else if (p > 2.0)
+    limit_sign = 1.0;
+  else
+    limit_sign = (k > a) ? 1.0 : (k < a ? -1.0 : (a * Dt > 0 ? 1.0 : -1.0));
   double hi = std::max({1.0, std::fabs(lb), std::fabs(Dt), cuts[nc - 1] + 1.0});
   for (int i = 0; i < 2100 && (f(hi) > 0.0 ? 1.0 : -1.0) != limit_sign; ++i) hi *= 2.0;
   for (int i = 0; i < nc; ++i) {
@@ -175,7 +178,8 @@ ScalarRoots scalar_normal(const Potential& normal, const PowerPotential* phi, do
     const double flo = f(lo), fup = f(up);
     if (flo == 0.0 && lo > lb) out.add(lo);
     if (fup == 0.0) out.add(up);
-    if ((flo < 0.0 && fup > 0.0) || (flo > 0.0 && fup < 0.0)) out.add(bisect_root(*phi, a, Dt, lo, up));
+    if ((flo < 0.0 && fup > 0.0) || (flo > 0.0 && fup < 0.0))
+      out.add(bisect_root(*phi, a, Dt, lo, up));
   }
   return out;
 }
@@ -246,8 +250,7 @@ int one_contact_coulomb_modes(const FremondRowsT<N, C>& rows, std::array<Contact
 /// prox_{τφ_N}(z_N − τP_N) < D_NA/2: the same test the residual uses, so the split agrees with
 /// the solver's own convergence, whatever rounding left in D_NE.
 template <int N, int C>
-void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
-                    ImpactResultT<N, C>& out) {
+void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, ImpactResultT<N, C>& out) {
   const auto& cs = *rows.cs;
   out.P_N_reaction.setZero(cs.contacts);
   Rows<N, C> z;
@@ -255,10 +258,9 @@ void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
   for (int k = 0; k < cs.active; ++k) {
     const Potential& phi = rows.law->normal[rows.contact(k)];
     const double lb = rows.lower_bound(k);
-    const bool bound_branch =
-        (!rows.row_has_prox(k) || !std::isfinite(z(k)))
-            ? z(k) <= lb + 64 * kEps * (std::fabs(lb) + std::fabs(z(k)))
-            : phi.prox(z(k) - rows.tau(k) * P(k), rows.tau(k)) < lb;
+    const bool bound_branch = (!rows.row_has_prox(k) || !std::isfinite(z(k)))
+                                  ? z(k) <= lb + 64 * kEps * (std::fabs(lb) + std::fabs(z(k)))
+                                  : phi.prox(z(k) - rows.tau(k) * P(k), rows.tau(k)) < lb;
     if (bound_branch) out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + phi.subgradient(z(k)));
   }
 }
@@ -336,14 +338,16 @@ MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const S
     MethodOutcome n = semismooth_newton(rows, Q, opt);
     if (n.status == SolverStatus::converged) {
       P = Q;
-      n.message = "the exact answer missed the tolerance (ill-conditioned data): polished by "
-                  "semismooth Newton";
+      n.message =
+          "the exact answer missed the tolerance (ill-conditioned data): polished by "
+          "semismooth Newton";
       return n;
     }
   }
   o.status = SolverStatus::stalled;
-  o.message = "the exact answer misses the tolerance (ill-conditioned data) and semismooth Newton "
-              "could not polish it";
+  o.message =
+      "the exact answer misses the tolerance (ill-conditioned data) and semismooth Newton "
+      "could not polish it";
   return o;
 }
 
@@ -466,7 +470,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       o.status = SolverStatus::converged;
       o.criterion = StopCriterion::exact;
       o.message = "one contact inside the tangential dead zone: one exact prox";
-      finish(check_exact(rows, P, opt, o), law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+      finish(check_exact(rows, P, opt, o),
+             law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
       return;
     }
   }
@@ -577,10 +582,10 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                                  \
-  template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,            \
-                              const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&);      \
-  template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,                 \
+#define FREMOND_INSTANTIATE(N, C)                                                            \
+  template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
+                              const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
+  template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
                                    const ImpactResultT<N, C>&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

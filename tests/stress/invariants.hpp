@@ -1,6 +1,6 @@
 #pragma once
-/// @file What every answer of solve_impact must satisfy, whatever the input: the contract the stress
-/// runs (tests/stress) and the fuzz targets (fuzz/) check on every result.
+/// @file What every answer of solve_impact must satisfy, whatever the input: the contract the
+/// stress runs (tests/stress) and the fuzz targets (fuzz/) check on every result.
 ///
 ///  1. the solver ran and says how it ended (status ≠ not_run, a method other than automatic);
 ///  2. every vector has its size (n or c), and no NaN or infinity leaves the library: velocities,
@@ -76,38 +76,54 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   if (r.solver.method == SolverMethod::automatic) return "method left as automatic" + tag;
 
   // 2. Sizes, then finiteness.
-  if (r.qdot_E.size() != n) return "qdot_E has " + std::to_string(r.qdot_E.size()) + " entries" + tag;
-  for (auto [name, size] : {std::pair{"P_N", r.P_N.size()}, {"P_T", r.P_T.size()},
-                            {"D_NA", r.D_NA.size()}, {"D_NE", r.D_NE.size()},
-                            {"D_TA", r.D_TA.size()}, {"D_TE", r.D_TE.size()},
+  if (r.qdot_E.size() != n)
+    return "qdot_E has " + std::to_string(r.qdot_E.size()) + " entries" + tag;
+  for (auto [name, size] : {std::pair{"P_N", r.P_N.size()},
+                            {"P_T", r.P_T.size()},
+                            {"D_NA", r.D_NA.size()},
+                            {"D_NE", r.D_NE.size()},
+                            {"D_TA", r.D_TA.size()},
+                            {"D_TE", r.D_TE.size()},
                             {"takes_part", r.takes_part.size()},
                             {"admissibility.per_contact", r.admissibility.per_contact.size()}})
     if (size != c) return std::string(name) + " has " + std::to_string(size) + " entries" + tag;
   if (r.P_N_reaction.size() != 0 && r.P_N_reaction.size() != c)
     return "P_N_reaction has " + std::to_string(r.P_N_reaction.size()) + " entries" + tag;
   if (r.has_phases)
-    for (auto [name, size] : {std::pair{"P_NC", r.P_NC.size()}, {"P_TC", r.P_TC.size()},
-                              {"D_NC", r.D_NC.size()}, {"D_TC", r.D_TC.size()}})
+    for (auto [name, size] : {std::pair{"P_NC", r.P_NC.size()},
+                              {"P_TC", r.P_TC.size()},
+                              {"D_NC", r.D_NC.size()},
+                              {"D_TC", r.D_TC.size()}})
       if (size != c) return std::string(name) + " has " + std::to_string(size) + " entries" + tag;
 
-  for (auto [name, ok] : {std::pair{"qdot_E", all_finite(r.qdot_E)}, {"P_N", all_finite(r.P_N)},
-                          {"P_T", all_finite(r.P_T)}, {"D_NA", all_finite(r.D_NA)},
-                          {"D_NE", all_finite(r.D_NE)}, {"D_TA", all_finite(r.D_TA)},
-                          {"D_TE", all_finite(r.D_TE)}, {"P_N_reaction", all_finite(r.P_N_reaction)},
+  for (auto [name, ok] : {std::pair{"qdot_E", all_finite(r.qdot_E)},
+                          {"P_N", all_finite(r.P_N)},
+                          {"P_T", all_finite(r.P_T)},
+                          {"D_NA", all_finite(r.D_NA)},
+                          {"D_NE", all_finite(r.D_NE)},
+                          {"D_TA", all_finite(r.D_TA)},
+                          {"D_TE", all_finite(r.D_TE)},
+                          {"P_N_reaction", all_finite(r.P_N_reaction)},
                           {"energy_change", std::isfinite(r.energy_change)},
                           // no_solution: there is no answer whose residual could be measured
                           {"solver.residual", std::isfinite(r.solver.residual) ||
                                                   status == SolverStatus::no_solution}})
     if (!ok) return std::string("not finite: ") + name + tag;
   if (r.has_phases)
-    for (auto [name, ok] : {std::pair{"P_NC", all_finite(r.P_NC)}, {"P_TC", all_finite(r.P_TC)},
-                            {"D_NC", all_finite(r.D_NC)}, {"D_TC", all_finite(r.D_TC)}})
+    for (auto [name, ok] : {std::pair{"P_NC", all_finite(r.P_NC)},
+                            {"P_TC", all_finite(r.P_TC)},
+                            {"D_NC", all_finite(r.D_NC)},
+                            {"D_TC", all_finite(r.D_TC)}})
       if (!ok) return std::string("not finite: ") + name + tag;
   const auto& a = r.admissibility;
-  for (auto [name, v] : {std::pair{"total", a.total}, {"reaction", a.reaction},
-                         {"dissipation", a.dissipation}, {"complementarity", a.complementarity},
-                         {"penetration", a.penetration}, {"tolerance", a.tolerance},
-                         {"violation", a.violation}, {"kinetic_energy_A", a.kinetic_energy_A},
+  for (auto [name, v] : {std::pair{"total", a.total},
+                         {"reaction", a.reaction},
+                         {"dissipation", a.dissipation},
+                         {"complementarity", a.complementarity},
+                         {"penetration", a.penetration},
+                         {"tolerance", a.tolerance},
+                         {"violation", a.violation},
+                         {"kinetic_energy_A", a.kinetic_energy_A},
                          {"fenchel_young_gap", a.fenchel_young_gap},
                          {"energy_change", a.energy_change}})
     if (std::isnan(v)) return std::string("NaN in admissibility.") + name + tag;
@@ -135,11 +151,19 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     const Eigen::LLT<Eigen::MatrixXd> llt(M);
     const Eigen::VectorXd qA = pb.qdot_A, qE = r.qdot_E;
     const Eigen::VectorXd expected = qA + llt.solve(f);
-    auto energy_norm = [&](const Eigen::VectorXd& v) { return std::sqrt(std::max(0.0, v.dot(M * v))); };
-    const double size = energy_norm(qA) + energy_norm(qE) + energy_norm(expected);
+    auto energy_norm = [&](const Eigen::VectorXd& v) {
+      return std::sqrt(std::max(0.0, v.dot(M * v)));
+    };
+    // The percussions' own contributions, |W||P| term by term: where they cancel (repeated rows,
+    // moving obstacles) q̇_E carries their rounding, not that of its (smaller) size.
+    Eigen::VectorXd fabs_ = pb.W_N.cwiseAbs() * Eigen::VectorXd(r.P_N).cwiseAbs();
+    if (pb.has_tangential()) fabs_ += pb.W_T.cwiseAbs() * Eigen::VectorXd(r.P_T).cwiseAbs();
+    const double size =
+        energy_norm(qA) + energy_norm(qE) + energy_norm(expected) + energy_norm(llt.solve(fabs_));
     const double gap = energy_norm(qE - expected);
     // A backward-stable solve errs by up to cond(M)·eps in this norm (relative).
-    const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M, Eigen::EigenvaluesOnly).eigenvalues();
+    const Eigen::VectorXd ev =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M, Eigen::EigenvaluesOnly).eigenvalues();
     const double cond = ev(0) > 0 ? ev(n - 1) / ev(0) : 1e16;
     if (!(gap <= (1e-10 + 64 * (n + 1) * eps * cond) * size))
       return "qdot_E does not match the percussions: |q̇_E − (q̇_A + M⁻¹WP)|_M = " + num(gap) +
@@ -147,10 +171,11 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     for (int i = 0; i < c; ++i) {
       const double wn = pb.w_N.size() ? pb.w_N(i) : 0.0;
       const double dne = pb.W_N.col(i).dot(Eigen::VectorXd(r.qdot_E)) + wn;
-      const double s = pb.W_N.col(i).cwiseAbs().dot(Eigen::VectorXd(r.qdot_E).cwiseAbs()) + std::fabs(wn);
+      const double s =
+          pb.W_N.col(i).cwiseAbs().dot(Eigen::VectorXd(r.qdot_E).cwiseAbs()) + std::fabs(wn);
       if (std::fabs(dne - r.D_NE(i)) > 64 * eps * (n + 1) * s + 1e-300)
-        return "D_NE[" + std::to_string(i) + "] = " + num(r.D_NE(i)) + " but W_Nᵀ q̇_E + w_N = " +
-               num(dne) + tag;
+        return "D_NE[" + std::to_string(i) + "] = " + num(r.D_NE(i)) +
+               " but W_Nᵀ q̇_E + w_N = " + num(dne) + tag;
     }
   }
 
@@ -194,8 +219,8 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   }
 
   if (!(residual <= bound))
-    return "converged but law_residual = " + num(residual) + " > " + num(bound) +
-           " (promised " + num(promised) + ", solver reported " + num(r.solver.residual) + ")" + tag;
+    return "converged but law_residual = " + num(residual) + " > " + num(bound) + " (promised " +
+           num(promised) + ", solver reported " + num(r.solver.residual) + ")" + tag;
   // 6. Frémond: admissible.
   if (law.type == LawType::fremond && !a.admissible)
     return "converged Frémond result not admissible: " + std::string(to_string(a.failed)) +

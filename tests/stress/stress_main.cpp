@@ -19,8 +19,8 @@
 // 1 and large, k = 0, r = 0 and r above every velocity.
 //
 // Each case runs in a child process (fork), so that a solve that never returns or a crash is
-// recorded with its reproducer and the run goes on: --hang SECONDS (60) is the deadline of one case.
-// Every case is solved in the heap-stored form, every other one in the stack-stored form too;
+// recorded with its reproducer and the run goes on: --hang SECONDS (60) is the deadline of one
+// case. Every case is solved in the heap-stored form, every other one in the stack-stored form too;
 // every --methods-every-th also with each method forced (Frémond: semismooth Newton, proximal,
 // NLopt; classical: Lemke, mode enumeration), whose results must satisfy the same contract (a
 // method may fail, but must say so). On every --reference-every-th case the reference checks that
@@ -43,8 +43,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -150,7 +150,8 @@ Args parse(int argc, char** argv) {
   if (const char* env = std::getenv("FREMOND_STRESS_SCALE"); env && *env) {
     char* end = nullptr;
     const double scale = std::strtod(env, &end);
-    if (*end || !(scale > 0.0 && scale <= 1.0)) usage(std::string("FREMOND_STRESS_SCALE: not in (0, 1]: ") + env);
+    if (*end || !(scale > 0.0 && scale <= 1.0))
+      usage(std::string("FREMOND_STRESS_SCALE: not in (0, 1]: ") + env);
     a.count = std::max(1L, static_cast<long>(std::lround(static_cast<double>(a.count) * scale)));
   }
   if (const char* env = std::getenv("FREMOND_STRESS_HANG"); env && *env)
@@ -319,16 +320,18 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     // The library forms G = Wᵀ M⁻¹ W by a Cholesky solve in double precision, accurate to
     // ε κ(M) relative: its answer can be no closer than that to the reference's (κ(M) up to 1e12
     // here), and 1e-7 of the velocity scale otherwise.
-    const Eigen::VectorXd ev =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(pb.M), Eigen::EigenvaluesOnly)
-            .eigenvalues();
+    const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
+                                   Eigen::MatrixXd(pb.M), Eigen::EigenvaluesOnly)
+                                   .eigenvalues();
     const double cond = ev(0) > 0 ? ev(ev.size() - 1) / ev(0) : 1e16;
     const double allowed = std::max(1e-7, 64 * std::numeric_limits<double>::epsilon() * cond);
     if (!(best <= allowed))
       problem = "velocities after impact differ from the reference's by " + fmt(best) +
-                " of the velocity scale (" + std::to_string(sols.size()) + " reference solution(s))";
+                " of the velocity scale (" + std::to_string(sols.size()) +
+                " reference solution(s))";
   }
-  out.line(std::string(problem.empty() ? "R checked " : "R mismatch ") + fmt(best) + "\t" + problem);
+  out.line(std::string(problem.empty() ? "R checked " : "R mismatch ") + fmt(best) + "\t" +
+           problem);
 }
 
 std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
@@ -471,7 +474,8 @@ void tally_line(Tally& t, const std::string& line, const StressCase& sc, const s
       t.worst_reference_error = std::max(t.worst_reference_error, error);
       if (outcome == "mismatch") {
         ++t.reference_mismatch;
-        add_failure(t, known, law, "reference: " + what, label, problem_to_json(sc.problem, sc.law), "");
+        add_failure(t, known, law, "reference: " + what, label, problem_to_json(sc.problem, sc.law),
+                    "");
       }
     }
   }
@@ -539,7 +543,8 @@ void run_in_child(const StressCase& sc, long k, const std::string& law, const st
   t.running.clear();
   if (hung) {
     add_failure(t, known, law,
-                "HANG: the solve" + (method.empty() ? std::string(" (automatic)") : " with --method " + method) +
+                "HANG: the solve" +
+                    (method.empty() ? std::string(" (automatic)") : " with --method " + method) +
                     " did not return within " + fmt(a.hang) + " s (the case was killed)",
                 label + in_solve, repro, method);
   } else if (WIFSIGNALED(status)) {
@@ -567,11 +572,12 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
   }
   const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
 
-  std::printf("%s: %ld problems, %ld solves (%.1f s solving, %.1f s in all); %ld broken invariant(s) "
-              "beside %ld known; reference: %ld checked, %ld mismatch(es), %ld skipped, worst "
-              "velocity error %.3g of the scale\n",
-              name.c_str(), t.problems, t.solves, t.solve_seconds, secs, t.broken, t.broken_known,
-              t.reference_checked, t.reference_mismatch, t.reference_skipped, t.worst_reference_error);
+  std::printf(
+      "%s: %ld problems, %ld solves (%.1f s solving, %.1f s in all); %ld broken invariant(s) "
+      "beside %ld known; reference: %ld checked, %ld mismatch(es), %ld skipped, worst "
+      "velocity error %.3g of the scale\n",
+      name.c_str(), t.problems, t.solves, t.solve_seconds, secs, t.broken, t.broken_known,
+      t.reference_checked, t.reference_mismatch, t.reference_skipped, t.worst_reference_error);
   std::printf("  statuses:");
   for (const auto& [s, n] : t.statuses) std::printf(" %s %ld", s.c_str(), n);
   std::printf("\n  methods:");
@@ -586,7 +592,8 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
   for (const auto& [s, n] : t.inadmissible_by_inequality) std::printf(" [%s %ld]", s.c_str(), n);
   std::printf("; converged and not unique: %ld\n", t.not_unique);
   std::printf("  worst residual / bound: %.3g (%s); slowest solve %.3f s (%s)\n",
-              t.worst_residual_ratio, t.worst_residual_case.c_str(), t.slowest, t.slowest_case.c_str());
+              t.worst_residual_ratio, t.worst_residual_case.c_str(), t.slowest,
+              t.slowest_case.c_str());
   std::size_t shown = 0;
   for (const auto& [kind, f] : t.failures) {
     std::printf("  %s x%ld: %s\n", f.known ? "KNOWN" : "BROKEN", f.count, f.example.c_str());
@@ -636,7 +643,8 @@ int main(int argc, char** argv) {
     bool ran = k.law == "*";
     for (const auto& l : a.laws) ran = ran || l == k.law;
     if (ran && k.seen == 0)
-      std::printf("known issue not seen in this run (fixed?): %s | %s\n", k.law.c_str(), k.text.c_str());
+      std::printf("known issue not seen in this run (fixed?): %s | %s\n", k.law.c_str(),
+                  k.text.c_str());
   }
   std::printf("stress: %s\n", ok ? "PASSED" : "FAILED");
   return ok ? 0 : 1;

@@ -21,7 +21,8 @@ constexpr const char* kPlasticNearLinear = R"json(
 )json";
 
 TEST(AdmissibilityAtRounding, PlasticImpactWithPNearOneIsAdmissible) {
-  const io::ProblemFile f = io::parse_problem_file(kPlasticNearLinear, PotentialRegistry::with_builtins());
+  const io::ProblemFile f =
+      io::parse_problem_file(kPlasticNearLinear, PotentialRegistry::with_builtins());
   for (SolverMethod m : {SolverMethod::automatic, SolverMethod::proximal}) {
     SolverOptions o;
     o.method = m;
