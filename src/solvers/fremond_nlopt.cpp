@@ -7,12 +7,26 @@
 // updated in an outer fixed point (the law is quasi-variational). The percussion follows from the
 // velocities: P_j = −φ'(z_j) on rows where φ is single-valued, and the remaining rows (active
 // reactions, Coulomb) by least squares on W P = 2 M u.
+//
+// A library call must return, and return nothing that is not finite:
+//  - SLSQP only, also with Coulomb. MMA (and CCSAQ, which shares its inner loop) solve a dual
+//    subproblem per iteration whose inner loop has no bound of its own; on the Coulomb epigraph
+//    (objective linear in t, constraints ±z_T − t ≤ 0) it did not return on ~11% of random
+//    Frémond + Coulomb problems (tests/unit/regression_fremond_test.cpp). Every SLSQP iteration
+//    evaluates the objective, and its LSQ subproblem stops after 3n iterations, so the evaluation
+//    budget bounds it.
+//  - The objective and the constraints stop NLopt (nlopt_force_stop) as soon as a value or a
+//    gradient is not finite (a potential k|z|^p overflowing far from the answer), rather than let
+//    NLopt go on from NaN; a wall-clock limit is the last backstop.
+//  - The answer is the best finite iterate (least law residual) over the outer iterations, or no
+//    percussion at all (q̇_E = q̇_A) if none is finite; its status says whether it converged.
 #include <nlopt.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -32,10 +46,20 @@ struct NloptData {
   bool coulomb, tangential;
   VectorX b;  // Coulomb bounds
   const std::vector<int>* contact;
+  nlopt_opt opt = nullptr;  // the running optimiser, to stop it on a non-finite value
+  bool breakdown = false;   // a value or gradient was not finite: NLopt was stopped
 };
+
+// Stops NLopt for good: SLSQP given NaN has no way back (its line search compares with NaN).
+double stop_non_finite(NloptData& d) {
+  d.breakdown = true;
+  if (d.opt) nlopt_force_stop(d.opt);
+  return std::numeric_limits<double>::max();
+}
 
 double objective(unsigned nx, const double* x, double* grad, void* data) {
   auto& d = *static_cast<NloptData*>(data);
+  if (!Eigen::Map<const VectorX>(x, nx).allFinite()) return stop_non_finite(d);
   Eigen::Map<const VectorX> u(x, d.n);
   const VectorX Mu = (*d.M) * u;
   const VectorX z = *d.DA + d.W->transpose() * u;
@@ -57,7 +81,9 @@ double objective(unsigned nx, const double* x, double* grad, void* data) {
     Eigen::Map<VectorX> g(grad, nx);
     g.head(d.n) = 2.0 * Mu + (*d.W) * gz;
     if (d.coulomb) g.tail(d.a) = d.b;
+    if (!g.allFinite()) return stop_non_finite(d);
   }
+  if (!std::isfinite(f)) return stop_non_finite(d);
   return f;
 }
 
@@ -66,6 +92,12 @@ void constraints(unsigned m, double* result, unsigned nx, const double* x, doubl
                  void* data) {
   auto& d = *static_cast<NloptData*>(data);
   Eigen::Map<const VectorX> u(x, d.n);
+  if (!Eigen::Map<const VectorX>(x, nx).allFinite()) {
+    std::fill(result, result + m, 0.0);
+    if (grad) std::fill(grad, grad + m * nx, 0.0);
+    stop_non_finite(d);
+    return;
+  }
   if (grad) std::fill(grad, grad + m * nx, 0.0);
   for (int k = 0; k < d.a; ++k) {
     result[k] = -((*d.DA)(k) + 2.0 * d.W->col(k).dot(u));
@@ -168,9 +200,16 @@ bool polish(NloptData& d, VectorX& u, double v_scale) {
 
 }  // namespace
 
+// The wall-clock backstop of one NLopt solve. Never the intended stop: the evaluation budget
+// bounds SLSQP (about 1e5 evaluations per second on the small problems of an impact); it only keeps
+// a library call from running for ever should an NLopt algorithm loop without evaluating.
+constexpr double kNloptSeconds = 10.0;
+
 template <int N, int C>
 MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
                                    typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(kNloptSeconds);
   const auto& cs = *rows.cs;
   MethodOutcome o;
   const int n = cs.dofs, a = cs.active, r = cs.rows();
@@ -192,75 +231,115 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
               &contact};
   const int nx = n + (rows.coulomb ? a : 0);
   const int m = a + (rows.coulomb ? 2 * a : 0);
+  // Whether q̇_E = q̇_A + M⁻¹WP is determined by P in double precision. Far from the answer
+  // (a potential k|z|^p with p ~ 30 at large z) the least-squares recovery below can give
+  // percussions of 1e22 whose velocity change cancels to 1e7: finite, but q̇_E then no longer
+  // follows from P beyond its rounding ε Σ|M⁻¹W||P|. Such an iterate is not an answer.
+  auto resolved = [&](const VectorX& Pc) {
+    if (Pc.size() != r || !Pc.allFinite()) return false;
+    const VectorX dq = cs.MinvW * Pc;
+    const double rounding = std::numeric_limits<double>::epsilon() *
+                            (cs.MinvW.cwiseAbs() * Pc.cwiseAbs()).maxCoeff();
+    const double size = pb.qdot_A.cwiseAbs().maxCoeff() + dq.cwiseAbs().maxCoeff();
+    return dq.allFinite() && rounding <= 1e-11 * size;
+  };
+  // The percussion given (an earlier method's last iterate), kept as the answer of last resort.
+  const VectorX P_given = P;
+  const bool given_usable = resolved(P_given);
   // Start from the given percussion's velocities (u = M⁻¹WP/2); without one, from the plastic
   // impact (every contact that takes part stopped, D_NE = 0: λ solves G_NN λ = −D_NA), which is
   // feasible: SLSQP started at an infeasible point can stop there on its step tolerance.
   std::vector<double> x(nx, 0.0);
   {
     VectorX u0;
-    if (P.size() == r && P.allFinite() && P.cwiseAbs().maxCoeff() > 0.0) {
-      u0 = 0.5 * (cs.MinvW * P);
+    if (given_usable && P_given.cwiseAbs().maxCoeff() > 0.0) {
+      u0 = 0.5 * (cs.MinvW * P_given);
     } else {
       const MatrixX GNN = cs.G.topLeftCorner(a, a);
       const VectorX lambda = GNN.completeOrthogonalDecomposition().solve(-DA.head(a));
       u0 = 0.5 * (cs.MinvW.leftCols(a) * lambda);
     }
-    const VectorX y0 = L.transpose() * u0;
+    VectorX y0 = L.transpose() * u0;
+    if (!y0.allFinite()) y0.setZero();  // u = 0 (no percussion) is finite, if not feasible
     for (int i = 0; i < n; ++i) x[i] = y0(i);
   }
   const double target = opt.nlopt_tolerance * cs.v_scale;
+  // The percussion from the velocities, and the law's residual there.
+  auto recover = [&](const VectorX& u, VectorX& Pout) {
+    const VectorX z = DA + W.transpose() * u;
+    const VectorX rhs = 2.0 * (M * u);
+    std::vector<int> free_rows;
+    VectorX known = VectorX::Zero(r);
+    for (int j = 0; j < r; ++j) {
+      const bool normal = j < a;
+      const double lb = normal ? 0.5 * DA(j) : 0.0;
+      const bool at_bound = normal && z(j) <= lb + 1e-9 * cs.v_scale;
+      if (at_bound || (!normal && rows.coulomb)) {
+        free_rows.push_back(j);
+      } else {
+        const Potential& pot = normal ? rows.law->normal[contact[j]]
+                                      : rows.law->tangential_potential[contact[j - a]];
+        known(j) = -pot.subgradient(z(j));
+      }
+    }
+    Pout = known;
+    if (!free_rows.empty()) {
+      MatrixX Wf(n, free_rows.size());
+      for (std::size_t i = 0; i < free_rows.size(); ++i) Wf.col(i) = W.col(free_rows[i]);
+      const VectorX sol = Wf.completeOrthogonalDecomposition().solve(rhs - W * known);
+      for (std::size_t i = 0; i < free_rows.size(); ++i) Pout(free_rows[i]) = sol(i);
+    }
+    if (!resolved(Pout)) return std::numeric_limits<double>::infinity();
+    typename FremondRowsT<N, C>::Rows Pr = Pout, zr, R;
+    return rows.residual(Pr, zr, R);
+  };
   int evaluations = 0;
-  VectorX Pv = VectorX::Zero(r);
+  bool breakdown = false, out_of_time = false, out_of_budget = false, settled = !rows.coulomb;
+  // The best finite iterate over the outer iterations (least residual of the law).
+  VectorX P_best;
+  double best = std::numeric_limits<double>::infinity();
+  nlopt_result code = NLOPT_FAILURE;
   for (int outer = 0; outer < (rows.coulomb ? 100 : 1); ++outer) {
-    // SLSQP for smooth potentials; with Coulomb's epigraph variables (linear in t, no curvature)
-    // SLSQP's quasi-Newton model stalls at the previous fixed point's answer, MMA does not.
-    nlopt_opt solver = nlopt_create(rows.coulomb ? NLOPT_LD_MMA : NLOPT_LD_SLSQP, nx);
+    const double seconds_left =
+        std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (seconds_left <= 0.0) {
+      out_of_time = true;
+      break;
+    }
+    // SLSQP in every case (see the file comment for why not MMA): with Coulomb, its
+    // constraints ±z_T − t ≤ 0 are linear, which its LSQ subproblem takes exactly.
+    nlopt_opt solver = nlopt_create(NLOPT_LD_SLSQP, nx);
+    d.opt = solver;
+    d.breakdown = false;
     nlopt_set_min_objective(solver, objective, &d);
-    std::vector<double> ctol(m, 0.0);
+    // SLSQP returns its best *feasible* point. On an active constraint its iterates are off by
+    // the rounding of z = D_A + Wᵀu (a few ε of the velocities): with a tolerance of 0 every one
+    // of them counts as infeasible and SLSQP hands back its start (with Coulomb: the previous
+    // fixed point's answer, whatever b now is). The polish below and the law's residual, not this
+    // tolerance, decide the answer's accuracy.
+    std::vector<double> ctol(m, 1e-12 * cs.v_scale);
     nlopt_add_inequality_mconstraint(solver, m, constraints, &d, ctol.data());
     nlopt_set_xtol_rel(solver, 1e-15);
     nlopt_set_maxeval(solver, std::max(1, opt.max_nlopt_evaluations - evaluations));
+    nlopt_set_maxtime(solver, seconds_left);
     if (rows.coulomb) {
       const VectorX zt = DA.tail(a) + Wy.rightCols(a).transpose() *
                                            Eigen::Map<const VectorX>(x.data(), n);
       for (int k = 0; k < a; ++k) x[n + k] = std::fabs(zt(k));
     }
+    const std::vector<double> x_start = x;
     double f = 0.0;
-    const nlopt_result code = nlopt_optimize(solver, x.data(), &f);
+    code = nlopt_optimize(solver, x.data(), &f);
     evaluations += nlopt_get_numevals(solver);
     nlopt_destroy(solver);
-    o.native_code = static_cast<int>(code);
-    // The percussion from the velocities, and the law's residual there.
-    auto recover = [&](const VectorX& u, VectorX& Pout) {
-      const VectorX z = DA + W.transpose() * u;
-      const VectorX rhs = 2.0 * (M * u);
-      std::vector<int> free_rows;
-      VectorX known = VectorX::Zero(r);
-      for (int j = 0; j < r; ++j) {
-        const bool normal = j < a;
-        const double lb = normal ? 0.5 * DA(j) : 0.0;
-        const bool at_bound = normal && z(j) <= lb + 1e-9 * cs.v_scale;
-        if (at_bound || (!normal && rows.coulomb)) {
-          free_rows.push_back(j);
-        } else {
-          const Potential& pot = normal ? rows.law->normal[contact[j]]
-                                        : rows.law->tangential_potential[contact[j - a]];
-          known(j) = -pot.subgradient(z(j));
-        }
-      }
-      Pout = known;
-      if (!free_rows.empty()) {
-        MatrixX Wf(n, free_rows.size());
-        for (std::size_t i = 0; i < free_rows.size(); ++i) Wf.col(i) = W.col(free_rows[i]);
-        const VectorX sol = Wf.completeOrthogonalDecomposition().solve(rhs - W * known);
-        for (std::size_t i = 0; i < free_rows.size(); ++i) Pout(free_rows[i]) = sol(i);
-      }
-      typename FremondRowsT<N, C>::Rows Pr = Pout, zr, R;
-      return rows.residual(Pr, zr, R);
-    };
+    d.opt = nullptr;
+    breakdown = breakdown || d.breakdown;
+    // SLSQP hands back its best feasible point; should that not be finite, its start.
+    if (!Eigen::Map<const VectorX>(x.data(), nx).allFinite()) x = x_start;
     VectorX u = Eigen::Map<const VectorX>(x.data(), n);  // y
+    VectorX Pv;
     double res = recover(to_u(u), Pv);
-    if (std::isfinite(res) || u.allFinite()) {
+    if (u.allFinite()) {
       VectorX up = u, Pp;
       if (polish(d, up, cs.v_scale)) {
         const double resp = recover(to_u(up), Pp);
@@ -271,31 +350,67 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
         }
       }
     }
-    if (!rows.coulomb) break;
+    if (std::isfinite(res) && res < best) {
+      best = res;
+      P_best = Pv;
+    }
+    if (code == NLOPT_MAXTIME_REACHED) out_of_time = true;
+    if (code == NLOPT_MAXEVAL_REACHED || evaluations >= opt.max_nlopt_evaluations)
+      out_of_budget = true;
+    if (!rows.coulomb || out_of_time || out_of_budget || !std::isfinite(res)) break;
     VectorX bnew(a);
     for (int k = 0; k < a; ++k) bnew(k) = rows.law->mu[contact[k]] * std::fabs(Pv(k));
     const double change = (bnew - d.b).cwiseAbs().maxCoeff();
     d.b = bnew;
-    if (change <= 1e-14 * (bnew.cwiseAbs().maxCoeff() + 1e-300)) break;
-    if (evaluations >= opt.max_nlopt_evaluations) break;
+    if (change <= 1e-14 * (bnew.cwiseAbs().maxCoeff() + 1e-300)) {
+      settled = true;
+      break;
+    }
   }
-  P = Pv;
-  typename FremondRowsT<N, C>::Rows zr, R;
-  o.residual = rows.residual(P, zr, R);
+  o.native_code = static_cast<int>(code);
   o.iterations = evaluations;
   o.criterion = StopCriterion::nlopt;
-  if (!std::isfinite(o.residual)) {
+  typename FremondRowsT<N, C>::Rows zr, R;
+  if (P_best.size() != r) {
+    // No finite (and resolved) iterate at all: the given percussion if it is one, else none
+    // (q̇_E = q̇_A). Either way q̇_E follows from P (q̇_E = q̇_A + M⁻¹WP, the stress invariant)
+    // and nothing non-finite leaves the library.
+    if (given_usable) P = P_given;
+    else P.setZero(r);
+    o.residual = rows.residual(P, zr, R);
+    if (!std::isfinite(o.residual)) o.residual = std::numeric_limits<double>::max();
     o.status = SolverStatus::failed;
-    o.message = "NLopt: the answer is not finite";
-  } else if (rows.converged(P, R, target)) {
+    o.message = given_usable
+                    ? "NLopt: no usable iterate; the percussion given to it is returned"
+                    : "NLopt: no usable iterate; no percussion is returned (qdot_E = qdot_A)";
+    return o;
+  }
+  P = P_best;
+  o.residual = rows.residual(P, zr, R);
+  if (rows.converged(P, R, target)) {
     o.status = SolverStatus::converged;
     o.message = "NLopt (SLSQP) converged to the NLopt tolerance";
-  } else if (o.native_code == NLOPT_MAXEVAL_REACHED) {
+  } else if (breakdown) {
+    o.status = SolverStatus::failed;
+    o.message = "NLopt: a value or gradient of the objective was not finite (overflow far from the "
+                "answer); stopped, the best finite iterate is returned";
+  } else if (out_of_time) {
     o.status = SolverStatus::max_iterations;
-    o.message = "NLopt: evaluation budget exhausted above tolerance";
+    o.message = "NLopt: time limit reached above tolerance; the best finite iterate is returned";
+  } else if (out_of_budget) {
+    o.status = SolverStatus::max_iterations;
+    o.message = "NLopt: evaluation budget exhausted above tolerance; the best finite iterate is "
+                "returned";
+  } else if (!settled) {
+    // Coulomb's bound b = μ|P_N| cycles (e.g. between stick with P_N = 0 and slip with P_N > 0
+    // where the law may have no solution): the rounds are bounded, the answer says so.
+    o.status = SolverStatus::stalled;
+    o.message = "NLopt: the fixed point on Coulomb's bound b = mu|P_N| did not settle; the best "
+                "finite iterate is returned";
   } else {
     o.status = SolverStatus::stalled;
-    o.message = "NLopt stopped with the residual above tolerance";
+    o.message = "NLopt stopped with the residual above tolerance; the best finite iterate is "
+                "returned";
   }
   return o;
 }
