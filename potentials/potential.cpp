@@ -9,11 +9,39 @@
 
 namespace fremond {
 
+namespace {
+
+// prox_{τφ} is nondecreasing and 1-Lipschitz, and its limit at ±∞ is the end of dom φ on that side
+// (the quadratic term pulls y outwards without bound): ±∞ when φ is finite out to the largest
+// double, else the boundary of the domain, found by bisection between a point of the domain and the
+// largest double. Potential::do_prox's bracket expansion cannot start from an infinite x (it would
+// form ∞ − ∞ and answer NaN or a point outside the domain).
+double prox_at_infinity(const Potential& phi, double x, double tau, double* dprox) {
+  auto in_domain = [&](double y) { return !phi.subdifferential(y).is_empty(); };
+  const double far = std::copysign(std::numeric_limits<double>::max(), x);
+  if (in_domain(far)) {
+    if (dprox) *dprox = 1.0;  // conservative element, as where the bisection lands on the root
+    return x;
+  }
+  double in = phi.prox(0.0, tau), out = far;  // a prox lies in the domain
+  for (int i = 0; i < 2200; ++i) {
+    const double mid = 0.5 * in + 0.5 * out;  // no overflow, unlike 0.5 * (in + out)
+    if (mid == in || mid == out) break;
+    (in_domain(mid) ? in : out) = mid;
+  }
+  if (dprox) *dprox = 0.0;  // the prox is constant (the domain's end) near ±∞
+  return in;
+}
+
+}  // namespace
+
 Interval Potential::subdifferential(double z) const { return do_subdifferential(z); }
 
 double Potential::prox(double x, double tau, double* dprox) const {
   if (!(tau > 0.0) || !std::isfinite(tau))
     throw InvalidArgument("tau", "the prox step must be positive and finite, got " + detail::format_number(tau));
+  // ±∞ is accepted: every do_prox answers the limit of the prox there, which is well defined (the
+  // prox is monotone), so a solver's diverging iterate gives a number and not an exception.
   if (std::isnan(x)) throw InvalidArgument("x", "the prox argument is NaN");
   const auto caps = do_capabilities();
   if (!caps.prox && !caps.subdifferential)
@@ -45,6 +73,7 @@ double Potential::do_conjugate(double) const {
 // bracket grows geometrically from x: the root lies between x and the point where the subgradient
 // changes sign, i.e. inside [x − τ|g(x)| − 1, x + τ|g(x)| + 1] widened until it brackets.
 double Potential::do_prox(double x, double tau, double* dprox) const {
+  if (std::isinf(x)) return prox_at_infinity(*this, x, tau, dprox);
   auto sign_at = [&](double y) {  // −1: y below the root, +1: above, 0: y is the root
     const Interval sd = do_subdifferential(y);
     if (sd.is_empty()) {

@@ -30,6 +30,7 @@ double PowerPotential::do_subgradient(double z) const {
 
 double PowerPotential::do_prox(double x, double tau, double* dprox) const {
   // y + τk y|y|^{p−2} = x: y has the sign of x and |y| is the root of t + τk t^{p−1} = |x|.
+  // x = ±∞ gives ±∞, the limit of the prox of a potential finite on the whole line (power_root).
   const double t = detail::power_root(tau * k_, p_ - 1.0, std::fabs(x), dprox);
   return std::copysign(t, x);
 }

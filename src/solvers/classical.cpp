@@ -123,14 +123,18 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   out.solver.criterion = StopCriterion::exact;
   out.solver.iterations = lo.pivots;
   out.solver.fallbacks = lo.fallbacks;
+  // The residual of the state reported, as for any other result: no NaN leaves the library, and
+  // a failure's residual says how far "no percussion" is from the law.
+  out.solver.residual = classical_residual(pb, law, out);
   if (lo.exhaustive) {
     out.solver.status = SolverStatus::no_solution;
     out.solver.message = "no solution: no contact mode satisfies the law";
   } else {
     out.solver.status = SolverStatus::failed;
     out.solver.message =
-        "Lemke's method ended on a secondary ray; with friction on more than 3 contacts no "
-        "enumeration settles whether a solution exists";
+        "Lemke's method stopped without a solution (a secondary ray, or its pivot budget); with "
+        "friction on more than 3 contacts no enumeration settles whether a solution exists. The "
+        "state before the impact (no percussion) is returned, with its residual";
   }
 }
 

@@ -14,9 +14,9 @@ namespace fremond {
 namespace {
 
 // Newton + Coulomb on four contacts of a 2-dof body with μ up to 1e8: Lemke ends on a secondary
-// ray and the result says `failed` (fair: no enumeration decides existence beyond 3 contacts), but
-// its residual is NaN. No NaN may leave the library, whatever the status. 10 of 1,700 solves.
-TEST(RegressionClassical, DISABLED_LemkeOnASecondaryRayLeavesNoNaN) {
+// ray and the result says `failed` (fair: no enumeration decides existence beyond 3 contacts). Its
+// residual was left NaN; it is now that of the state returned (no percussion). 10 of 1,700 solves.
+TEST(RegressionClassical, LemkeOnASecondaryRayLeavesNoNaN) {
   ImpactProblem pb;
   pb.M.resize(2, 2);
   pb.M << 4049.7525678023417, -2452.0210720821869, -2452.0210720821869, 1484.6456839873529;
@@ -34,9 +34,10 @@ TEST(RegressionClassical, DISABLED_LemkeOnASecondaryRayLeavesNoNaN) {
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
 }
 
-// The public prox accepts an infinite argument (it refuses NaN only) and answers NaN for the
-// power law: either refuse ±∞ as it refuses NaN, naming "x", or return ±∞.
-TEST(RegressionPotentials, DISABLED_PowerProxOfAnInfiniteArgumentIsNotNaN) {
+// The public prox accepts an infinite argument (it refuses NaN only) and answered NaN for the
+// power law. Its answer there is the limit of the prox: the end of the potential's domain on that
+// side, ±∞ for a potential finite on the whole line; the derivative is a number in [0, 1].
+TEST(RegressionPotentials, PowerProxOfAnInfiniteArgumentIsNotNaN) {
   const PowerPotential power(2.0, 3.0);
   for (double x : {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
     try {
@@ -44,6 +45,49 @@ TEST(RegressionPotentials, DISABLED_PowerProxOfAnInfiniteArgumentIsNotNaN) {
     } catch (const InvalidArgument& e) {
       EXPECT_EQ(e.name(), "x");
     }
+  }
+}
+
+// The same for every built-in potential, with the closed forms and the generic bisection (sum).
+TEST(RegressionPotentials, ProxOfAnInfiniteArgumentIsItsLimit) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const PowerPotential p15(2.0, 1.5), p2(2.0, 2.0), p3(2.0, 3.0), p7(0.5, 7.0), zero_k(0.0, 3.0);
+  const DeadZonePowerPotential dz2(3.0, 2.0, 0.5), dz4(3.0, 4.0, 0.5);
+  const AbsoluteValuePotential absval(1.5);
+  const IndicatorPotential nonneg(false), nonpos(true);
+  const SumPotential sum(p3, absval), bounded(p3, nonneg);
+  const ScaledPotential scaled(2.5, p3), scaled_sum(2.5, bounded);
+  struct Case {
+    const Potential* phi;
+    double at_plus, at_minus;  // prox(+∞), prox(−∞)
+  };
+  for (const Case& k : {Case{&p15, inf, -inf}, Case{&p2, inf, -inf}, Case{&p3, inf, -inf},
+                        Case{&p7, inf, -inf}, Case{&zero_k, inf, -inf}, Case{&dz2, inf, -inf},
+                        Case{&dz4, inf, -inf}, Case{&absval, inf, -inf}, Case{&nonneg, inf, 0.0},
+                        Case{&nonpos, 0.0, -inf}, Case{&sum, inf, -inf}, Case{&bounded, inf, 0.0},
+                        Case{&scaled, inf, -inf}, Case{&scaled_sum, inf, 0.0}}) {
+    for (double tau : {1e-8, 1.0, 1e8}) {
+      double d_plus = -1.0, d_minus = -1.0;
+      EXPECT_EQ(k.phi->prox(inf, tau, &d_plus), k.at_plus) << k.phi->describe() << " tau " << tau;
+      EXPECT_EQ(k.phi->prox(-inf, tau, &d_minus), k.at_minus) << k.phi->describe() << " tau " << tau;
+      EXPECT_TRUE(d_plus >= 0.0 && d_plus <= 1.0) << k.phi->describe() << ": " << d_plus;
+      EXPECT_TRUE(d_minus >= 0.0 && d_minus <= 1.0) << k.phi->describe() << ": " << d_minus;
+    }
+  }
+  // The closed forms give the derivative's limit: 1/(1 + τk(p − 1)|y|^{p−2}) as |y| → ∞.
+  double d = -1.0;
+  (void)p15.prox(inf, 1.0, &d);
+  EXPECT_EQ(d, 1.0);
+  (void)p2.prox(inf, 1.0, &d);
+  EXPECT_DOUBLE_EQ(d, 1.0 / 3.0);
+  (void)p3.prox(-inf, 1.0, &d);
+  EXPECT_EQ(d, 0.0);
+  // NaN is still refused.
+  try {
+    (void)p3.prox(std::numeric_limits<double>::quiet_NaN(), 1.0);
+    ADD_FAILURE() << "prox(NaN) accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "x");
   }
 }
 

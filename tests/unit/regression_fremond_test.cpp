@@ -214,11 +214,11 @@ TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
 
 // --- The public API given a result of the wrong shape.
 
-// law_residual(problem, Frémond law, result) indexes the result's P_N and P_T by contact without
-// checking their sizes: a default-constructed result (or one of another problem) reads past the
-// end (a crash here). It should refuse it (InvalidArgument naming "result") or return infinity, as
-// the classical laws' residual does.
-TEST(RegressionFremond, DISABLED_LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
+// law_residual(problem, Frémond law, result) indexed the result's P_N and P_T by contact without
+// checking their sizes: a default-constructed result (or one of another problem) was read past the
+// end (a crash here). It refuses it, naming "result" and the sizes; the classical laws' residual
+// answers infinity (tests/unit/api_validation_test.cpp).
+TEST(RegressionFremond, LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
   ImpactProblem pb = make(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 1, -0.5),
                           Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, -2, 0.5));
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(6.0, 2.0));
@@ -229,6 +229,26 @@ TEST(RegressionFremond, DISABLED_LawResidualOfAResultOfTheWrongShapeIsNotACrash)
       EXPECT_FALSE(e.name().empty());
     }
   }));
+  // Every variant of Frémond's law, with P_N or P_T alone of the wrong size: refused, saying which.
+  const ImpactResult r = solve_impact(pb, law);
+  ImpactResult long_n = r, short_t = r;
+  long_n.P_N.resize(2);
+  long_n.P_N.setZero();
+  short_t.P_T.resize(0);
+  for (const ImpactLaw& l : {law, ImpactLaw::fremond(PowerPotential(6.0, 2.0), PowerPotential(1.0, 2.0)),
+                             ImpactLaw::fremond_coulomb(PowerPotential(6.0, 2.0), 0.3)}) {
+    for (const auto& [bad, why] : {std::pair{&long_n, "P_N has 2 entries, the problem has 1 contacts"},
+                                   std::pair{&short_t, "P_T has 0 entries, the problem has 1 contacts"}}) {
+      try {
+        (void)law_residual(pb, l, *bad);
+        ADD_FAILURE() << l.describe() << ": a result of the wrong shape is accepted";
+      } catch (const InvalidArgument& e) {
+        EXPECT_EQ(e.name(), "result");
+        EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      }
+    }
+    EXPECT_LE(law_residual(pb, l, solve_impact(pb, l)), 1e-8) << l.describe();
+  }
 }
 
 // Where the library keeps every contact space vector empty (no contact takes part), its Cholesky

@@ -75,8 +75,9 @@ class Potential {
   /// One element of ∂φ(z) (the one of least magnitude where the interval is known).
   double subgradient(double z) const { return do_subgradient(z); }
   /// prox_{τφ}(x) for τ > 0; `dprox`, when not null, receives an element of the Clarke derivative of
-  /// the map x ↦ prox_{τφ}(x), a number in [0, 1].
-  /// Throws InvalidArgument when τ ≤ 0 or not finite, or when the potential has no prox.
+  /// the map x ↦ prox_{τφ}(x), a number in [0, 1]. At x = ±∞ the answer is the limit of the prox:
+  /// the end of dom φ on that side (±∞ for a potential finite on the whole line).
+  /// Throws InvalidArgument when τ ≤ 0 or not finite, when x is NaN, or when the potential has no prox.
   double prox(double x, double tau, double* dprox = nullptr) const;
   /// φ*(s); +∞ outside its domain. Throws InvalidArgument when the conjugate is not known.
   double conjugate(double s) const;

@@ -13,7 +13,14 @@ namespace fremond::detail {
 /// it, with no overshoot and no bracketing; the start is within a factor 2^{1/m} of the root, so a few
 /// steps suffice for every m. Overflow is impossible: every iterate satisfies a t^m ≤ b.
 /// The derivative uses a t^m = b − t: dt/db = 1/(1 + a m t^{m−1}) = t/(t + m(b − t)).
+/// b = +∞ gives the limit t = +∞ (the root grows without bound with b), with dt/db its limit: the
+/// closed forms and the Newton steps would form ∞ − ∞ there.
 inline double power_root(double a, double m, double b, double* dtdb = nullptr) {
+  if (std::isinf(b) && b > 0.0) {
+    // 1/(1 + a m t^{m−1}) as t → ∞: 1 without the power term or for m < 1, 1/(1 + a) for m = 1.
+    if (dtdb) *dtdb = (a == 0.0 || m < 1.0) ? 1.0 : (m == 1.0 ? 1.0 / (1.0 + a) : 0.0);
+    return b;
+  }
   if (b <= 0.0) {
     if (dtdb) *dtdb = (a == 0.0) ? 1.0 : (m < 1.0 ? 0.0 : (m == 1.0 ? 1.0 / (1.0 + a) : 1.0));
     return 0.0;
