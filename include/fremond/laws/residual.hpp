@@ -13,8 +13,8 @@ namespace fremond {
 ///  - Newton: min(D_NE + e D_NA, P_N·g) with Coulomb's natural map on (P_T, D_TE).
 ///  - Poisson: the same per phase (needs the phases in `result`).
 /// Velocities are recomputed from the percussions, so a result whose q̇_E and P disagree fails too.
-/// A result whose P_N or P_T is not of the problem's contact count is no answer: +inf for the
-/// classical laws, InvalidArgument("result") for Frémond's law (whose rows cannot be formed).
+/// A result whose P_N or P_T is not of the problem's contact count is refused with
+/// InvalidArgument("result") naming the sizes, for every law.
 template <int MaxDofs, int MaxContacts>
 double law_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
                     const ImpactResultT<MaxDofs, MaxContacts>& result);
