@@ -20,8 +20,10 @@ struct SolverOptions {
   int max_iterations = 100;
   /// Proximal iterations. Range ≥ 1.
   int max_proximal_iterations = 200000;
-  /// NLopt function evaluations. Range ≥ 1.
-  int max_nlopt_evaluations = 200000;
+  /// NLopt function evaluations (shared by Coulomb's outer rounds). Range ≥ 1. NLopt is the last
+  /// resort; SLSQP that has not converged in 2e4 evaluations (about 0.2 s on a small problem) is
+  /// stuck on a non-smooth point, so a larger budget buys time, not answers.
+  int max_nlopt_evaluations = 20000;
   /// Admissibility tolerance, relative to the kinetic energy before the impact: an inequality
   /// X ≥ 0 is taken as violated when X < −admissibility_tolerance · max(T_A, tiny). Range [0, 1).
   double admissibility_tolerance = 1e-9;
