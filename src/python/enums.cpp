@@ -31,7 +31,7 @@ void bind_enums(py::module_& m) {
                &solver_method_from_string);
   using C = StopCriterion;
   bind_enum<C>(m, "StopCriterion", doc::kStopCriterion,
-               {C::none, C::exact, C::residual, C::step, C::iterations, C::nlopt},
+               {C::none, C::exact, C::residual, C::step, C::iterations, C::nlopt, C::rounding},
                &stop_criterion_from_string);
   using I = Inequality;
   bind_enum<I>(m, "Inequality", doc::kInequality,

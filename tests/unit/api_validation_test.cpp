@@ -394,3 +394,20 @@ TEST(ApiValidation, ProblemFileRefusesNumbersADoubleCannotHold) {
 
 }  // namespace
 }  // namespace fremond
+
+namespace fremond {
+namespace {
+
+// Every stopping criterion has a name the CLI and the bindings print and read back; an unknown
+// name is refused naming the accepted ones.
+TEST(ApiValidation, StopCriterionNamesRoundTrip) {
+  for (StopCriterion c : {StopCriterion::none, StopCriterion::exact, StopCriterion::residual,
+                          StopCriterion::step, StopCriterion::iterations, StopCriterion::nlopt,
+                          StopCriterion::rounding})
+    EXPECT_EQ(stop_criterion_from_string(to_string(c)), c) << to_string(c);
+  EXPECT_EQ(to_string(StopCriterion::rounding), "rounding");
+  EXPECT_THROW((void)stop_criterion_from_string("roundoff"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace fremond
