@@ -45,25 +45,28 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
     }
     return fx;
   };
+  // s ∈ ∂φ(z), tested on the subdifferential, which is monotone: s within ds of ∂φ over
+  // [z − dz, z + dz]. The same statement as a zero gap (SPEC §3), used where the values cannot
+  // tell: φ* too steep for double precision (p = 1.0001: conjugate exponent 10⁴, so its value
+  // within ds of s spans hundreds of orders of magnitude), or overflowing (|s|^p' > 1e308).
+  auto subdifferential_miss = [&] {
+    const Interval lo = phi.subdifferential(z - dz), hi = phi.subdifferential(z + dz);
+    if (lo.is_empty() || hi.is_empty()) return std::numeric_limits<double>::infinity();
+    const Interval hull{lo.lo, hi.hi};
+    return std::max(0.0, hull.distance(s) - ds) /
+           (std::fabs(s) + std::fabs(hull.lo) + std::fabs(hull.hi) + ds + 1e-300);
+  };
   const double fz = on_domain([&](double x) { return phi.value(x); }, z, dz);
   const double fs = on_domain([&](double x) { return phi.conjugate(x); }, s, ds);
-  if (!std::isfinite(fz) || !std::isfinite(fs)) return std::numeric_limits<double>::infinity();
+  if (!std::isfinite(fz) || !std::isfinite(fs) || !std::isfinite(s * z))
+    return subdifferential_miss();
   const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) +
                        change_within([&](double x) { return phi.conjugate(x); }, s, ds) +
                        dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
   const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
   if (gap == 0.0) return 0.0;
-  // Where φ* is too steep for double precision (p = 1.0001: conjugate exponent 10⁴, so its value
-  // within ds of s spans hundreds of orders of magnitude) the gap's noise cannot be bounded from
-  // values. The same statement, s ∈ ∂φ(z) (zero gap exactly then, SPEC §3), is then tested on the
-  // subdifferential, which is monotone: s within ds of ∂φ over [z − dz, z + dz].
-  const Interval lo = phi.subdifferential(z - dz), hi = phi.subdifferential(z + dz);
-  if (lo.is_empty() || hi.is_empty()) return gap;
-  const Interval hull{lo.lo, hi.hi};
-  const double miss = std::max(0.0, hull.distance(s) - ds) /
-                      (std::fabs(s) + std::fabs(hull.lo) + std::fabs(hull.hi) + ds + 1e-300);
-  return std::min(gap, miss);
+  return std::min(gap, subdifferential_miss());
 }
 
 }  // namespace

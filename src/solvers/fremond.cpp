@@ -351,6 +351,26 @@ MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const S
   return o;
 }
 
+/// Keeps the candidates of the mode enumeration that satisfy the law to the shared stopping test
+/// (after check_exact's polish): a degenerate mode (W_T = W_N, g ≈ 0) can produce percussions of
+/// 1e23 that cancel in exact arithmetic only. A dropped candidate makes the list non-exhaustive.
+template <int N, int C>
+int keep_resolved(const FremondRowsT<N, C>& rows, std::array<ContactSolution, 16>& sols, int n,
+                  const SolverOptions& opt, bool* exhaustive) {
+  int kept = 0;
+  for (int s = 0; s < n; ++s) {
+    Rows<N, C> P(2);
+    P << sols[s].PN, sols[s].PT;
+    MethodOutcome o;
+    o.status = SolverStatus::converged;
+    o.criterion = StopCriterion::exact;
+    if (check_exact(rows, P, opt, o).status == SolverStatus::converged)
+      sols[kept++] = ContactSolution{P(0), P(1)};
+  }
+  if (kept < n) *exhaustive = false;
+  return kept;
+}
+
 template <int N, int C>
 void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, const SolverOptions& opt,
                    ImpactResultT<N, C>& out) {
@@ -431,7 +451,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       (automatic || want == SolverMethod::mode_enumeration)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
-    const int n = one_contact_coulomb_modes(rows, sols, &exhaustive);
+    const int n =
+        keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt, &exhaustive);
     if (n > 0 || exhaustive) {
       MethodOutcome o;
       o.criterion = StopCriterion::exact;
@@ -566,7 +587,8 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
   if (cs.active == 1 && rows.coulomb && law_has_prox(law) && !decoupled(cs)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
-    const int n = one_contact_coulomb_modes(rows, sols, &exhaustive);
+    const int n =
+        keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt, &exhaustive);
     for (int s = 0; s < n; ++s) {
       ImpactResult r;
       Rows<Dynamic, Dynamic> P(2), z, R;

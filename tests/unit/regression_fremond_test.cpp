@@ -268,5 +268,32 @@ TEST(RegressionFremond, NoContactTakesPart) {
   EXPECT_EQ(r.qdot_E, pb.qdot_A);
 }
 
+
+// W_T = W_N (G of rank 1) with moving obstacles and μ = 24: the mode enumeration listed a third
+// "solution" P_N = −P_T = 1.05e23 with a law residual of 1.0 of the velocity scale, accepted as
+// converged by the rounding floors that percussions of that size bring. Found by a 100,000-problem
+// stress run (fremond_coulomb #82420); the quad reference finds exactly the two others.
+TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
+  Eigen::Matrix3d M;
+  M << 742038.61993826088, -545155.53454118327, -1055200.1952735728, -545155.53454118327,
+      541865.08400820207, 1054996.2273617117, -1055200.1952735728, 1054996.2273617117,
+      2054309.714378447;
+  const Eigen::Vector3d w(0.44084606851798935, -0.88257725134109244, 0.8182106176430135);
+  ImpactProblem pb = make(M, w, w, Eigen::Vector3d(49.904424195947499, 65.854290803141112,
+                                                   -3.9673862404120612));
+  pb.w_N = Eigen::VectorXd::Constant(1, -7.4858871220531453);
+  pb.w_T = Eigen::VectorXd::Constant(1, -61.367914579140283);
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(
+      PowerPotential(1.6238605864935376, 14.175166884984503), 24.477694887025535);
+  const auto all = solve_impact_all(pb, law);
+  ASSERT_EQ(all.size(), 2u);
+  for (const auto& r : all) {
+    EXPECT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_LE(r.solver.residual, SolverOptions{}.tolerance);
+    EXPECT_LT(std::fabs(r.P_N(0)), 1e3);
+    EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
+  }
+}
+
 }  // namespace
 }  // namespace fremond

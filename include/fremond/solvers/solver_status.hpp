@@ -40,7 +40,8 @@ enum class StopCriterion {
   nlopt,       ///< NLopt's own criterion (its code is kept in the report).
   rounding,    ///< converged, but the tolerance asked for is below what floating point can
                ///< resolve: each row above it is within 16ε (|D_A,j| + ½Σ_k|G_jk P_k| + τ_j|P_j|),
-               ///< the rounding of forming it; the reported residual is then above tolerance.
+               ///< the rounding of forming it, and within 1e-6 of the velocity scale; the
+               ///< reported residual is then above tolerance.
 };
 
 std::string_view to_string(SolverStatus s);

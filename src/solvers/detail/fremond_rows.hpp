@@ -126,17 +126,23 @@ struct FremondRowsT {
   }
 
   /// The stopping test of every solver: each row within the target or at its own rounding floor,
-  ///   weight_j |R_j| ≤ target  or  |R_j| ≤ 16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|),
+  ///   weight_j |R_j| ≤ target  or  |R_j| ≤ min(16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|),
+  ///                                              1e-6 v_scale),
   /// with R from the last call of residual().
+  static constexpr double kFloorCap = 1e-6;
   bool converged(const Rows& P, const Rows& R, double target) const {
     const int r = cs->rows();
     const double eps16 = 16.0 * std::numeric_limits<double>::epsilon();
     for (int j = 0; j < r; ++j) {
       const double a = std::fabs(R(j));
       if (weight(j) * a <= target) continue;
-      const double floor = eps16 * (std::fabs(cs->D_A(j)) +
-                                    0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
-                                    tau(j) * std::fabs(P(j)));
+      // The floor is capped at 1e-6 of the velocity scale: percussions so large that a row
+      // cannot be resolved better than that (P_N = −P_T = 1e23 on W_T = W_N, residual 1.0) are
+      // no answer in double precision, whatever their rounding.
+      const double floor = std::min(eps16 * (std::fabs(cs->D_A(j)) +
+                                             0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
+                                             tau(j) * std::fabs(P(j))),
+                                    kFloorCap * cs->v_scale);
       if (!(a <= floor)) return false;
     }
     return true;
