@@ -67,9 +67,16 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
       cs.D_A(a + k) = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
     }
   }
-  cs.MinvW = cs.llt.solve(cs.W);
-  cs.G.noalias() = cs.W.transpose() * cs.MinvW;
-  cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+  // No row (no contact takes part): nothing to solve. Eigen's triangular solve of a matrix with
+  // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
+  if (r > 0) {
+    cs.MinvW = cs.llt.solve(cs.W);
+    cs.G.noalias() = cs.W.transpose() * cs.MinvW;
+    cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+  } else {
+    cs.MinvW.resize(n, 0);
+    cs.G.resize(0, 0);
+  }
   cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
   if (!(cs.v_scale > std::numeric_limits<double>::min())) cs.v_scale = std::numeric_limits<double>::min();
 }
