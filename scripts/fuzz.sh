@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of fuzz/ with clang++ (ASan + UBSan) in `build-fuzz`, replays every
+# saved regression input, then fuzzes each target for a bounded time from its seed corpus.
+#
+#   bash scripts/fuzz.sh                 # every target, FREMOND_FUZZ_SECONDS (60) each
+#   bash scripts/fuzz.sh solver_fuzz     # one target
+#   FREMOND_FUZZ_SECONDS=600 bash scripts/fuzz.sh
+#
+# A crash, a sanitizer report, a broken invariant (fuzz/*.cpp say which) or an input slower than
+# FREMOND_FUZZ_TIMEOUT seconds (15) fails the run, unless it is a known library issue
+# (tests/stress/known_issues.txt: broken invariants by their sentence, timeouts by the input's law
+# family). libFuzzer writes the input to build-fuzz/artifacts/<target>/; run the target on it with
+# FREMOND_FUZZ_VERBOSE=1 (solver_fuzz) to see it as a problem file. Copy it into
+# fuzz/regressions/<target>/ (and turn it into a unit test) once the bug is fixed: every file there
+# is replayed first on every run. The seed corpus in fuzz/corpus/ is copied to build-fuzz/corpus/
+# and grows there, not in the tree.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+build=${FREMOND_FUZZ_BUILD_DIR:-build-fuzz}
+seconds=${FREMOND_FUZZ_SECONDS:-60}
+timeout=${FREMOND_FUZZ_TIMEOUT:-15}
+jobs=$(nproc)
+[ "$jobs" -gt 2 ] && jobs=2
+
+summary() {
+  echo "fuzz: $1 ($(($(date +%s) - start)) s)"
+}
+
+if ! command -v clang++ >/dev/null; then
+  summary "FAILED: clang++ not found (scripts/install-deps.sh installs clang)"
+  exit 1
+fi
+if ! cmake -S fuzz -B "$build" -DCMAKE_CXX_COMPILER=clang++ >/dev/null; then
+  summary "FAILED (configure)"
+  exit 1
+fi
+
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(problem_file_fuzz solver_fuzz)
+  # The scene target is built only where the scene reader exists (fuzz/CMakeLists.txt).
+  [ -f include/fremond/io/scene_file.hpp ] && [ -f src/io/scene_file.cpp ] &&
+    [ -f include/fremond/simulation/simulate.hpp ] && targets+=(scene_file_fuzz)
+fi
+if ! cmake --build "$build" -j"$jobs" --target "${targets[@]}"; then
+  summary "FAILED (build)"
+  exit 1
+fi
+
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Known library issues (reported, with disabled regression tests) do not stop the fuzzing.
+export FREMOND_KNOWN_ISSUES="$PWD/tests/stress/known_issues.txt"
+
+# known_hang LAW: true when the known issues list a hang of that law family.
+known_hang() {
+  grep -Eq "^[[:space:]]*(\*|$1)[[:space:]]*\|[[:space:]]*\^?HANG" "$FREMOND_KNOWN_ISSUES"
+}
+
+failed=()
+report=()
+for t in "${targets[@]}"; do
+  bin="$build/$t"
+  dict=""
+  case "$t" in
+    problem_file_fuzz) dict="-dict=fuzz/problem_file.dict" ;;
+    scene_file_fuzz) dict="-dict=fuzz/scene_file.dict" ;;
+  esac
+  artifacts="$build/artifacts/$t"
+  rm -rf "$artifacts"
+  mkdir -p "$artifacts"
+  # 1. Every saved regression input must pass (a fixed bug stays fixed).
+  if [ -d "fuzz/regressions/$t" ] && [ -n "$(ls -A "fuzz/regressions/$t")" ]; then
+    echo "== $t: replaying fuzz/regressions/$t"
+    if ! "$bin" -timeout="$timeout" -rss_limit_mb=2048 fuzz/regressions/"$t"/* \
+        >"$artifacts/regressions.log" 2>&1; then
+      tail -n 60 "$artifacts/regressions.log"
+      failed+=("$t (regression input)")
+      report+=("$t: a saved regression input fails again")
+      continue
+    fi
+  fi
+  # 2. Bounded fuzzing from the seeds (and whatever earlier runs in this tree added), in fork mode:
+  # an input slower than the timeout is kept and the fuzzing goes on; a crash or a broken
+  # invariant stops it.
+  corpus="$build/corpus/$t"
+  mkdir -p "$corpus"
+  cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null
+  echo "== $t: fuzzing for $seconds s"
+  log="$artifacts/fuzz.log"
+  # shellcheck disable=SC2086
+  "$bin" "$corpus" $dict -fork=1 -ignore_timeouts=1 -ignore_crashes=0 -ignore_ooms=0 \
+    -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 \
+    -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1
+  rc=$?
+  cov=$(grep -Eo 'cov: [0-9]+' "$log" | tail -n 1 | grep -Eo '[0-9]+')
+  runs=$(grep -Eo '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
+  # Inputs that timed out: a known hang of their law family, or a failure.
+  timeouts=0
+  unknown_timeouts=()
+  for f in "$artifacts"/timeout-*; do
+    [ -e "$f" ] || continue
+    timeouts=$((timeouts + 1))
+    family=$(FREMOND_FUZZ_CLASSIFY=1 "$bin" "$f" 2>/dev/null | grep -Eo 'law_family: [a-z_]+' | cut -d' ' -f2)
+    if [ -z "$family" ] || ! known_hang "$family"; then unknown_timeouts+=("$f (${family:-no law})"); fi
+  done
+  crashes=$(find "$artifacts" -name 'crash-*' -o -name 'oom-*' -o -name 'leak-*' | wc -l)
+  if [ "$rc" -ne 0 ] || [ "$crashes" -ne 0 ] || [ ${#unknown_timeouts[@]} -ne 0 ]; then
+    grep -E 'INVARIANT BROKEN|ERROR: |runtime error|SUMMARY' "$log" | head -n 20
+    tail -n 40 "$log"
+    for f in "${unknown_timeouts[@]}"; do echo "timeout, not a known hang: $f"; done
+    failed+=("$t")
+    report+=("$t: FAILED after ${runs:-?} runs (exit $rc, $crashes crash input(s), ${#unknown_timeouts[@]} unknown timeout(s)); inputs in $artifacts/")
+  else
+    note=""
+    [ "$timeouts" -ne 0 ] && note=", $timeouts input(s) hit the known hang (tests/stress/known_issues.txt)"
+    report+=("$t: ${runs:-?} runs, coverage ${cov:-?}, corpus $(ls "$corpus" | wc -l) inputs, no failure$note")
+  fi
+done
+
+for line in "${report[@]}"; do echo "  $line"; done
+if [ ${#failed[@]} -ne 0 ]; then
+  summary "FAILED: ${failed[*]}"
+  exit 1
+fi
+summary "PASSED: ${#targets[@]} target(s), ${seconds} s each, no crash, no broken invariant"
