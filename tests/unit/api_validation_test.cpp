@@ -411,3 +411,33 @@ TEST(ApiValidation, StopCriterionNamesRoundTrip) {
 
 }  // namespace
 }  // namespace fremond
+
+namespace fremond {
+namespace {
+
+// A key holding a control character (JSON allows "\u0000"): the refusal names it with the
+// character escaped, and its reason survives (a NUL used to cut what() to the bare name). Found by
+// the problem-file fuzzer.
+TEST(ApiValidation, KeyWithAControlCharacterIsNamedPrintably) {
+  const auto reg = PotentialRegistry::with_builtins();
+  try {
+    (void)io::parse_problem_file("{\n  \"M\\u0000\"3", reg);
+    FAIL() << "accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_GT(what.size(), e.name().size() + 2) << what;
+    EXPECT_EQ(what.find('\0'), std::string::npos);
+  }
+  try {
+    (void)io::parse_problem_file(
+        R"({"M": [[1]], "W_N": [[1]], "qdot_A": [-1], "law": {"type": "newton", "e": 0.5}, "x\u0001y": 1})",
+        reg);
+    FAIL() << "accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "x\\u0001y");
+    EXPECT_NE(std::string(e.what()).find("unknown key"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fremond
