@@ -60,13 +60,18 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
   const double fs = on_domain([&](double x) { return phi.conjugate(x); }, s, ds);
   if (!std::isfinite(fz) || !std::isfinite(fs) || !std::isfinite(s * z))
     return subdifferential_miss();
-  const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) +
-                       change_within([&](double x) { return phi.conjugate(x); }, s, ds) +
+  const double conj_noise = change_within([&](double x) { return phi.conjugate(x); }, s, ds);
+  const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) + conj_noise +
                        dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
   const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
   if (gap == 0.0) return 0.0;
-  return std::min(gap, subdifferential_miss());
+  // The values decide wherever φ* is resolvable near s, so that a wrong conjugate (a user's
+  // potential that lies about itself) is caught; only where φ* within ds of s leaves double
+  // precision or swings by the gap's own size does the subdifferential test decide.
+  const bool resolvable = std::isfinite(phi.conjugate(s - ds)) &&
+                          std::isfinite(phi.conjugate(s + ds)) && conj_noise < 0.5 * scale;
+  return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
 
 }  // namespace
