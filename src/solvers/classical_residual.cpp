@@ -66,11 +66,14 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     }
     auto keep = [&](double x) { worst = std::max(worst, std::isnan(x) ? inf : std::fabs(x)); };
     if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
-      keep(gn * r.P_N(i));
-      keep(gt * r.P_T(i));
+      // A zero percussion is exactly right whatever g is (g overflows for |W| near 1e308, and
+      // 0·∞ would make the exact answer a NaN residual).
+      auto off = [](double g, double p) { return p == 0.0 ? 0.0 : g * p; };
+      keep(off(gn, r.P_N(i)));
+      keep(off(gt, r.P_T(i)));
       if (poisson) {
-        keep(gn * r.P_NC(i));
-        keep(gt * r.P_TC(i));
+        keep(off(gn, r.P_NC(i)));
+        keep(off(gt, r.P_TC(i)));
       }
       continue;
     }
