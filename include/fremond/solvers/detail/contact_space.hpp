@@ -90,7 +90,10 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
                       ImpactResultT<MaxDofs, MaxContacts>& out) {
   const int c = cs.contacts;
   out.qdot_E = pb.qdot_A;
-  if (cs.rows() > 0) out.qdot_E.noalias() += cs.MinvW * P;
+  // Column by column, skipping zero percussions: with |W| near 1e308 a column of M⁻¹W overflows,
+  // and 0·∞ would turn the exact "no percussion" answer into NaN.
+  for (int j = 0; j < cs.rows(); ++j)
+    if (P(j) != 0.0) out.qdot_E.noalias() += cs.MinvW.col(j) * P(j);
   out.P_N.setZero(c);
   out.P_T.setZero(c);
   for (int k = 0; k < cs.active; ++k) {
