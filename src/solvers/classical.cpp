@@ -44,7 +44,9 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
       if (cs.tangential) out.P_TC(cs.index(k)) = s.P_C(a + k);
     }
     typename ImpactResultT<N, C>::Vec qdot_C = pb.qdot_A;
-    qdot_C.noalias() += cs.MinvW * s.P_C;
+    // Skipping zero percussions, as scatter_solution does (0·∞ where |W| is near 1e308).
+    for (int j = 0; j < cs.rows(); ++j)
+      if (s.P_C(j) != 0.0) qdot_C.noalias() += cs.MinvW.col(j) * s.P_C(j);
     out.D_NC.resize(c);
     out.D_TC.setZero(c);
     for (int i = 0; i < c; ++i) {
