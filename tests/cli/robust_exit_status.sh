@@ -3,19 +3,8 @@
 # options out of range (NaN, infinities, text), and hostile input (random bytes, NUL bytes, deep
 # nesting, a very long number, a large file). Exit statuses of `fremond impact`: 1 refused, 2 not
 # converged, 3 no solution (impact_exit_status.sh); a crash is a status ≥ 128.
-set -u
-FREMOND=${1:?usage: bash robust_exit_status.sh path/to/fremond}
-HERE=$(cd "$(dirname "$0")" && pwd)
-PROBLEM="$HERE/../data/problems/newton_bar.json"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/impact_common.bash" "$1"
+PROBLEM="$DATA/newton_bar.json"
 
 # expect_failure NAME ARGS...: `fremond ARGS` (stdin from $TMP/in when it exists) must exit with
 # a status in 1..127 and print a message on stderr (CLI11 prints usage errors there too). Leaves
@@ -99,8 +88,4 @@ for cmd in simulate curve; do
   fi
 done
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

@@ -2,19 +2,8 @@
 # reached half-way through the result (ulimit -f, the shape of a disk filling up), a closed
 # standard output. Each must exit non-zero with a message on stderr: a caller that only looks at
 # the exit status must never take a cut-off result for an answer.
-set -u
-FREMOND=${1:?usage: bash robust_impact_output.sh path/to/fremond}
-HERE=$(cd "$(dirname "$0")" && pwd)
-PROBLEM="$HERE/../data/problems/fremond_coulomb_point.json"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/impact_common.bash" "$1"
+PROBLEM="$DATA/fremond_coulomb_point.json"
 
 # expect_write_failure NAME RC: the command exited RC, which must be non-zero and not a crash,
 # with a message on stderr ($TMP/err).
@@ -69,8 +58,4 @@ echo '{"M": [[1]]}' | "$FREMOND" impact - >/dev/full 2>"$TMP/err"
 rc=$?
 if [ "$rc" -eq 1 ] && grep -q "W_N" "$TMP/err"; then pass; else fail "refusal with stdout on /dev/full: status $rc, $(cat "$TMP/err")"; fi
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish
