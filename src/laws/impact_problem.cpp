@@ -41,35 +41,64 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = i + 1; j < n; ++j)
       if (std::fabs(pb.M(i, j) - pb.M(j, i)) > 1e-12 * scale)
-        throw InvalidArgument("M", "must be symmetric; M[" + std::to_string(i) + "][" +
-                                       std::to_string(j) + "] = " + detail::format_number(pb.M(i, j)) +
-                                       " but M[" + std::to_string(j) + "][" + std::to_string(i) +
-                                       "] = " + detail::format_number(pb.M(j, i)));
+        throw InvalidArgument(
+            "M", "must be symmetric; M[" + std::to_string(i) + "][" + std::to_string(j) +
+                     "] = " + detail::format_number(pb.M(i, j)) + " but M[" + std::to_string(j) +
+                     "][" + std::to_string(i) + "] = " + detail::format_number(pb.M(j, i)));
   if (pb.W_N.rows() != n)
-    throw InvalidArgument("W_N", "must have " + std::to_string(n) + " rows (one per degree of "
-                                 "freedom), got " + dims(pb.W_N.rows(), pb.W_N.cols()));
+    throw InvalidArgument("W_N", "must have " + std::to_string(n) +
+                                     " rows (one per degree of "
+                                     "freedom), got " +
+                                     dims(pb.W_N.rows(), pb.W_N.cols()));
   const auto c = pb.W_N.cols();
   require_all_finite("W_N", pb.W_N);
   if (pb.W_T.size() != 0 || pb.W_T.cols() != 0) {
     if (pb.W_T.rows() != n || pb.W_T.cols() != c)
-      throw InvalidArgument("W_T", "must be " + dims(n, c) + " like W_N, got " +
-                                       dims(pb.W_T.rows(), pb.W_T.cols()));
+      throw InvalidArgument(
+          "W_T", "must be " + dims(n, c) + " like W_N, got " + dims(pb.W_T.rows(), pb.W_T.cols()));
     require_all_finite("W_T", pb.W_T);
   }
   if (pb.w_N.size() != 0 && pb.w_N.size() != c)
-    throw InvalidArgument("w_N", "must have " + std::to_string(c) + " entries (one per contact), got " +
+    throw InvalidArgument("w_N", "must have " + std::to_string(c) +
+                                     " entries (one per contact), got " +
                                      std::to_string(pb.w_N.size()));
   require_all_finite("w_N", pb.w_N);
   if (pb.w_T.size() != 0 && pb.w_T.size() != c)
-    throw InvalidArgument("w_T", "must have " + std::to_string(c) + " entries (one per contact), got " +
+    throw InvalidArgument("w_T", "must have " + std::to_string(c) +
+                                     " entries (one per contact), got " +
                                      std::to_string(pb.w_T.size()));
-  if (pb.w_T.size() != 0 && pb.W_T.cols() == 0)
-    throw InvalidArgument("w_T", "given without W_T");
+  if (pb.w_T.size() != 0 && pb.W_T.cols() == 0) throw InvalidArgument("w_T", "given without W_T");
   require_all_finite("w_T", pb.w_T);
   if (pb.qdot_A.size() != n)
     throw InvalidArgument("qdot_A", "must have " + std::to_string(n) + " entries, got " +
                                         std::to_string(pb.qdot_A.size()));
   require_all_finite("qdot_A", pb.qdot_A);
+  // Every datum finite is not enough: the certificate compares energies (SPEC §4, eq. 9) and every
+  // law reads the contact velocities D_A (SPEC §1). Where those overflow, no answer can be
+  // certified in double precision (T_E − T_A would be ∞ − ∞); refuse, rather than return a NaN
+  // energy.
+  const double kinetic = 0.5 * pb.qdot_A.dot(pb.M * pb.qdot_A);
+  if (!std::isfinite(kinetic))
+    throw InvalidArgument("qdot_A",
+                          "the kinetic energy 1/2 qdot_A^T M qdot_A overflows double "
+                          "precision (max |qdot_A| = " +
+                              detail::format_number(pb.qdot_A.cwiseAbs().maxCoeff()) +
+                              ", max |M| = " + detail::format_number(scale) +
+                              "); express the problem in other units");
+  for (Eigen::Index i = 0; i < c; ++i) {
+    const double dn = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (!std::isfinite(dn))
+      throw InvalidArgument("W_N", "contact " + std::to_string(i) +
+                                       ": the normal velocity D_NA = W_N^T qdot_A + w_N overflows "
+                                       "double precision; express the problem in other units");
+    if (pb.W_T.cols() == 0) continue;
+    const double dt = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+    if (!std::isfinite(dt))
+      throw InvalidArgument("W_T", "contact " + std::to_string(i) +
+                                       ": the tangential velocity D_TA = W_T^T qdot_A + w_T "
+                                       "overflows double precision; express the problem in other "
+                                       "units");
+  }
 }
 
 template <int N>

@@ -67,7 +67,8 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   if (lo.continuum)
     out.solver.message = "a continuum of solutions (singular contact modes)";
   else if (lo.exhaustive && found > 1)
-    out.solver.message = "several solutions; the most dissipative is returned";
+    out.solver.message =
+        "several solutions; the most dissipative that satisfies the law is returned";
   else if (!lo.compression_unique)
     out.solver.message =
         "Poisson: the compression percussion is not unique; the minimum-norm one is used";
@@ -108,9 +109,12 @@ void fill_trivial(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   out.solver.residual = 0.0;
 }
 
+// `overflow`: the law has an answer, but its percussions, velocities or energy do not fit in
+// double precision; it is not returned.
 template <int N, int C>
 void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                  const ImpactLaw& law, const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
+                  const ImpactLaw& law, const LawOutcome<C>& lo, ImpactResultT<N, C>& out,
+                  bool overflow = false) {
   // No answer: report the state before the impact (no percussion) so every field is defined.
   typename ContactSpaceT<N, C>::Rows P = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
   scatter_solution(pb, cs, P, out);
@@ -130,7 +134,12 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // The residual of the state reported, as for any other result: no NaN leaves the library, and
   // a failure's residual says how far "no percussion" is from the law.
   out.solver.residual = classical_residual(pb, law, out);
-  if (lo.exhaustive) {
+  if (overflow) {
+    out.solver.status = SolverStatus::failed;
+    out.solver.message =
+        "the law's answer overflows double precision (percussions, velocities or energy not "
+        "finite): no percussion is returned";
+  } else if (lo.exhaustive) {
     out.solver.status = SolverStatus::no_solution;
     out.solver.message = "no solution: no contact mode satisfies the law";
   } else {
@@ -142,15 +151,49 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   }
 }
 
-// The most dissipative solution (smallest T_E − T_A): the one returned when there are several.
+// Nothing but finite numbers leaves the library.
+template <int N, int C>
+bool all_finite(const ImpactResultT<N, C>& r) {
+  const bool phases = !r.has_phases || (r.P_NC.allFinite() && r.P_TC.allFinite() &&
+                                        r.D_NC.allFinite() && r.D_TC.allFinite());
+  return phases && r.qdot_E.allFinite() && r.P_N.allFinite() && r.P_T.allFinite() &&
+         r.D_NE.allFinite() && r.D_TE.allFinite() && std::isfinite(r.energy_change) &&
+         std::isfinite(r.solver.residual);
+}
+
+// The most dissipative solution (smallest T_E − T_A) among those not tried yet; -1 when none is
+// left. Energies within 1e-12 count as equal, and then the one found first wins.
 template <int C>
-int most_dissipative(const LawOutcome<C>& lo) {
-  int best = 0;
-  for (int k = 1; k < lo.solutions.size; ++k)
-    if (lo.solutions[k].energy_change <
-        lo.solutions[best].energy_change - 1e-12 * std::fabs(lo.solutions[best].energy_change))
+int most_dissipative(const LawOutcome<C>& lo, const bool* tried) {
+  int best = -1;
+  for (int k = 0; k < lo.solutions.size; ++k) {
+    if (tried[k]) continue;
+    if (best < 0 ||
+        lo.solutions[k].energy_change <
+            lo.solutions[best].energy_change - 1e-12 * std::fabs(lo.solutions[best].energy_change))
       best = k;
+  }
   return best;
+}
+
+// Where there are several solutions the most dissipative is returned — among those that satisfy
+// the law to the tolerance. The enumeration accepts a contact mode within its own tolerance (1e-9
+// of the velocity scale), so on a degenerate continuum (a zero column of W_N: any ΔP ≥ 0 satisfies
+// Poisson's expansion) its vertex can sit 1e-9 outside Coulomb's cone while Lemke's answer is
+// exact; "stalled" would then be reported for a law that has an exact answer. Only when no solution
+// meets the tolerance is the most dissipative returned as it is (stalled).
+template <int N, int C>
+void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+               const SolverOptions& options, const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
+  bool tried[classical::kMaxSolutions] = {};
+  const int first = most_dissipative(lo, tried);
+  for (int k = first; k >= 0; k = most_dissipative(lo, tried)) {
+    tried[k] = true;
+    fill_result(pb, cs, law, options, lo, k, out);
+    if (out.solver.status == SolverStatus::converged && all_finite(out)) return;
+  }
+  fill_result(pb, cs, law, options, lo, first, out);
+  if (!all_finite(out)) fill_failure(pb, cs, law, lo, out, true);
 }
 
 }  // namespace
@@ -168,7 +211,7 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     fill_failure(pb, cs, law, lo, out);
     return;
   }
-  fill_result(pb, cs, law, options, lo, most_dissipative(lo), out);
+  fill_best(pb, cs, law, options, lo, out);
 }
 
 std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const ImpactLaw& law,
@@ -192,7 +235,11 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   std::stable_sort(order.begin(), order.end(), [&](int i, int j) {
     return lo.solutions[i].energy_change < lo.solutions[j].energy_change;
   });
-  for (int k : order) fill_result(pb, cs, law, options, lo, k, all.emplace_back());
+  for (int k : order) {
+    ImpactResult& r = all.emplace_back();
+    fill_result(pb, cs, law, options, lo, k, r);
+    if (!all_finite(r)) fill_failure(pb, cs, law, lo, r, true);
+  }
   return all;
 }
 

@@ -29,6 +29,12 @@ refuse_edit "law.tangential.r 1e999" "law.tangential.r" "must be a finite number
 refuse_edit "law.tangential.mu 1e999 (coulomb)" "law.tangential.mu" "must be a finite number" \
   fremond_coulomb_point.json 'd["law"]["tangential"]["mu"] = raw("1e999")'
 
+# Finite numbers whose energy or contact velocity overflows: nothing can be certified there.
+refuse_edit "qdot_A whose kinetic energy overflows" "qdot_A" "kinetic energy 1/2 qdot_A^T M qdot_A overflows" \
+  newton_coulomb_point.json 'd["qdot_A"] = [0, -3e154]'
+refuse_edit "W_N whose contact velocity overflows" "W_N" "contact 0: the normal velocity D_NA" \
+  newton_coulomb_point.json 'd["W_N"][1][0] = 1e308; d["qdot_A"] = [0, -2]'
+
 # Values that are not numbers: never read as 0, 1 or a default.
 refuse_edit "M entry a string" "M[0][0]" 'must be a number, got a string "2"' \
   fremond_point.json 'd["M"][0][0] = "2"'

@@ -46,7 +46,9 @@ ImpactProblem base_problem() {
   return pb;
 }
 
-ImpactLaw fremond_law() { return ImpactLaw::fremond(PowerPotential(6.0, 2.0)); }
+ImpactLaw fremond_law() {
+  return ImpactLaw::fremond(PowerPotential(6.0, 2.0));
+}
 
 std::string solve_refusal(const ImpactProblem& pb, const ImpactLaw& law = ImpactLaw::newton(0.5),
                           const SolverOptions& opt = {}) {
@@ -136,6 +138,37 @@ TEST(ApiValidation, ObstacleVelocitiesAndVelocityBefore) {
   }
 }
 
+// Finite data whose energy or contact velocities overflow cannot be certified (T_E − T_A would be
+// ∞ − ∞): refused by name, for every law and for the small form alike. Just inside the range the
+// problem is solved, and nothing non-finite comes back.
+TEST(ApiValidation, EnergyOrContactVelocityBeyondDoublePrecision) {
+  ImpactProblem pb = base_problem();
+  pb.qdot_A = Eigen::Vector3d(0.0, -3e154, 0.0);  // ½·(3e154)² = 4.5e308 > DBL_MAX
+  EXPECT_EQ(solve_refusal(pb), "qdot_A");
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::poisson_coulomb(0.5, 0.3)), "qdot_A");
+  EXPECT_EQ(solve_refusal(pb, fremond_law()), "qdot_A");
+  EXPECT_EQ(refusal([&] { (void)solve_impact(to_small(pb), ImpactLaw::newton(0.5)); }), "qdot_A");
+  pb.qdot_A = Eigen::Vector3d(0.0, -1e150, 0.0);  // T_A = 5e299: representable
+  EXPECT_EQ(solve_refusal(pb), "<none>");
+  const auto r = solve_impact(pb, ImpactLaw::newton(0.5));
+  EXPECT_TRUE(std::isfinite(r.energy_change));
+  EXPECT_EQ(r.solver.status, SolverStatus::converged);
+  // Newton, e = 0.5, both ends of a flat body with D_NA = -1e150: T_E − T_A = −(1 − e²) T_A.
+  EXPECT_NEAR(r.energy_change / (-0.75 * 0.5e300), 1.0, 1e-12);
+
+  // A small kinetic energy, but a contact velocity that overflows: D_NA(0) = 1e308·(−2).
+  pb = base_problem();
+  pb.W_N(1, 0) = 1e308;
+  EXPECT_EQ(solve_refusal(pb), "W_N");
+  pb.W_N(1, 0) = 1e307;  // D_NA(0) = −2e307: in range
+  EXPECT_EQ(solve_refusal(pb), "<none>");
+  // D_TA(0) = 1e308·1 + 1.7e308 (a moving obstacle).
+  pb = base_problem();
+  pb.W_T(0, 0) = 1e308;
+  pb.w_T = Eigen::Vector2d(1.7e308, 0.0);
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.3)), "W_T");
+}
+
 // A problem without contacts is legal (nothing happens); it must not crash either way.
 TEST(ApiValidation, NoContactsIsTrivialOrRefused) {
   ImpactProblem pb = base_problem();
@@ -172,10 +205,13 @@ TEST(ApiValidation, FrictionRangeAndNumbers) {
   const ImpactProblem pb = base_problem();
   for (double bad : {kNaN, kInf, -kInf, -1e-300}) {
     EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, bad)), "law.mu") << bad;
-    EXPECT_EQ(solve_refusal(pb, ImpactLaw::fremond_coulomb(PowerPotential(6, 2), bad)), "law.mu") << bad;
+    EXPECT_EQ(solve_refusal(pb, ImpactLaw::fremond_coulomb(PowerPotential(6, 2), bad)), "law.mu")
+        << bad;
   }
-  EXPECT_EQ(solve_refusal(pb, ImpactLaw::poisson_coulomb(0.5, PerContact({0.1, -1.0}))), "law.mu[1]");
-  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, PerContact({0.1, 0.1, 0.1}))), "law.mu");
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::poisson_coulomb(0.5, PerContact({0.1, -1.0}))),
+            "law.mu[1]");
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, PerContact({0.1, 0.1, 0.1}))),
+            "law.mu");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.0)), "<none>");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 1e300)), "<none>");
 }
@@ -211,7 +247,8 @@ TEST(ApiValidation, SolverOptionsRanges) {
     return o;
   };
   for (double bad : {kNaN, kInf, 0.0, -1e-13, 1e-17, 0.1})
-    EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(0.5), with([&](SolverOptions& o) { o.tolerance = bad; })),
+    EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(0.5),
+                            with([&](SolverOptions& o) { o.tolerance = bad; })),
               "tolerance")
         << bad;
   for (double bad : {kNaN, kInf, 1e-14, 0.5})
@@ -224,9 +261,9 @@ TEST(ApiValidation, SolverOptionsRanges) {
   EXPECT_EQ(solve_refusal(pb, fremond_law(),
                           with([](SolverOptions& o) { o.max_proximal_iterations = -1; })),
             "max_proximal_iterations");
-  EXPECT_EQ(solve_refusal(pb, fremond_law(),
-                          with([](SolverOptions& o) { o.max_nlopt_evaluations = 0; })),
-            "max_nlopt_evaluations");
+  EXPECT_EQ(
+      solve_refusal(pb, fremond_law(), with([](SolverOptions& o) { o.max_nlopt_evaluations = 0; })),
+      "max_nlopt_evaluations");
   for (double bad : {kNaN, kInf, -1e-9, 1.0})
     EXPECT_EQ(solve_refusal(pb, fremond_law(),
                             with([&](SolverOptions& o) { o.admissibility_tolerance = bad; })),
@@ -244,11 +281,14 @@ TEST(ApiValidation, SolveImpactAllValidatesToo) {
   pb.qdot_A(0) = kNaN;
   EXPECT_EQ(refusal([&] { (void)solve_impact_all(pb, ImpactLaw::newton_coulomb(0.5, 1.0)); }),
             "qdot_A[0]");
-  EXPECT_EQ(refusal([&] { (void)solve_impact_all(base_problem(), ImpactLaw::newton_coulomb(kNaN, 1.0)); }),
+  EXPECT_EQ(refusal([&] {
+              (void)solve_impact_all(base_problem(), ImpactLaw::newton_coulomb(kNaN, 1.0));
+            }),
             "law.e");
   SolverOptions o;
   o.tolerance = -1;
-  EXPECT_EQ(refusal([&] { (void)solve_impact_all(base_problem(), fremond_law(), o); }), "tolerance");
+  EXPECT_EQ(refusal([&] { (void)solve_impact_all(base_problem(), fremond_law(), o); }),
+            "tolerance");
 }
 
 // The stack-stored form validates the same way, and refuses what does not fit it.
@@ -293,7 +333,8 @@ TEST(ApiValidation, ScaledAndSumPotentials) {
     EXPECT_NE(name, "<none>") << "alpha = " << bad;
     EXPECT_EQ(name.find("<other"), std::string::npos) << name;
   }
-  EXPECT_EQ(refusal([&] { SumPotential(PotentialPtr{}, f.clone()); }).find("<other"), std::string::npos);
+  EXPECT_EQ(refusal([&] { SumPotential(PotentialPtr{}, f.clone()); }).find("<other"),
+            std::string::npos);
   EXPECT_NE(refusal([&] { SumPotential(PotentialPtr{}, f.clone()); }), "<none>");
 }
 
@@ -308,7 +349,8 @@ TEST(ApiValidation, CallablePotentialNeedsValueAndSubgradient) {
 
 TEST(ApiValidation, ProxRefusesBadStepAndArgument) {
   const PowerPotential f(2.0, 3.0);
-  for (double bad : {kNaN, kInf, 0.0, -1.0}) EXPECT_EQ(refusal([&] { (void)f.prox(1.0, bad); }), "tau") << bad;
+  for (double bad : {kNaN, kInf, 0.0, -1.0})
+    EXPECT_EQ(refusal([&] { (void)f.prox(1.0, bad); }), "tau") << bad;
   EXPECT_EQ(refusal([&] { (void)f.prox(kNaN, 1.0); }), "x");
   // A potential with neither prox nor subdifferential has no prox to give.
   CallablePotentialParts parts;
@@ -325,20 +367,34 @@ TEST(ApiValidation, ProxRefusesBadStepAndArgument) {
 
 TEST(ApiValidation, RegistryRefusesBadNamesKindsAndParameters) {
   PotentialRegistry r = PotentialRegistry::with_builtins();
-  EXPECT_EQ(refusal([&] { r.add("", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""}); }),
+  EXPECT_EQ(refusal([&] {
+              r.add("", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""});
+            }),
             "name");
-  EXPECT_EQ(refusal([&] { r.add("power", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""}); }),
-            "power");
-  EXPECT_EQ(refusal([&] { r.add("coulomb", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""}); }),
-            "coulomb");
+  EXPECT_EQ(
+      refusal([&] {
+        r.add("power", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""});
+      }),
+      "power");
+  EXPECT_EQ(
+      refusal([&] {
+        r.add("coulomb", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""});
+      }),
+      "coulomb");
   EXPECT_EQ(refusal([&] { r.add("mine", {{}, {}, nullptr, ""}); }), "mine.make");
   EXPECT_EQ(refusal([&] { (void)r.make("nope", {}); }), "potential");
   EXPECT_EQ(refusal([&] { (void)r.make("power", {{"k", 1.0}}, "law.normal"); }), "law.normal.p");
-  EXPECT_EQ(refusal([&] { (void)r.make("power", {{"k", 1.0}, {"p", 2.0}, {"z", 1.0}}, "law.normal"); }),
+  EXPECT_EQ(refusal([&] {
+              (void)r.make("power", {{"k", 1.0}, {"p", 2.0}, {"z", 1.0}}, "law.normal");
+            }),
             "law.normal.z");
-  EXPECT_EQ(refusal([&] { (void)r.make("power", {{"k", kNaN}, {"p", 2.0}}, "law.normal"); }),
+  EXPECT_EQ(refusal([&] {
+              (void)r.make("power", {{"k", kNaN}, {"p", 2.0}}, "law.normal");
+            }),
             "law.normal.k");
-  EXPECT_EQ(refusal([&] { (void)r.make("deadzone_power", {{"k", 1.0}, {"q", 2.0}, {"r", -kInf}}, "t"); }),
+  EXPECT_EQ(refusal([&] {
+              (void)r.make("deadzone_power", {{"k", 1.0}, {"q", 2.0}, {"r", -kInf}}, "t");
+            }),
             "t.r");
   // A user's kind whose factory returns nothing: a file using it is refused, not dereferenced.
   r.add("empty", {{}, {}, [](const PotentialParameters&) { return PotentialPtr{}; }, ""});
@@ -355,7 +411,8 @@ TEST(ApiValidation, RegistryRefusesBadNamesKindsAndParameters) {
 
 TEST(ApiValidation, CertificateOfAnEmptyResultIsNotAdmissible) {
   const ImpactProblem pb = base_problem();
-  for (const ImpactLaw& law : {ImpactLaw::newton(0.5), ImpactLaw::poisson_coulomb(0.5, 0.3), fremond_law()}) {
+  for (const ImpactLaw& law :
+       {ImpactLaw::newton(0.5), ImpactLaw::poisson_coulomb(0.5, 0.3), fremond_law()}) {
     const auto rep = check_admissibility(pb, law, ImpactResult{});
     EXPECT_FALSE(rep.admissible) << law.describe();
   }
@@ -380,9 +437,9 @@ TEST(ApiValidation, ProblemFileRefusesNumbersADoubleCannotHold) {
   const auto reg = PotentialRegistry::with_builtins();
   auto name = [&](const std::string& qdot) {
     return refusal([&] {
-      (void)io::parse_problem_file(
-          R"({"M": [[1]], "W_N": [[1]], "qdot_A": [)" + qdot + R"(], "law": {"type": "newton", "e": 0.5}})",
-          reg);
+      (void)io::parse_problem_file(R"({"M": [[1]], "W_N": [[1]], "qdot_A": [)" + qdot +
+                                       R"(], "law": {"type": "newton", "e": 0.5}})",
+                                   reg);
     });
   };
   EXPECT_EQ(name("1e309"), "qdot_A[0]");
@@ -401,9 +458,9 @@ namespace {
 // Every stopping criterion has a name the CLI and the bindings print and read back; an unknown
 // name is refused naming the accepted ones.
 TEST(ApiValidation, StopCriterionNamesRoundTrip) {
-  for (StopCriterion c : {StopCriterion::none, StopCriterion::exact, StopCriterion::residual,
-                          StopCriterion::step, StopCriterion::iterations, StopCriterion::nlopt,
-                          StopCriterion::rounding})
+  for (StopCriterion c :
+       {StopCriterion::none, StopCriterion::exact, StopCriterion::residual, StopCriterion::step,
+        StopCriterion::iterations, StopCriterion::nlopt, StopCriterion::rounding})
     EXPECT_EQ(stop_criterion_from_string(to_string(c)), c) << to_string(c);
   EXPECT_EQ(to_string(StopCriterion::rounding), "rounding");
   EXPECT_THROW((void)stop_criterion_from_string("roundoff"), InvalidArgument);

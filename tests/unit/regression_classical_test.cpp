@@ -28,9 +28,56 @@ TEST(RegressionClassical, LemkeOnASecondaryRayLeavesNoNaN) {
       -0.418324535311692, -0.11085097486859175, 0.10560002275881564, -0.11189370582024216;
   pb.qdot_A = Eigen::Vector2d(-685701.19297133537, -115872.3070467447);
   const ImpactLaw law = ImpactLaw::newton_coulomb(
-      0.75652183446975785, PerContact({743.72614460310149, 40.23749554605098, 1e8, 295.51751740814797}));
+      0.75652183446975785,
+      PerContact({743.72614460310149, 40.23749554605098, 1e8, 295.51751740814797}));
   const SolverOptions opt;
   const auto r = solve_impact(pb, law, opt);
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+}
+
+// Poisson + Coulomb where the normal directions cannot move (a zero W_N: any ΔP ≥ 0 satisfies the
+// expansion law, a continuum of solutions). The enumeration accepts modes within 1e-9 of the
+// velocity scale; its most dissipative vertex sat that far outside Coulomb's cone and was returned
+// as "stalled" (the command exited 2) although Lemke's answer is exact. The solver fuzzer found it
+// at |q̇_A| = 3e303, where it is now refused (the kinetic energy overflows); here at |q̇_A| ≈ 3.
+TEST(RegressionClassical, DegenerateContinuumReturnsAnExactSolution) {
+  ImpactProblem pb;
+  pb.M = Eigen::MatrixXd::Constant(1, 1, 0.056616259928227268);
+  pb.W_N = Eigen::MatrixXd::Zero(1, 2);
+  pb.W_T.resize(1, 2);
+  pb.W_T << 0.66887114268828407, -0.59521091357407552;
+  pb.qdot_A = Eigen::VectorXd::Constant(1, -3.2483491871022683);
+  const double mu = 0.23794171540153961;
+  const ImpactLaw law = ImpactLaw::poisson_coulomb(PerContact({0.0, 1.0}), mu);
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_LE(r.solver.residual, opt.tolerance);
+  EXPECT_FALSE(r.unique);
+  // The law by hand, from the percussions: velocities q̇ = q̇_A + M⁻¹W_T P_T (W_N = 0), then
+  // Coulomb in each phase with bounds μP_NC and μP_NE, P_NE = P_N − P_NC ≥ e P_NC.
+  const double m = pb.M(0, 0), v = pb.qdot_A(0), scale = 2.2;  // max |D_TA| ≈ 2.17
+  const double qC = v + pb.W_T.row(0).dot(r.P_TC) / m, qE = v + pb.W_T.row(0).dot(r.P_T) / m;
+  EXPECT_NEAR(r.qdot_E(0), qE, 1e-14 * std::fabs(v));
+  for (int i = 0; i < 2; ++i) {
+    const double pnc = r.P_NC(i), pne = r.P_N(i) - r.P_NC(i), ptc = r.P_TC(i),
+                 pte = r.P_T(i) - r.P_TC(i), e = i == 0 ? 0.0 : 1.0;
+    const double dtc = pb.W_T(0, i) * qC, dte = pb.W_T(0, i) * qE, tol = 1e-12 * scale;
+    EXPECT_GE(pnc, 0.0);
+    EXPECT_GE(pne - e * pnc, -tol);
+    EXPECT_LE(std::fabs(ptc), mu * pnc + tol) << i;
+    EXPECT_LE(std::fabs(pte), mu * pne + tol) << i;
+    // Slipping (strictly inside no bound): the percussion opposes the velocity at the bound.
+    if (std::fabs(dtc) > tol) {
+      EXPECT_NEAR(ptc, -mu * pnc * std::copysign(1.0, dtc), tol) << i;
+    }
+    if (std::fabs(dte) > tol) {
+      EXPECT_NEAR(pte, -mu * pne * std::copysign(1.0, dte), tol) << i;
+    }
+  }
+  // No energy is created (eq. 9 with SPEC §4's (15)).
+  EXPECT_LE(r.energy_change, 1e-12 * 0.5 * m * v * v);
+  EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
 }
 
@@ -39,7 +86,8 @@ TEST(RegressionClassical, LemkeOnASecondaryRayLeavesNoNaN) {
 // side, ±∞ for a potential finite on the whole line; the derivative is a number in [0, 1].
 TEST(RegressionPotentials, PowerProxOfAnInfiniteArgumentIsNotNaN) {
   const PowerPotential power(2.0, 3.0);
-  for (double x : {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+  for (double x :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
     try {
       EXPECT_FALSE(std::isnan(power.prox(x, 1.0))) << x;
     } catch (const InvalidArgument& e) {
@@ -69,7 +117,8 @@ TEST(RegressionPotentials, ProxOfAnInfiniteArgumentIsItsLimit) {
     for (double tau : {1e-8, 1.0, 1e8}) {
       double d_plus = -1.0, d_minus = -1.0;
       EXPECT_EQ(k.phi->prox(inf, tau, &d_plus), k.at_plus) << k.phi->describe() << " tau " << tau;
-      EXPECT_EQ(k.phi->prox(-inf, tau, &d_minus), k.at_minus) << k.phi->describe() << " tau " << tau;
+      EXPECT_EQ(k.phi->prox(-inf, tau, &d_minus), k.at_minus)
+          << k.phi->describe() << " tau " << tau;
       EXPECT_TRUE(d_plus >= 0.0 && d_plus <= 1.0) << k.phi->describe() << ": " << d_plus;
       EXPECT_TRUE(d_minus >= 0.0 && d_minus <= 1.0) << k.phi->describe() << ": " << d_minus;
     }

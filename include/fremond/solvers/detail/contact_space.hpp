@@ -21,15 +21,15 @@ struct ContactSpaceT {
   using Index = Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, MaxContacts, 1>;
 
   int dofs = 0;
-  int contacts = 0;       ///< all contacts of the problem
-  int active = 0;         ///< contacts that take part (D_NA ≤ 0)
+  int contacts = 0;  ///< all contacts of the problem
+  int active = 0;    ///< contacts that take part (D_NA ≤ 0)
   bool tangential = false;
-  Index index;            ///< active → problem contact index
-  Jac W;                  ///< n × rows
-  Jac MinvW;              ///< M⁻¹ W
-  RowMat G;               ///< Delassus matrix of the active rows
-  Rows D_A;               ///< contact velocities before, active rows
-  double v_scale = 0.0;   ///< max |D_A| over the active rows, floored to the smallest normal
+  Index index;           ///< active → problem contact index
+  Jac W;                 ///< n × rows
+  Jac MinvW;             ///< M⁻¹ W
+  RowMat G;              ///< Delassus matrix of the active rows
+  Rows D_A;              ///< contact velocities before, active rows
+  double v_scale = 0.0;  ///< max |D_A| over the active rows, floored to the smallest normal
   Eigen::LLT<MatT<MaxDofs, MaxDofs>> llt;
 
   int rows() const { return tangential ? 2 * active : active; }
@@ -78,7 +78,8 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
     cs.G.resize(0, 0);
   }
   cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
-  if (!(cs.v_scale > std::numeric_limits<double>::min())) cs.v_scale = std::numeric_limits<double>::min();
+  if (!(cs.v_scale > std::numeric_limits<double>::min()))
+    cs.v_scale = std::numeric_limits<double>::min();
 }
 
 /// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
@@ -117,8 +118,10 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     }
   }
   // T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from velocities.
+  // No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
   const auto dq = (out.qdot_E - pb.qdot_A).eval();
-  out.energy_change = 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
+  out.energy_change =
+      (dq.array() == 0.0).all() ? 0.0 : 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
 }
 
 }  // namespace fremond::detail
