@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of fuzz/ with clang++ (ASan + UBSan) in `build-fuzz`, replays every
-# saved regression input, then fuzzes each target for a bounded time from its seed corpus.
+# saved regression input, then fuzzes each target from its seed corpus.
 #
-#   bash scripts/fuzz.sh                 # every target, FREMOND_FUZZ_SECONDS (60) each
-#   bash scripts/fuzz.sh solver_fuzz     # one target
-#   FREMOND_FUZZ_SECONDS=600 bash scripts/fuzz.sh
+#   bash scripts/fuzz.sh                          # every target, reproducible (what CI runs)
+#   bash scripts/fuzz.sh solver_fuzz              # one target
+#   FREMOND_FUZZ_SEED=0 FREMOND_FUZZ_SECONDS=1800 bash scripts/fuzz.sh   # exploration
+#
+# Two modes. Reproducible (the default, FREMOND_FUZZ_SEED=1 or any other fixed seed): one process
+# per target, a fixed seed, a fixed number of inputs (FREMOND_FUZZ_RUNS, else about a minute's worth
+# per target on a 2-core machine, at most 3 x FREMOND_FUZZ_SECONDS) from a fresh copy of the seed
+# corpus: the same code gets the same verdict, so CI judges the change and not the luck of the draw.
+# Exploration (FREMOND_FUZZ_SEED=0): a random seed, fork mode, for FREMOND_FUZZ_SECONDS (60) each,
+# from the corpus grown in the build tree by earlier runs: this is how new bugs are found; each one
+# becomes a regression input (below) and a unit test, so that the reproducible run keeps it fixed.
 #
 # A crash, a sanitizer report, a broken invariant (fuzz/*.cpp say which) or an input slower than
 # FREMOND_FUZZ_TIMEOUT seconds (15) fails the run, unless it is a known library issue
@@ -19,6 +27,7 @@ cd "$(dirname "$0")/.."
 start=$(date +%s)
 build=${FREMOND_FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${FREMOND_FUZZ_SECONDS:-60}
+seed=${FREMOND_FUZZ_SEED:-1}
 timeout=${FREMOND_FUZZ_TIMEOUT:-15}
 jobs=$(nproc)
 [ "$jobs" -gt 2 ] && jobs=2
@@ -81,19 +90,42 @@ for t in "${targets[@]}"; do
       continue
     fi
   fi
-  # 2. Bounded fuzzing from the seeds (and whatever earlier runs in this tree added), in fork mode:
-  # an input slower than the timeout is kept and the fuzzing goes on; a crash or a broken
-  # invariant stops it.
-  corpus="$build/corpus/$t"
-  mkdir -p "$corpus"
-  cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null
-  echo "== $t: fuzzing for $seconds s"
   log="$artifacts/fuzz.log"
-  # shellcheck disable=SC2086
-  "$bin" "$corpus" $dict -fork=1 -ignore_timeouts=1 -ignore_crashes=0 -ignore_ooms=0 \
-    -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 \
-    -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1
-  rc=$?
+  if [ "$seed" != 0 ]; then
+    # 2a. Reproducible: fixed seed and input count, fresh seed corpus, one process (fork mode bounds
+    # its jobs by time, so it is never reproducible). The time limit is only a backstop.
+    runs=${FREMOND_FUZZ_RUNS:-}
+    if [ -z "$runs" ]; then
+      case "$t" in
+        solver_fuzz) runs=4000 ;;  # the solvers with every method and solve_impact_all: ~80 inputs/s
+        scene_file_fuzz) runs=800000 ;;  # ~15,000 inputs/s
+        *) runs=300000 ;;                # the problem-file reader: ~6,000 inputs/s
+      esac
+    fi
+    corpus="$build/corpus-seed$seed/$t"
+    rm -rf "$corpus"
+    mkdir -p "$corpus"
+    cp fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null
+    echo "== $t: $runs inputs from seed $seed"
+    # shellcheck disable=SC2086
+    "$bin" "$corpus" $dict -seed="$seed" -runs="$runs" -max_total_time=$((3 * seconds)) \
+      -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+      -artifact_prefix="$artifacts/" >"$log" 2>&1
+    rc=$?
+  else
+    # 2b. Exploration from the seeds and whatever earlier runs in this tree added, in fork mode: an
+    # input slower than the timeout is kept and the fuzzing goes on; a crash or a broken invariant
+    # stops it.
+    corpus="$build/corpus/$t"
+    mkdir -p "$corpus"
+    cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null
+    echo "== $t: fuzzing for $seconds s from a random seed"
+    # shellcheck disable=SC2086
+    "$bin" "$corpus" $dict -fork=1 -ignore_timeouts=1 -ignore_crashes=0 -ignore_ooms=0 \
+      -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 \
+      -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1
+    rc=$?
+  fi
   cov=$(grep -Eo 'cov: [0-9]+' "$log" | tail -n 1 | grep -Eo '[0-9]+')
   runs=$(grep -Eo '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
   # Inputs that timed out: a known hang of their law family, or a failure.
@@ -124,4 +156,8 @@ if [ ${#failed[@]} -ne 0 ]; then
   summary "FAILED: ${failed[*]}"
   exit 1
 fi
-summary "PASSED: ${#targets[@]} target(s), ${seconds} s each, no crash, no broken invariant"
+if [ "$seed" != 0 ]; then
+  summary "PASSED: ${#targets[@]} target(s) from seed $seed, no crash, no broken invariant"
+else
+  summary "PASSED: ${#targets[@]} target(s), ${seconds} s each, no crash, no broken invariant"
+fi
