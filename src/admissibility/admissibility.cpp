@@ -106,7 +106,8 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
 template <int N, int C>
 AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                             const ImpactResultT<N, C>& r,
-                                            const SolverOptions& options, const VecT<C>& rounding) {
+                                            const SolverOptions& options, const VecT<C>& rounding,
+                                            double g_max) {
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
   // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
@@ -172,7 +173,13 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
           std::max(rounding.size() == c ? rounding(i) : 0.0,
                    std::max(8 * eps, 2 * solved_to) *
                        std::max({v_scale, std::fabs(r.D_NE(i)), std::fabs(r.D_TE(i))}));
-      const double ds = std::max(8 * eps, 2 * solved_to) * p_scale;
+      // The stopping test (fremond_rows.hpp) weighs row j's residual by τ_max/τ_j, so it bounds
+      // the percussion error of every row by tolerance · v_scale / τ_max with τ_max = G_max/2,
+      // whatever the percussions' own size: a contact barely loaded (P ≪ v_scale/G_max, e.g.
+      // D_NA ≪ D_TA) has its P known to that, not to the tolerance times max|P|. The same
+      // percussion scale as the reference's, max(max|P|, v_scale/max G_jj).
+      const double p_known = std::max(p_scale, g_max > 0.0 ? 2.0 * v_scale / g_max : 0.0);
+      const double ds = std::max(8 * eps * p_scale, 2 * solved_to * p_known);
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
@@ -241,6 +248,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
   // cannot be factorised (M not positive definite) gets no rounding allowance.
   VecT<C> rounding = VecT<C>::Zero(pb.contacts());
+  double g_max = 0.0;
   const bool shapes =
       pb.M.rows() == pb.dofs() && pb.M.cols() == pb.dofs() && pb.W_N.rows() == pb.dofs() &&
       pb.W_N.cols() == pb.contacts() &&
@@ -251,9 +259,12 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         pb,
         law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
         cs);
-    if (cs.llt.info() == Eigen::Success) rounding = detail::velocity_rounding(cs, r);
+    if (cs.llt.info() == Eigen::Success) {
+      rounding = detail::velocity_rounding(cs, r);
+      g_max = detail::delassus_max(cs);
+    }
   }
-  return detail::check_admissibility(pb, law, r, options, rounding);
+  return detail::check_admissibility(pb, law, r, options, rounding, g_max);
 }
 
 #define FREMOND_INSTANTIATE(N, C)                                                \
@@ -261,7 +272,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
                                              const ImpactResultT<N, C>&);        \
   template AdmissibilityReportT<C> detail::check_admissibility(                  \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
-      const SolverOptions&, const VecT<C>&);                                     \
+      const SolverOptions&, const VecT<C>&, double);                             \
   template AdmissibilityReportT<C> check_admissibility(                          \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
       const SolverOptions&);

@@ -26,8 +26,8 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   } else {
     detail::solve_classical(pb, cs, law, options, out);
   }
-  out.admissibility =
-      detail::check_admissibility(pb, law, out, options, detail::velocity_rounding(cs, out));
+  out.admissibility = detail::check_admissibility(
+      pb, law, out, options, detail::velocity_rounding(cs, out), detail::delassus_max(cs));
   return out;
 }
 

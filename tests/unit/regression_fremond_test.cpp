@@ -8,13 +8,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Eigenvalues>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <functional>
 #include <string>
 #include <thread>
 
 #include "fremond/fremond.hpp"
+#include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
 
 namespace fremond {
@@ -293,6 +296,66 @@ TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
     EXPECT_LT(std::fabs(r.P_N(0)), 1e3);
     EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
   }
+}
+
+// --- Frémond + viscous dead zone (found by a 100,000-problem stress run of fremond_viscous).
+
+// One contact barely loaded (D_NA = −4.3e-13 beside D_TA = −1.7e-12), dead zone q = 5.5, r = 0:
+// semismooth Newton stops at P_T = 2.6e-25 where the exact one is 2e-56. That is within what its
+// stopping test promises, tolerance · v_scale / (G_max/2) = 4.4e-25 (the weighted residual of
+// fremond_rows.hpp), but the certificate allowed the percussions only tolerance · max|P| =
+// 1.1e-25, and the conjugate |s|^q'/(q' k^(q'−1)) at s = 2.6e-25 made a Fenchel–Young gap of
+// 1.4e-6 of the energy scale. Fremond_viscous #5902 (8 in 100,000).
+TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStoppingTest) {
+  Eigen::MatrixXd M(5, 5);
+  M << 35851.014596685403, 11660.46148096718, -27326.469541011604, -17585.721781158081,
+      -10750.136966815073, 11660.46148096718, 37367.75914752754, -631.34246840863034,
+      -14583.585154925087, -22394.618852814572, -27326.469541011604, -631.34246840863034,
+      23988.154150656668, 9033.0964283646135, 2588.2756382349694, -17585.721781158081,
+      -14583.585154925087, 9033.0964283646135, 15234.244794504817, 12143.164878405509,
+      -10750.136966815073, -22394.618852814572, 2588.2756382349694, 12143.164878405509,
+      14741.864409655207;
+  Eigen::VectorXd WN(5), WT(5), qA(5);
+  WN << -0.71570295138276929, 0.38267911994171078, -0.3616476683398504, -0.29948034051461003,
+      0.54581823816836805;
+  WT << 0.56339004032230044, 0.86598395247800353, -0.88245137390117812, 0.51103240996917343,
+      0.47724262798075356;
+  qA << -7.7020311889082838e-13, -1.1933865172810842e-12, 1.1079054039833979e-12,
+      1.0726219772662671e-12, 3.6550916646155965e-13;
+  const double kN = 43324.688429920971, p = 5.2828330624164384;
+  const double kT = 0.0029748108304840609, q = 5.5155308047772769;
+  const ImpactProblem pb = make(M, WN, WT, qA);
+  const ImpactLaw law =
+      ImpactLaw::fremond(PowerPotential(kN, p), DeadZonePowerPotential(kT, q, 0.0));
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, law, opt);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+
+  namespace ref = fremond_reference;
+  const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                             {kN, p}, ref::TangentialLaw::dead_zone(kT, q, 0));
+  ASSERT_EQ(sols.size(), 1u);
+  const auto& s = sols[0];
+  const double v = std::max(std::fabs(r.D_NA(0)), std::fabs(r.D_TA(0)));
+  EXPECT_NEAR(r.D_NE(0), ref::to_double(s.D_NE[0]), 1e-12 * v);
+  EXPECT_NEAR(r.D_TE(0), ref::to_double(s.D_TE[0]), 1e-12 * v);
+  // P_T, 30 orders of magnitude below P_N, to the stopping test's resolution: tolerance · v /
+  // (G_max/2), what the certificate must allow for.
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  const double g_max = std::max(WN.dot(llt.solve(WN)), WT.dot(llt.solve(WT)));
+  const double resolution = opt.tolerance * v / (0.5 * g_max);
+  EXPECT_NEAR(r.P_N(0), ref::to_double(s.P_N[0]), 1e-9 * ref::to_double(s.P_N[0]));
+  EXPECT_NEAR(r.P_T(0), ref::to_double(s.P_T[0]), resolution);
+  EXPECT_GT(std::fabs(r.P_T(0) - ref::to_double(s.P_T[0])), opt.tolerance * std::fabs(r.P_N(0)))
+      << "no longer the case this test is about: P_T off by more than tolerance · max|P|";
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  // The certificate still refuses a tangential percussion off by 1e4 times that resolution.
+  ImpactResult wrong = r;
+  wrong.P_T(0) = 1e4 * resolution;
+  const auto rep = check_admissibility(pb, law, wrong, opt);
+  EXPECT_FALSE(rep.admissible);
+  EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
 }  // namespace

@@ -19,11 +19,19 @@ template <int MaxDofs, int MaxContacts>
 VecT<MaxContacts> velocity_rounding(const ContactSpaceT<MaxDofs, MaxContacts>& cs,
                                     const ImpactResultT<MaxDofs, MaxContacts>& result);
 
-/// check_admissibility with `rounding` from velocity_rounding.
+/// The largest diagonal entry of the Delassus matrix G over the rows that take part (0 without
+/// any): Frémond's stopping test bounds a row's percussion error by tolerance · v_scale / (G_max/2)
+/// (fremond_rows.hpp, the weighted residual), which the certificate must allow for.
+template <int MaxDofs, int MaxContacts>
+double delassus_max(const ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  return cs.rows() ? cs.G.diagonal().maxCoeff() : 0.0;
+}
+
+/// check_admissibility with `rounding` from velocity_rounding and `g_max` from delassus_max.
 template <int MaxDofs, int MaxContacts>
 AdmissibilityReportT<MaxContacts> check_admissibility(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
     const ImpactResultT<MaxDofs, MaxContacts>& result, const SolverOptions& options,
-    const VecT<MaxContacts>& rounding);
+    const VecT<MaxContacts>& rounding, double g_max);
 
 }  // namespace fremond::detail
