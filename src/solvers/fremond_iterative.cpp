@@ -82,7 +82,10 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
     RowMat JtJ = J.transpose() * J;
     const Rows JtR = J.transpose() * R;
     const double jscale = std::max(JtJ.diagonal().maxCoeff(), std::numeric_limits<double>::min());
-    double lambda = std::max(nr, kEps * jscale);
+    // λ relative to JᵀJ: ‖R‖/v_scale is dimensionless, so the damping does not depend on the units
+    // of P and D (λ = ‖R‖ itself, a velocity beside JᵀJ in velocity²/percussion², damped steps on
+    // rows with G_jj ~ 1e-6 a millionfold: Newton crawled, halving its residual every 10 steps).
+    double lambda = jscale * std::max(nr / cs.v_scale, kEps);
     for (int attempt = 0; attempt < 12 && !accepted; ++attempt) {
       bool ok = false;
       if (attempt == 0 && lu.rcond() > 1e-12) {

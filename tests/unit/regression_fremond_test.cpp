@@ -358,5 +358,49 @@ TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStopping
   EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
+// Three contacts on two degrees of freedom (G of rank 2), all three reactions active, a tangential
+// dead zone plus b|y|: the body stops. Semismooth Newton damped its Levenberg–Marquardt steps by
+// λ = ‖R‖, a velocity, beside JᵀJ ~ G² = 1e-11 on the stiffest row: it crawled and stalled at a
+// residual of 3e-6, and the splitting started over from the decoupled guess, 39,766 sweeps of
+// bisection proxes (0.6 s here; reported as not returning within 30 s on a loaded machine,
+// fremond_viscous #99945). With λ relative to JᵀJ Newton gets to 1e-7, and the splitting goes on
+// from there: 12,246 sweeps.
+TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
+  Eigen::Matrix2d M;
+  M << 551518.35420584434, -1631302.5244430727, -1631302.5244430727, 4825893.0550011601;
+  Eigen::MatrixXd WN(2, 3), WT(2, 3);
+  WN << 0.73860670856405441, 0.065482554865002651, -0.22153732418795247, 0.24157401075743601,
+      -0.11923774271210874, -0.93092705521200891;
+  WT << -0.93036189779603784, -0.39227157753826047, 0.65475316437035791, 0.40951393431599925,
+      0.57007200591433271, -0.48721209590653736;
+  const ImpactProblem pb =
+      make(M, WN, WT, Eigen::Vector2d(-0.014789547000445456, 0.039792715943371651));
+  const double kN = 507985.39875974786, p = 3.3483451026071132, b = 0.0018210448818977317;
+  const DeadZonePowerPotential dead_zone(2.218777607372445, 5.0743674949327762,
+                                         0.39792715943371648);
+  const ImpactLaw law =
+      ImpactLaw::fremond(PowerPotential(kN, p), dead_zone + AbsoluteValuePotential(b));
+  EXPECT_TRUE(returns_within(30, [&] {
+    const SolverOptions opt;
+    const auto r = solve_impact(pb, law, opt);
+    ASSERT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_LT(r.solver.iterations, 20000) << to_string(r.solver.method);
+    // The solution by hand (SPEC §2): q̇_E = 0 satisfies every row. Each z_T = D_TA/2 lies inside
+    // the dead zone (|z_T| < r), so −P_T = b sign(z_T); each z_N = D_NA/2 < 0 with D_NE = 0, so
+    // P_N = k|z_N|^(p−1) + a reaction ≥ 0; and M(q̇_E − q̇_A) = W_N P_N + W_T P_T has such a
+    // solution (the three methods find one). The velocities are unique (strong convexity).
+    const double vA = pb.qdot_A.cwiseAbs().maxCoeff();
+    EXPECT_LT(r.qdot_E.cwiseAbs().maxCoeff(), 1e-9 * vA);
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_LT(std::fabs(r.D_TA(i)) / 2, dead_zone.r());
+      EXPECT_NEAR(r.P_T(i), -std::copysign(b, r.D_TA(i)), 1e-9 * b) << i;
+      EXPECT_GE(r.P_N(i), kN * std::pow(std::fabs(r.D_NA(i)) / 2, p - 1) * (1 - 1e-9)) << i;
+    }
+    const Eigen::Vector2d balance = M * (r.qdot_E - pb.qdot_A) - WN * r.P_N - WT * r.P_T;
+    EXPECT_LT(balance.cwiseAbs().maxCoeff(), 1e-9 * (M * pb.qdot_A).cwiseAbs().maxCoeff());
+    EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  }));
+}
+
 }  // namespace
 }  // namespace fremond
