@@ -160,13 +160,38 @@ TEST(ApiValidation, EnergyOrContactVelocityBeyondDoublePrecision) {
   pb = base_problem();
   pb.W_N(1, 0) = 1e308;
   EXPECT_EQ(solve_refusal(pb), "W_N");
-  pb.W_N(1, 0) = 1e307;  // D_NA(0) = −2e307: in range
-  EXPECT_EQ(solve_refusal(pb), "<none>");
+  pb.W_N(1, 0) = 1e307;  // D_NA(0) = −2e307 is in range, but G = 1e614 is not: refused for that
+  try {
+    (void)solve_impact(pb, ImpactLaw::newton(0.5));
+    ADD_FAILURE() << "not refused";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "W_N");
+    EXPECT_NE(std::string(e.what()).find("Delassus"), std::string::npos) << e.what();
+  }
   // D_TA(0) = 1e308·1 + 1.7e308 (a moving obstacle).
   pb = base_problem();
   pb.W_T(0, 0) = 1e308;
   pb.w_T = Eigen::Vector2d(1.7e308, 0.0);
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.3)), "W_T");
+
+  // Finite velocities, but a Delassus entry G = Wᵀ M⁻¹ W = (1e160)² that overflows, for a contact
+  // that takes part (D_NA(0) = −2e160): refused by name before any factorisation sees ∞. The solver
+  // fuzzer found Eigen's SVD reading out of bounds on such a G (Newton + Coulomb, 3 contacts).
+  pb = base_problem();
+  pb.W_N(1, 0) = 1e160;
+  EXPECT_EQ(solve_refusal(pb), "W_N");
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.2, PerContact({1e6, 0.0}))), "W_N");
+  EXPECT_EQ(solve_refusal(pb, fremond_law()), "W_N");
+  EXPECT_EQ(refusal([&] { (void)solve_impact_all(pb, ImpactLaw::newton_coulomb(0.2, 1e6)); }),
+            "W_N");
+  pb.W_N(1, 0) = 1e150;  // G = 1e300: in range, solved, and the answer is finite
+  const auto big = solve_impact(pb, ImpactLaw::newton_coulomb(0.2, 0.5));
+  EXPECT_TRUE(big.qdot_E.allFinite() && std::isfinite(big.energy_change));
+  EXPECT_EQ(robust::check_result(pb, ImpactLaw::newton_coulomb(0.2, 0.5), {}, big), "");
+  pb = base_problem();
+  pb.W_T(0, 0) = 1e160;  // the tangential row of contact 0
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.3)), "W_T");
+  EXPECT_EQ(solve_refusal(pb), "<none>");  // frictionless: the tangential rows take no part
 }
 
 // A problem without contacts is legal (nothing happens); it must not crash either way.

@@ -6,7 +6,9 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
 
@@ -73,6 +75,18 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
     cs.MinvW = cs.llt.solve(cs.W);
     cs.G.noalias() = cs.W.transpose() * cs.MinvW;
     cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+    // G = Wᵀ M⁻¹ W of a contact that takes part must be a number: |W|²/|M| beyond 1e308 leaves no
+    // percussion representable (P ~ D_A / G), and a factorisation of a matrix holding ∞ is
+    // undefined (Eigen's SVD reads out of bounds). The data are finite, their scale is not.
+    for (int k = 0; k < r; ++k) {
+      if (std::isfinite(cs.G(k, k)) && cs.MinvW.col(k).allFinite() && cs.G.col(k).allFinite())
+        continue;
+      const bool normal = k < a;
+      throw InvalidArgument(normal ? "W_N" : "W_T",
+                            "contact " + std::to_string(cs.index(normal ? k : k - a)) +
+                                ": the Delassus entry W^T M^-1 W overflows double precision "
+                                "(|W|^2 / |M| beyond 1e308); express the problem in other units");
+    }
   } else {
     cs.MinvW.resize(n, 0);
     cs.G.resize(0, 0);
