@@ -81,6 +81,7 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
     for (int k = 0; k < r; ++k) {
       if (std::isfinite(cs.G(k, k)) && cs.MinvW.col(k).allFinite() && cs.G.col(k).allFinite())
         continue;
+      require_positive_definite(pb.M, cs.llt);  // a singular M is the cause, if it is not SPD
       const bool normal = k < a;
       throw InvalidArgument(normal ? "W_N" : "W_T",
                             "contact " + std::to_string(cs.index(normal ? k : k - a)) +
