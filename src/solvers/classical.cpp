@@ -50,9 +50,9 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.D_NC.resize(c);
     out.D_TC.setZero(c);
     for (int i = 0; i < c; ++i) {
-      out.D_NC(i) = pb.W_N.col(i).dot(qdot_C) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+      out.D_NC(i) = contact_velocity(pb.W_N.col(i), qdot_C, pb.w_N.size() ? pb.w_N(i) : 0.0);
       if (pb.has_tangential())
-        out.D_TC(i) = pb.W_T.col(i).dot(qdot_C) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+        out.D_TC(i) = contact_velocity(pb.W_T.col(i), qdot_C, pb.w_T.size() ? pb.w_T(i) : 0.0);
     }
   }
   const int found = lo.solutions.size;

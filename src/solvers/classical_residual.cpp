@@ -55,8 +55,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
 
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
   for (int i = 0; i < c; ++i) {
-    const double dna = pb.W_N.col(i).dot(pb.qdot_A) + wn(i);
-    const double dta = tangential ? pb.W_T.col(i).dot(pb.qdot_A) + wt(i) : 0.0;
+    const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
+    const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
     const double gn_raw = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
     const double gn = gn_raw > 0 ? gn_raw : 1.0;
     double gt = 1.0;
@@ -79,16 +79,16 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     }
     v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
     const double e = law.e[i], mu = friction ? law.mu[i] : 0.0;
-    const double dne = pb.W_N.col(i).dot(qE) + wn(i);
-    const double dte = tangential ? pb.W_T.col(i).dot(qE) + wt(i) : 0.0;
+    const double dne = contact_velocity(pb.W_N.col(i), qE, wn(i));
+    const double dte = tangential ? contact_velocity(pb.W_T.col(i), qE, wt(i)) : 0.0;
     if (!poisson) {
       keep(complementarity(dne + e * dna, r.P_N(i), gn));  // eq. 5 as a complementarity
       if (tangential) keep(coulomb(r.P_T(i), dte, mu * r.P_N(i), gt));
       continue;
     }
     // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
-    const double dnc = pb.W_N.col(i).dot(qC) + wn(i);
-    const double dtc = tangential ? pb.W_T.col(i).dot(qC) + wt(i) : 0.0;
+    const double dnc = contact_velocity(pb.W_N.col(i), qC, wn(i));
+    const double dtc = tangential ? contact_velocity(pb.W_T.col(i), qC, wt(i)) : 0.0;
     keep(complementarity(dnc, r.P_NC(i), gn));
     if (tangential) keep(coulomb(r.P_TC(i), dtc, mu * r.P_NC(i), gt));
     const double pne = r.P_N(i) - r.P_NC(i), pte = r.P_T(i) - r.P_TC(i);

@@ -447,7 +447,7 @@ TEST(RegressionFremond, AccurateDotGivesTheSignOfATouchingContact) {
               1e-15 * wN);
 }
 
-TEST(RegressionFremond, DISABLED_TouchingContactTakesPartByTheExactSignOfDNA) {
+TEST(RegressionFremond, TouchingContactTakesPartByTheExactSignOfDNA) {
   Eigen::MatrixXd WT(4, 2);
   WT << 0.41000839791764876, 0.35859968334793124, -0.35557494051997085, -0.41017373149348324,
       -0.61171984094883203, -0.96886960359629459, 0.90680882599659207, 0.52027153157391592;

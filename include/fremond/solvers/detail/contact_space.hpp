@@ -10,9 +10,19 @@
 
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/detail/accurate_dot.hpp"
 #include "fremond/solvers/impact_result.hpp"
 
 namespace fremond::detail {
+
+/// A contact velocity Wᵀq̇ + w (SPEC §1) with an accurate dot product: a touching contact
+/// (D_NA = 0 up to the data's last bits) takes part or not by the sign of a sum that cancels, and
+/// the plain dot product can get that sign wrong (accurate_dot.hpp). Every place that decides or
+/// reports D_A and D_E uses this one function, so that they agree to the last bit.
+template <class Col, class Vec>
+double contact_velocity(const Col& W_col, const Vec& qdot, double w) {
+  return accurate_dot(W_col, qdot, w);
+}
 
 template <int MaxDofs, int MaxContacts>
 struct ContactSpaceT {
@@ -52,8 +62,7 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   int a = 0;
   for (int i = 0; i < c; ++i) {
     const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
-    const double dn = pb.W_N.col(i).dot(pb.qdot_A) + w;
-    if (dn <= 0.0) cs.index(a++) = i;
+    if (contact_velocity(pb.W_N.col(i), pb.qdot_A, w) <= 0.0) cs.index(a++) = i;
   }
   cs.active = a;
   cs.index.conservativeResize(a);
@@ -63,10 +72,10 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   for (int k = 0; k < a; ++k) {
     const int i = cs.index(k);
     cs.W.col(k) = pb.W_N.col(i);
-    cs.D_A(k) = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+    cs.D_A(k) = contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
     if (cs.tangential) {
       cs.W.col(a + k) = pb.W_T.col(i);
-      cs.D_A(a + k) = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+      cs.D_A(a + k) = contact_velocity(pb.W_T.col(i), pb.qdot_A, pb.w_T.size() ? pb.w_T(i) : 0.0);
     }
   }
   // No row (no contact takes part): nothing to solve. Eigen's triangular solve of a matrix with
@@ -123,13 +132,13 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   out.takes_part.setZero(c);
   for (int i = 0; i < c; ++i) {
     const double wn = pb.w_N.size() ? pb.w_N(i) : 0.0;
-    out.D_NA(i) = pb.W_N.col(i).dot(pb.qdot_A) + wn;
-    out.D_NE(i) = pb.W_N.col(i).dot(out.qdot_E) + wn;
+    out.D_NA(i) = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn);
+    out.D_NE(i) = contact_velocity(pb.W_N.col(i), out.qdot_E, wn);
     out.takes_part(i) = out.D_NA(i) <= 0.0 ? 1 : 0;
     if (pb.has_tangential()) {
       const double wt = pb.w_T.size() ? pb.w_T(i) : 0.0;
-      out.D_TA(i) = pb.W_T.col(i).dot(pb.qdot_A) + wt;
-      out.D_TE(i) = pb.W_T.col(i).dot(out.qdot_E) + wt;
+      out.D_TA(i) = contact_velocity(pb.W_T.col(i), pb.qdot_A, wt);
+      out.D_TE(i) = contact_velocity(pb.W_T.col(i), out.qdot_E, wt);
     }
   }
   // T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from velocities.
