@@ -406,14 +406,17 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     // No NaN or infinity leaves the library, whatever the status: percussions a failed method
     // left so large that the velocities or the energy overflow are no answer; return none
     // (q̇_E = q̇_A) and say so.
-    if (!(out.qdot_E.allFinite() && std::isfinite(out.energy_change) && P.allFinite())) {
+    // The reaction part too: φ_N'(z_N) of a far iterate (p = 13.7 at |z| = 1e8) overflows where
+    // P itself is finite, and ∞ − ∞ made P_N_reaction NaN beside a finite stalled answer.
+    if (!(out.qdot_E.allFinite() && std::isfinite(out.energy_change) && P.allFinite() &&
+          out.P_N_reaction.allFinite())) {
       P.setZero();
       scatter_solution(pb, cs, P, out);
       split_reaction(rows, P, out);
       if (out.solver.status == SolverStatus::converged) out.solver.status = SolverStatus::failed;
       out.solver.message =
-          "the method's answer overflows (velocities or energy not finite): no percussion is "
-          "returned";
+          "the method's answer overflows (velocities, energy or reaction not finite): no "
+          "percussion is returned";
       if (cs.rows()) out.solver.residual = rows.plain_residual(P) / cs.v_scale;
     }
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)

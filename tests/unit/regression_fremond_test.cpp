@@ -403,6 +403,45 @@ TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
   }));
 }
 
+// NLopt stopped far from the answer (p = 13.7, |q̇_A| = 3e7, a dead zone with k = 0): P and the
+// velocities were finite but φ_N'(z_N) was not, and the reaction part P_N + φ_N'(z_N) left the
+// library as NaN. Any non-finite part of the answer now means no percussion is returned.
+// Fremond_viscous #84838 (the automatic chain reaches NLopt there).
+TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
+  Eigen::Matrix4d M;
+  M << 4309.9357158486337, 4053.4907649244801, -5636.7924585722903, -436.57504440825613,
+      4053.4907649244801, 3881.9245711565181, -5387.7441528527152, -439.68613019735983,
+      -5636.7924585722903, -5387.7441528527152, 7743.2323761244888, 464.13157841087957,
+      -436.57504440825613, -439.68613019735983, 464.13157841087957, 134.04047964951462;
+  Eigen::MatrixXd WN(4, 4), WT(4, 4);
+  WN << 0.85034390160148066, 0.5076497320320037, 0.41577390995010433, -0.93016867021106442,
+      -0.40011336246033091, -0.54329329127150294, 0.7621561679795501, -0.26183693905729855,
+      -0.17256190889937151, 0.040022016769345248, 0.17041980061595186, -0.82291833768457601,
+      -0.063915611551764617, -0.34314250608852703, 0.74965780568482887, 0.85622520380727885;
+  WT << -0.83528724548566213, -0.93678972688092055, 0.047360835543909463, 0.60916445551589704,
+      -0.35361760561477529, -0.049808305213667636, 0.71192821950940721, 0.28019851165753229,
+      -0.32832290349082449, -0.11732110270639051, 0.27460835072900758, 0.18549784880452891,
+      -0.70653127453778353, -0.14572142797462073, -0.45221435484366879, 0.6868845471039644;
+  const ImpactProblem pb = make(M, WN, WT,
+                                Eigen::Vector4d(-12533905.408332061, 26393776.048122544,
+                                                -15111028.156225856, -19993311.526238225));
+  PerContactPotential tangential;
+  const double k[] = {0, 0.081309177094602919, 4.2813704954727753e-06, 112.94654704756867};
+  const double q[] = {3.2914897486475985, 4.9679544174524617, 18.702602564368657,
+                      1.2244009095265325};
+  const double r[] = {0, 414126.27035395184, 1072457.5705615883, 1176512.23360923};
+  for (int i = 0; i < 4; ++i)
+    tangential.potentials.emplace_back(std::make_unique<DeadZonePowerPotential>(k[i], q[i], r[i]));
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(234.45196439246172, 13.729012979061201),
+                                           std::move(tangential));
+  for (const SolverOptions& opt : {SolverOptions{}, method(SolverMethod::nlopt)}) {
+    const auto r = solve_impact(pb, law, opt);
+    EXPECT_TRUE(r.P_N_reaction.allFinite()) << r.P_N_reaction.transpose();
+    EXPECT_TRUE(r.qdot_E.allFinite());
+    EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  }
+}
+
 // A contact touching (the stress generator's "D_NA = 0 as nearly as rounding allows"): for the
 // stored doubles D_NA = W_Nᵀ q̇_A is −8.9e-23 (quad precision, where the products of doubles are
 // exact), but the double dot product gives +8.5e-22 beside velocities of 3e-5. The library then
