@@ -94,9 +94,15 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   const double kappa =
       L.size() && L.minCoeff() > 0 ? std::pow(L.maxCoeff() / L.minCoeff(), 2) : 1.0;
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
+  // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
+  // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
+  // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
+  const auto qE = r.qdot_E.cwiseAbs().eval();
+  const bool stored = qE.size() == cs.dofs;
   for (int j = 0; j < rows; ++j) {
     const double d =
-        eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()));
+        eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
+                 (stored ? cs.W.col(j).cwiseAbs().dot(qE) : 0.0));
     const int i = cs.index(j < cs.active ? j : j - cs.active);
     out(i) = std::max(out(i), d);
   }
