@@ -5,9 +5,13 @@
 #include <array>
 #include <cmath>
 
+#include "detail/ulp.hpp"
+
 namespace fremond {
 
 namespace {
+
+using detail::ulp;
 
 // A lower bound of f on [0, h] from its values and slopes at both ends and |f''| ≤ C:
 // f(s) ≥ p_a(s) = f_a + d_a s − C s²/2 and f(s) ≥ p_b(s) = f_b − d_b (h − s) − C (h − s)²/2.
@@ -42,10 +46,6 @@ Point sample(const GapFunction& f, double s, int& evaluations) {
 
 // The smallest interval the search splits: a few units in the last place of its end, and never
 // below 2⁻²⁰⁰ of the whole search (which bounds the depth of the splitting by 200 levels).
-double ulp(double x) {
-  x = std::fabs(x);
-  return std::nextafter(x, std::numeric_limits<double>::infinity()) - x;
-}
 double min_width(double b, double floor) {
   return std::max(4.0 * ulp(b), floor);
 }

@@ -158,65 +158,150 @@ bool try_mode(const PersistentContactProblem& pb, const ContactMode* mode, const
 
 // One contact, the common case of a body resting, rocking or sliding on one point: the same
 // modes and checks as try_mode, with the 2×2 Delassus matrix formed once and every mode in closed
-// form.
-bool solve_one(const PersistentContactProblem& pb, const ContactMode* warm, const Scales& sc,
-               PersistentContactResult& out) {
-  const Eigen::Vector3d& n = pb.W_N[0];
-  const Eigen::Vector3d& t = pb.W_T[0];
-  const Eigen::Vector3d mn = pb.minv.cwiseProduct(n), mt = pb.minv.cwiseProduct(t);
-  const double gnn = n.dot(mn), gnt = n.dot(mt), gtt = t.dot(mt), mu = pb.mu[0];
-  const bool mean_n = pb.normal == StepVelocity::mean, mean_t = pb.friction == StepVelocity::mean;
-  // V = f (c + D_free + G P): f = ½ and c = D_before for a mean velocity, f = 1 and c = 0 else.
-  const double fn = mean_n ? 0.5 : 1.0, ft = mean_t ? 0.5 : 1.0;
-  const double an = (mean_n ? n.dot(pb.v_before) : 0.0) + n.dot(pb.v_free);
-  const double at = (mean_t ? t.dot(pb.v_before) : 0.0) + t.dot(pb.v_free);
-  const double tv = kTolerance * sc.v, tp = kTolerance * sc.p;
-  const auto attempt = [&](ContactMode m) {
-    ++out.modes_tried;
-    double pn = 0.0, pt = 0.0;
-    switch (m) {
-      case ContactMode::open:
-        if (fn * an < -tv) return false;
-        break;
-      case ContactMode::stick: {
-        if (mu == 0.0) return false;
-        const double det = gnn * gtt - gnt * gnt;
-        if (!(det > 1e-12 * gnn * gtt)) return false;
-        pn = (-an * gtt + gnt * at) / det;
-        pt = (-at * gnn + gnt * an) / det;
-        if (pn < -tp || std::fabs(pt) > mu * pn + tp) return false;
-        break;
-      }
-      case ContactMode::slide_forward:
-      case ContactMode::slide_back: {
-        const double sigma = m == ContactMode::slide_forward ? -1.0 : 1.0;
-        if (mu == 0.0 && sigma > 0.0) return false;
-        const double a = gnn + sigma * mu * gnt;
-        if (!(std::fabs(a) > 0.0)) return false;
-        pn = -an / a;
-        pt = sigma * mu * pn;
-        if (pn < -tp) return false;
-        if (mu > 0.0) {
-          const double vt = ft * (at + gnt * pn + gtt * pt);
-          if (sigma < 0.0 ? vt < -tv : vt > tv) return false;
+// form. What does not depend on the step velocities (the Delassus entries, the contact velocities
+// of v_before and v_free, the scales) is formed once per problem, so that the dissipative step's
+// second solve (Coulomb on the mean) does not form it again.
+struct OneContact {
+  Eigen::Vector3d mn, mt;    // M⁻¹ W_N, M⁻¹ W_T
+  double gnn, gnt, gtt, mu;  // Delassus entries, friction coefficient
+  double n_before, n_free;   // W_Nᵀ v_before, W_Nᵀ v_free
+  double t_before, t_free;   // W_Tᵀ v_before, W_Tᵀ v_free
+  Scales sc;
+
+  explicit OneContact(const PersistentContactProblem& pb) {
+    const Eigen::Vector3d& n = pb.W_N[0];
+    const Eigen::Vector3d& t = pb.W_T[0];
+    mn = pb.minv.cwiseProduct(n);
+    mt = pb.minv.cwiseProduct(t);
+    gnn = n.dot(mn);
+    gnt = n.dot(mt);
+    gtt = t.dot(mt);
+    mu = pb.mu[0];
+    n_before = n.dot(pb.v_before);
+    n_free = n.dot(pb.v_free);
+    t_before = t.dot(pb.v_before);
+    t_free = t.dot(pb.v_free);
+    // As in solve_persistent_contact, expression for expression (the same bits).
+    sc.v = std::max({0.0, std::fabs(n_free), std::fabs(t_free), std::fabs(t_before)});
+    const double g = n.dot(pb.minv.cwiseProduct(n));
+    if (g > 0.0) sc.p = std::max(0.0, sc.v / g);
+    sc.v = std::max(sc.v, 1e-300);
+    sc.p = std::max(sc.p, 1e-300);
+  }
+
+  bool solve(const Eigen::Vector3d& v_free, StepVelocity normal, StepVelocity friction,
+             const ContactMode* warm, PersistentContactResult& out) const {
+    const bool mean_n = normal == StepVelocity::mean, mean_t = friction == StepVelocity::mean;
+    // V = f (c + D_free + G P): f = ½ and c = D_before for a mean velocity, f = 1 and c = 0 else.
+    const double fn = mean_n ? 0.5 : 1.0, ft = mean_t ? 0.5 : 1.0;
+    const double an = (mean_n ? n_before : 0.0) + n_free;
+    const double at = (mean_t ? t_before : 0.0) + t_free;
+    const double tv = kTolerance * sc.v, tp = kTolerance * sc.p;
+    const auto attempt = [&](ContactMode m) {
+      ++out.modes_tried;
+      double pn = 0.0, pt = 0.0;
+      switch (m) {
+        case ContactMode::open:
+          if (fn * an < -tv) return false;
+          break;
+        case ContactMode::stick: {
+          if (mu == 0.0) return false;
+          const double det = gnn * gtt - gnt * gnt;
+          if (!(det > 1e-12 * gnn * gtt)) return false;
+          pn = (-an * gtt + gnt * at) / det;
+          pt = (-at * gnn + gnt * an) / det;
+          if (pn < -tp || std::fabs(pt) > mu * pn + tp) return false;
+          break;
         }
-        break;
+        case ContactMode::slide_forward:
+        case ContactMode::slide_back: {
+          const double sigma = m == ContactMode::slide_forward ? -1.0 : 1.0;
+          if (mu == 0.0 && sigma > 0.0) return false;
+          const double a = gnn + sigma * mu * gnt;
+          if (!(std::fabs(a) > 0.0)) return false;
+          pn = -an / a;
+          pt = sigma * mu * pn;
+          if (pn < -tp) return false;
+          if (mu > 0.0) {
+            const double vt = ft * (at + gnt * pn + gtt * pt);
+            if (sigma < 0.0 ? vt < -tv : vt > tv) return false;
+          }
+          break;
+        }
       }
+      out.P_N[0] = pn;
+      out.P_T[0] = pt;
+      out.v = v_free + pn * mn + pt * mt;
+      out.mode[0] = m;
+      return true;
+    };
+    if (warm && attempt(warm[0])) return true;
+    const ContactMode along = at >= 0.0 ? ContactMode::slide_forward : ContactMode::slide_back;
+    const ContactMode against = at >= 0.0 ? ContactMode::slide_back : ContactMode::slide_forward;
+    const std::array<ContactMode, 4> order =
+        an >= 0.0
+            ? std::array<ContactMode, 4>{ContactMode::open, ContactMode::stick, along, against}
+            : std::array<ContactMode, 4>{ContactMode::stick, along, against, ContactMode::open};
+    for (const ContactMode m : order)
+      if (attempt(m)) return true;
+    return false;
+  }
+};
+
+Scales scales(const PersistentContactProblem& pb) {
+  Scales sc;
+  for (int k = 0; k < pb.contacts; ++k) {
+    sc.v = std::max({sc.v, std::fabs(pb.W_N[k].dot(pb.v_free)), std::fabs(pb.W_T[k].dot(pb.v_free)),
+                     std::fabs(pb.W_T[k].dot(pb.v_before))});
+    const double g = pb.W_N[k].dot(pb.minv.cwiseProduct(pb.W_N[k]));
+    if (g > 0.0) sc.p = std::max(sc.p, sc.v / g);
+  }
+  sc.v = std::max(sc.v, 1e-300);
+  sc.p = std::max(sc.p, 1e-300);
+  return sc;
+}
+
+// Two or more contacts: the warm modes, then every mode (see solve_persistent_contact).
+bool solve_many(const PersistentContactProblem& pb, const ContactMode* warm, const Scales& sc,
+                PersistentContactResult& out) {
+  const int c = pb.contacts;
+  std::array<ContactMode, kMax> mode{};
+  if (warm) {
+    for (int k = 0; k < c; ++k) mode[k] = warm[k];
+    ++out.modes_tried;
+    if (try_mode(pb, mode.data(), sc, out)) return true;
+  }
+  // Every mode, each contact's modes in the order its free motion suggests: open first when the
+  // contact leaves without a percussion, then sticking, then sliding against its free slip.
+  // Frictionless contacts have only "open" and "slide" (P_T = 0).
+  std::array<std::array<ContactMode, 4>, kMax> order;
+  for (int k = 0; k < c; ++k) {
+    const bool mn = pb.normal == StepVelocity::mean, mt = pb.friction == StepVelocity::mean;
+    const double vn = pb.W_N[k].dot(pb.v_free) + (mn ? pb.W_N[k].dot(pb.v_before) : 0.0);
+    const double vt = pb.W_T[k].dot(pb.v_free) + (mt ? pb.W_T[k].dot(pb.v_before) : 0.0);
+    const ContactMode along = vt >= 0.0 ? ContactMode::slide_forward : ContactMode::slide_back;
+    const ContactMode against = vt >= 0.0 ? ContactMode::slide_back : ContactMode::slide_forward;
+    if (vn >= 0.0)
+      order[k] = {ContactMode::open, ContactMode::stick, along, against};
+    else
+      order[k] = {ContactMode::stick, along, against, ContactMode::open};
+  }
+  std::array<int, kMax> idx{};
+  while (true) {
+    bool skip = false;
+    for (int k = 0; k < c; ++k) {
+      mode[k] = order[k][idx[k]];
+      if (pb.mu[k] == 0.0 && (mode[k] == ContactMode::stick || mode[k] == ContactMode::slide_back))
+        skip = true;
     }
-    out.P_N[0] = pn;
-    out.P_T[0] = pt;
-    out.v = pb.v_free + pn * mn + pt * mt;
-    out.mode[0] = m;
-    return true;
-  };
-  if (warm && attempt(warm[0])) return true;
-  const ContactMode along = at >= 0.0 ? ContactMode::slide_forward : ContactMode::slide_back;
-  const ContactMode against = at >= 0.0 ? ContactMode::slide_back : ContactMode::slide_forward;
-  const std::array<ContactMode, 4> order =
-      an >= 0.0 ? std::array<ContactMode, 4>{ContactMode::open, ContactMode::stick, along, against}
-                : std::array<ContactMode, 4>{ContactMode::stick, along, against, ContactMode::open};
-  for (const ContactMode m : order)
-    if (attempt(m)) return true;
+    if (!skip) {
+      ++out.modes_tried;
+      if (try_mode(pb, mode.data(), sc, out)) return true;
+    }
+    int k = 0;
+    while (k < c && ++idx[k] == 4) idx[k++] = 0;
+    if (k == c) break;
+  }
   return false;
 }
 
@@ -244,66 +329,46 @@ PersistentContactResult solve_persistent_contact(const PersistentContactProblem&
   out.v = pb.v_free;
   const int c = pb.contacts;
   if (c <= 0 || c > kMax) return out;
-  Scales sc;
-  for (int k = 0; k < c; ++k) {
-    sc.v = std::max({sc.v, std::fabs(pb.W_N[k].dot(pb.v_free)), std::fabs(pb.W_T[k].dot(pb.v_free)),
-                     std::fabs(pb.W_T[k].dot(pb.v_before))});
-    const double g = pb.W_N[k].dot(pb.minv.cwiseProduct(pb.W_N[k]));
-    if (g > 0.0) sc.p = std::max(sc.p, sc.v / g);
-  }
-  sc.v = std::max(sc.v, 1e-300);
-  sc.p = std::max(sc.p, 1e-300);
-
-  if (c == 1) {
-    out.solved = solve_one(pb, warm, sc, out);
-    if (!out.solved) out.v = pb.v_free;
-    return out;
-  }
-  std::array<ContactMode, kMax> mode{};
-  if (warm) {
-    for (int k = 0; k < c; ++k) mode[k] = warm[k];
-    ++out.modes_tried;
-    if (try_mode(pb, mode.data(), sc, out)) {
-      out.solved = true;
-      return out;
-    }
-  }
-  // Every mode, each contact's modes in the order its free motion suggests: open first when the
-  // contact leaves without a percussion, then sticking, then sliding against its free slip.
-  // Frictionless contacts have only "open" and "slide" (P_T = 0).
-  std::array<std::array<ContactMode, 4>, kMax> order;
-  for (int k = 0; k < c; ++k) {
-    const bool mn = pb.normal == StepVelocity::mean, mt = pb.friction == StepVelocity::mean;
-    const double vn = pb.W_N[k].dot(pb.v_free) + (mn ? pb.W_N[k].dot(pb.v_before) : 0.0);
-    const double vt = pb.W_T[k].dot(pb.v_free) + (mt ? pb.W_T[k].dot(pb.v_before) : 0.0);
-    const ContactMode along = vt >= 0.0 ? ContactMode::slide_forward : ContactMode::slide_back;
-    const ContactMode against = vt >= 0.0 ? ContactMode::slide_back : ContactMode::slide_forward;
-    if (vn >= 0.0)
-      order[k] = {ContactMode::open, ContactMode::stick, along, against};
-    else
-      order[k] = {ContactMode::stick, along, against, ContactMode::open};
-  }
-  std::array<int, kMax> idx{};
-  while (true) {
-    bool skip = false;
-    for (int k = 0; k < c; ++k) {
-      mode[k] = order[k][idx[k]];
-      if (pb.mu[k] == 0.0 && (mode[k] == ContactMode::stick || mode[k] == ContactMode::slide_back))
-        skip = true;
-    }
-    if (!skip) {
-      ++out.modes_tried;
-      if (try_mode(pb, mode.data(), sc, out)) {
-        out.solved = true;
-        return out;
-      }
-    }
-    int k = 0;
-    while (k < c && ++idx[k] == 4) idx[k++] = 0;
-    if (k == c) break;
-  }
-  out.v = pb.v_free;
+  out.solved = c == 1 ? OneContact(pb).solve(pb.v_free, pb.normal, pb.friction, warm, out)
+                      : solve_many(pb, warm, scales(pb), out);
+  if (!out.solved) out.v = pb.v_free;
   return out;
+}
+
+PersistentContactResult solve_dissipative_step(PersistentContactProblem& pb,
+                                               const ContactMode* warm) {
+  pb.normal = StepVelocity::mean;
+  pb.friction = StepVelocity::end;
+  const int c = pb.contacts;
+  PersistentContactResult r;
+  r.v = pb.v_free;
+  if (c <= 0 || c > kMax) return r;
+  // The scales and, for one contact, the Delassus entries and contact velocities do not depend on
+  // which velocity Coulomb's law acts on: formed once for both solves.
+  if (c == 1) {
+    const OneContact one(pb);
+    r.solved = one.solve(pb.v_free, pb.normal, pb.friction, warm, r);
+    if (!r.solved) r.v = pb.v_free;
+    double rounding = 0.0;
+    if (r.solved && step_energy(pb, r, &rounding) <= rounding) return r;
+    pb.friction = StepVelocity::mean;
+    PersistentContactResult m;
+    m.v = pb.v_free;
+    m.solved = one.solve(pb.v_free, pb.normal, pb.friction, warm, m);
+    if (!m.solved) return r;
+    return m;
+  }
+  const Scales sc = scales(pb);
+  r.solved = solve_many(pb, warm, sc, r);
+  if (!r.solved) r.v = pb.v_free;
+  double rounding = 0.0;
+  if (r.solved && step_energy(pb, r, &rounding) <= rounding) return r;
+  pb.friction = StepVelocity::mean;
+  PersistentContactResult m;
+  m.v = pb.v_free;
+  m.solved = solve_many(pb, warm, sc, m);
+  if (!m.solved) return r;
+  return m;
 }
 
 }  // namespace fremond

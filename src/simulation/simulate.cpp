@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 
+#include "detail/ulp.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/scenes/kinematics.hpp"
 #include "fremond/simulation/event_detection.hpp"
@@ -52,21 +53,6 @@ ImpactLaw restrict_law(const ImpactLaw& law, const int* idx, int n) {
   return r;
 }
 
-// The persistent-contact step over a step with gravity (persistent_contact.hpp): Signorini on the
-// mean normal velocity, so that no contact sinks through the midpoint rule and P_N z_N = 0;
-// Coulomb on the end velocity (Moreau–Jean: sticking stops the slip), or on the mean in a step
-// where the former would create energy. A contact step never creates energy.
-PersistentContactResult dissipative_step(PersistentContactProblem& pp, const ContactMode* warm) {
-  pp.normal = StepVelocity::mean;
-  pp.friction = StepVelocity::end;
-  PersistentContactResult r = solve_persistent_contact(pp, warm);
-  double rounding = 0.0;
-  if (r.solved && step_energy(pp, r, &rounding) <= rounding) return r;
-  pp.friction = StepVelocity::mean;
-  PersistentContactResult m = solve_persistent_contact(pp, warm);
-  return m.solved ? m : r;
-}
-
 // The frames of a step's active contacts. ContactFrame zero-initialises its members; an array of
 // them for every possible contact would be cleared at every step for nothing.
 struct StepFrame {
@@ -81,10 +67,7 @@ struct StepFrame {
 };
 using Frames = std::array<StepFrame, kMaxC>;
 
-double ulp(double x) {
-  x = std::fabs(x);
-  return std::nextafter(x, kInf) - x;
-}
+using detail::ulp;
 
 class Run {
  public:
@@ -94,6 +77,7 @@ class Run {
     opt_.validate();
     nc_ = sc_.contact_count();
     minv_ = {1.0 / sc_.body.mass, 1.0 / sc_.body.mass, 1.0 / sc_.body.inertia};
+    pp_.minv = minv_;
     uniform_law_ = is_uniform(sc_.law);
     const bool coulomb = uses_coulomb(sc_.law);
     for (int k = 0; k < nc_; ++k) {
@@ -156,15 +140,13 @@ class Run {
   // Grid samples in (last, t_lim) — or (last, t_lim] when `inclusive` — from `state_at(t)`.
   template <class StateAt>
   void samples_until(double t_lim, bool inclusive, const StateAt& state_at) {
+    if (!obs_) return;  // the grid only places samples, and nobody receives them
     while (true) {
       const double ts = grid(next_sample_index_);
       if (ts > opt_.t_end || ts > t_lim || (!inclusive && ts == t_lim)) break;
-      if (obs_) emit_sample(ts, state_at(ts));
+      emit_sample(ts, state_at(ts));
       ++next_sample_index_;
     }
-  }
-  void skip_samples_until(double t_lim) {
-    while (grid(next_sample_index_) <= t_lim) ++next_sample_index_;
   }
 
   void progress() {
@@ -458,46 +440,56 @@ class Run {
 
   // ---- Moreau–Jean phase -------------------------------------------------------------------
 
-  // The persistent-contact impulse (persistent_contact.hpp) on the active contacts f[0..na):
-  //  - h = 0: the plastic closing of approaching contacts (Signorini and Coulomb on the end
-  //    velocity; P·z = P·D_E − ½PᵀGP ≤ 0), on the contacts not leaving, skipped when none
+  // The persistent-contact impulse (persistent_contact.hpp) on the active contacts f[0..na), from
+  // velocity v to v_out = v + dv + M⁻¹(W_N P_N + W_T P_T), where dv is what gravity adds over the
+  // step: (0, −g h, 0). Two uses:
+  //  - h = 0 (`closing`): the plastic closing of approaching contacts (Signorini and Coulomb on
+  //    the end velocity; P·z = P·D_E − ½PᵀGP ≤ 0), on the contacts not leaving, skipped when none
   //    approaches;
-  //  - h > 0: the step against gravity on every active contact (dissipative_step).
-  // Returns false when the run must stop.
+  //  - h > 0: the step against gravity on every active contact (solve_dissipative_step).
+  // dv is formed once per phase (gravity_dv), not per call: adding a vector that was just stored
+  // component by component makes the processor wait for the stores (a failed store forwarding),
+  // which cost as much as the rest of the call. Returns false when the run must stop.
   bool persistent_impulse(const Frames& f, const int* active, int na, const Eigen::Vector3d& v,
-                          double h, Eigen::Vector3d& v_out) {
-    PersistentContactProblem pp;
-    pp.minv = minv_;
-    std::array<int, PersistentContactProblem::kMax> idx;
+                          bool closing, const Eigen::Vector3d& dv, Eigen::Vector3d& v_out) {
     int n = 0;
     bool approaching = false;
+    std::array<bool, kMaxC> closed;
     for (int i = 0; i < na; ++i) {
       const double d = f[i].W_N.dot(v);
-      if (h == 0.0 && d > opt_.velocity_tolerance) continue;  // leaving: not closed
+      closed[i] = !(closing && d > opt_.velocity_tolerance);  // leaving: not closed
+      if (!closed[i]) continue;
       approaching = approaching || d < -opt_.velocity_tolerance;
-      if (n == PersistentContactProblem::kMax) {
-        finish(SimulationStatus::contact_failed,
-               "more than four contacts closed in one Moreau-Jean step");
-        return false;
-      }
+      ++n;
+    }
+    if (n > PersistentContactProblem::kMax) {
+      finish(SimulationStatus::contact_failed,
+             "more than four contacts closed in one Moreau-Jean step");
+      return false;
+    }
+    v_out = v + dv;
+    if (n == 0 || (closing && !approaching)) return true;
+    PersistentContactProblem& pp = pp_;  // reused: only contacts [0, n) are read
+    std::array<int, PersistentContactProblem::kMax> idx;
+    std::array<ContactMode, PersistentContactProblem::kMax> warm;
+    n = 0;
+    for (int i = 0; i < na; ++i) {
+      if (!closed[i]) continue;
       pp.W_N[n] = f[i].W_N;
       pp.W_T[n] = f[i].W_T;
       pp.mu[n] = mu_[active[i]];
+      warm[n] = mode_[active[i]];
       idx[n++] = active[i];
     }
-    v_out = v + Eigen::Vector3d(0.0, -sc_.gravity * h, 0.0);
-    if (n == 0 || (h == 0.0 && !approaching)) return true;
     pp.contacts = n;
     pp.v_before = v;
     pp.v_free = v_out;
-    std::array<ContactMode, PersistentContactProblem::kMax> warm;
-    for (int i = 0; i < n; ++i) warm[i] = mode_[idx[i]];
     PersistentContactResult r;
-    if (h == 0.0) {
+    if (closing) {
       pp.normal = pp.friction = StepVelocity::end;
       r = solve_persistent_contact(pp, warm.data());
     } else {
-      r = dissipative_step(pp, warm.data());
+      r = solve_dissipative_step(pp, warm.data());
     }
     if (!r.solved) {
       finish(SimulationStatus::contact_failed,
@@ -509,9 +501,13 @@ class Run {
     return true;
   }
 
+  // What gravity adds to the velocity over a step h, (0, −g h, 0).
+  Eigen::Vector3d gravity_dv(double h) const { return {0.0, -sc_.gravity * h, 0.0}; }
+
   void moreau_jean_phase() {
     const double t0 = t_, h = opt_.step, g = sc_.gravity;
     const Eigen::Vector3d gravity_step(0.0, -g, 0.0);
+    const Eigen::Vector3d dv_zero = gravity_dv(0.0), dv_step = gravity_dv(h);
     long k = 0;
     int free_steps = 0;
     hit_step_.fill(-2);
@@ -579,9 +575,11 @@ class Run {
         }
         // 3. Contacts still approaching (slowly, or driven in by the impact of step 2) close
         //    plastically at once: then no active contact sinks through the position update.
-        if (!persistent_impulse(f, active.data(), na, v_e, 0.0, v_e)) return;
+        if (!persistent_impulse(f, active.data(), na, v_e, true, dv_zero, v_e)) return;
         // 4. The persistent-contact impulse against gravity over the step.
-        if (!persistent_impulse(f, active.data(), na, v_e, hk, v1)) return;
+        if (!persistent_impulse(f, active.data(), na, v_e, false,
+                                hk == h ? dv_step : gravity_dv(hk), v1))
+          return;
       }
       // 5. Midpoint positions.
       const Eigen::Vector3d q1 = q + (0.5 * hk) * (v_e + v1);
@@ -626,6 +624,7 @@ class Run {
   std::array<long, kMaxC> hit_step_{};  // Moreau–Jean step of each contact's last impact
   bool uniform_law_ = true;
   std::map<Mask, ImpactLaw> laws_;
+  PersistentContactProblem pp_;  // the Moreau–Jean step's, kept to spare its set-up at every step
 
   double t_ = 0.0;
   PlanarState st_;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/LU>
@@ -10,6 +11,8 @@
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/event_detection.hpp"
 #include "fremond/simulation/free_flight.hpp"
+
+#include "../src/simulation/detail/ulp.hpp"
 
 namespace fremond {
 namespace {
@@ -174,6 +177,26 @@ TEST(EventDetection, ALeavingContactDoesNotRetrigger) {
   ASSERT_GT(gdd, 0.0);
   const auto r1 = find_first_event(g1, 0.05, true);
   EXPECT_FALSE(r1.found());
+}
+
+// The event search's unit in the last place by bit pattern is std::nextafter's, value for value:
+// the smallest width it splits, and so which samples it takes, depend on it.
+TEST(EventDetection, UlpIsNextafterAboveTheMagnitude) {
+  const auto reference = [](double x) {
+    x = std::fabs(x);
+    return std::nextafter(x, std::numeric_limits<double>::infinity()) - x;
+  };
+  const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  using L = std::numeric_limits<double>;
+  for (double x : {0.0, -0.0, L::denorm_min(), L::min(), 1.0, -1.0, 3.0, 0.1, 1e300, -L::max(),
+                   L::max(), L::infinity(), -L::infinity(), L::quiet_NaN()})
+    EXPECT_TRUE(same(detail::ulp(x), reference(x))) << x;
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 100000; ++i) {
+    const double x = std::ldexp(std::uniform_real_distribution<double>(-1.0, 1.0)(rng),
+                                static_cast<int>(rng() % 2100) - 1075);
+    ASSERT_TRUE(same(detail::ulp(x), reference(x))) << x;
+  }
 }
 
 }  // namespace

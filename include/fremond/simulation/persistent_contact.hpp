@@ -76,4 +76,14 @@ double step_energy(const PersistentContactProblem& problem, const PersistentCont
 PersistentContactResult solve_persistent_contact(const PersistentContactProblem& problem,
                                                  const ContactMode* warm = nullptr);
 
+/// The persistent-contact step over a step with gravity, as Moreau–Jean takes it: Signorini on the
+/// mean normal velocity, so that no contact sinks through the midpoint rule and P_N z_N = 0;
+/// Coulomb on the end velocity (sticking stops the slip), or, in a step where that would create
+/// energy (step_energy above its rounding), on the mean. Never creates energy. Sets
+/// problem.normal and problem.friction to the velocities of the answer's solve. The same answer,
+/// bit for bit, as the two solve_persistent_contact calls it stands for; it only forms once what
+/// they share.
+PersistentContactResult solve_dissipative_step(PersistentContactProblem& problem,
+                                               const ContactMode* warm = nullptr);
+
 }  // namespace fremond
