@@ -166,6 +166,67 @@ TEST(Lemke, SmallAndDynamicAgree) {
   EXPECT_NEAR(a.z(2), 1.5, 1e-15);
 }
 
+// The LCP of a phase of Coulomb friction on a contacts (classical_phase.hpp, Anitescu & Potra's
+// planar form, 4a unknowns) with G = WᵀW from a random W of fewer rows than contact rows (G
+// singular), zero columns, μ up to 10 and degenerate offsets (zeros). Its matrix is copositive but
+// not copositive-plus, so where Lemke answers the answer must be an exact solution, and where the
+// enumeration of complementary bases finds none Lemke must not claim one. The stack-stored and the
+// heap-stored tableaux must pivot identically (same pivots, same z to the bit).
+TEST(Lemke, FrictionalImpactLcpsAreSolvedExactly) {
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int> entry(-4, 4), pick(0, 4);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int solved = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const int a = 1 + trial % 3, n = 4 * a, dofs = 1 + trial % 4;
+    MatrixX W(dofs, 2 * a);
+    for (int i = 0; i < dofs; ++i)
+      for (int j = 0; j < 2 * a; ++j) W(i, j) = pick(rng) == 0 ? 0.0 : 0.5 * entry(rng);
+    const MatrixX G = W.transpose() * W;
+    const double mu = pick(rng) == 0 ? 10.0 : 0.25 * (1 + pick(rng));
+    MatT<kSmallLcp, kSmallLcp> M = MatT<kSmallLcp, kSmallLcp>::Zero(n, n);
+    VecT<kSmallLcp> q(n);
+    for (int i = 0; i < a; ++i) {
+      for (int j = 0; j < a; ++j) {
+        M(i, j) = G(i, j);
+        M(i, a + j) = G(i, a + j);
+        M(i, 2 * a + j) = -G(i, a + j);
+        M(a + i, j) = G(a + i, j);
+        M(a + i, a + j) = G(a + i, a + j);
+        M(a + i, 2 * a + j) = -G(a + i, a + j);
+        M(2 * a + i, j) = -G(a + i, j);
+        M(2 * a + i, a + j) = -G(a + i, a + j);
+        M(2 * a + i, 2 * a + j) = G(a + i, a + j);
+      }
+      M(a + i, 3 * a + i) = M(2 * a + i, 3 * a + i) = 1.0;
+      M(3 * a + i, i) = mu;
+      M(3 * a + i, a + i) = M(3 * a + i, 2 * a + i) = -1.0;
+      const double vt = pick(rng) < 2 ? 0.0 : unit(rng);
+      q(i) = pick(rng) == 0 ? 0.0 : 0.5 * entry(rng);
+      q(a + i) = vt;
+      q(2 * a + i) = -vt;
+      q(3 * a + i) = pick(rng) < 3 ? 0.0 : std::fabs(unit(rng));
+    }
+    const SmallLcpResult s = solve_lcp(M, q);
+    const LcpResult d = solve_lcp(MatrixX(M), VectorX(q));
+    ASSERT_EQ(s.status, d.status) << "trial " << trial;
+    EXPECT_EQ(s.pivots, d.pivots) << "trial " << trial;
+    if (!s.ok()) {
+      EXPECT_TRUE(brute_force(MatrixX(M), VectorX(q)).empty() ||
+                  s.status == LcpStatus::secondary_ray)
+          << "trial " << trial;
+      continue;
+    }
+    ++solved;
+    EXPECT_EQ(VectorX(s.z), d.z) << "trial " << trial;
+    EXPECT_LE(s.residual, 1e-12) << "trial " << trial;
+    EXPECT_GE(s.z.minCoeff(), 0.0) << "trial " << trial;
+    EXPECT_LE((s.w - (M * s.z + q)).cwiseAbs().maxCoeff(), 1e-12 * (1 + q.cwiseAbs().maxCoeff()))
+        << "trial " << trial;
+  }
+  EXPECT_GT(solved, 400);
+}
+
 TEST(Lemke, RefusesBadInput) {
   EXPECT_THROW(solve_lcp(MatrixX(2, 3), VectorX(2)), InvalidArgument);
   MatrixX M = MatrixX::Identity(2, 2);

@@ -259,8 +259,14 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   Factored<C> fg;
   fg.compute(ph.G);
   // T_E − T_A = Pᵀ Wᵀq̇_A + ½ PᵀGP (eq. 9 with the obstacle terms w taken out of D_A).
-  const Rows Wq = cs.W.leftCols(r).transpose() * pb.qdot_A;
-  auto energy = [&](const Rows& P) { return P.dot(Wq) + 0.5 * P.dot(ph.G * P); };
+  // By hand loops: Eigen's dynamic-size products on these few rows go through its GEMV kernel.
+  Rows Wq(r);
+  for (int j = 0; j < r; ++j) Wq(j) = cs.W.col(j).dot(pb.qdot_A);
+  auto energy = [&](const Rows& P) {
+    Rows GP = Rows::Zero(r);
+    add_product(ph.G, P, GP);
+    return P.dot(Wq) + 0.5 * P.dot(GP);
+  };
   const Rows zero = Rows::Zero(r);
 
   // Newton (eq. 5): q = ((1 + e) D_NA, D_TA). Poisson's compression: q = D_A.
@@ -294,7 +300,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     Rows shift = Rows::Zero(r);
     shift.head(a) = e.cwiseProduct(uc.head(a));
     ex.q = ph.velocity(uc);
-    ex.q.noalias() += ph.G * shift;
+    add_product(ph.G, shift, ex.q);
     if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
     PhaseOutcome<C> second;
     solve_phase(ex, tol, all, fg, shift, second);

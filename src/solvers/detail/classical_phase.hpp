@@ -74,6 +74,17 @@ struct FixedList {
 /// contact has at most 4 per phase; more contacts are only enumerated up to 3.
 inline constexpr int kMaxSolutions = 24;
 
+/// y += A x by hand loops, column by column. On these bounded dynamic sizes (at most 8 × 8)
+/// Eigen's product goes through its general GEMV kernel, whose set-up costs more than the product.
+template <class Mat, class VecX, class VecY>
+void add_product(const Mat& A, const VecX& x, VecY& y) {
+  const Eigen::Index rows = A.rows(), cols = A.cols();
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const double xj = x(j);
+    for (Eigen::Index i = 0; i < rows; ++i) y(i) += A(i, j) * xj;
+  }
+}
+
 template <int MaxC>
 struct Phase {
   static constexpr int kMaxRows = times(MaxC, 2);
@@ -91,7 +102,7 @@ struct Phase {
   /// The velocities (w, v) = G u + q at percussions u = (x, t).
   Rows velocity(const Rows& u) const {
     Rows v = q;
-    v.noalias() += G * u;
+    add_product(G, u, v);
     return v;
   }
 };
@@ -229,28 +240,36 @@ LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt, typename P
     if (st == LcpStatus::solved) u.head(a) = z;
     return st;
   }
+  // Assembled entry by entry: Eigen's dynamic-size block copies cost more than the 64 entries.
   const int n = 4 * a;
-  Mat M = Mat::Zero(n, n);
-  const auto Gnn = ph.G.topLeftCorner(a, a), Gnt = ph.G.topRightCorner(a, a);
-  const auto Gtn = ph.G.bottomLeftCorner(a, a), Gtt = ph.G.bottomRightCorner(a, a);
-  M.block(0, 0, a, a) = Gnn;
-  M.block(0, a, a, a) = Gnt;
-  M.block(0, 2 * a, a, a) = -Gnt;
-  M.block(a, 0, a, a) = Gtn;
-  M.block(a, a, a, a) = Gtt;
-  M.block(a, 2 * a, a, a) = -Gtt;
-  M.block(2 * a, 0, a, a) = -Gtn;
-  M.block(2 * a, a, a, a) = -Gtt;
-  M.block(2 * a, 2 * a, a, a) = Gtt;
+  Mat M(n, n);
+  Vec q(n);
+  M.setZero();
+  for (int j = 0; j < a; ++j)
+    for (int i = 0; i < a; ++i) {
+      const double gnn = ph.G(i, j), gnt = ph.G(i, a + j);
+      const double gtn = ph.G(a + i, j), gtt = ph.G(a + i, a + j);
+      M(i, j) = gnn;
+      M(i, a + j) = gnt;
+      M(i, 2 * a + j) = -gnt;
+      M(a + i, j) = gtn;
+      M(a + i, a + j) = gtt;
+      M(a + i, 2 * a + j) = -gtt;
+      M(2 * a + i, j) = -gtn;
+      M(2 * a + i, a + j) = -gtt;
+      M(2 * a + i, 2 * a + j) = gtt;
+    }
   for (int i = 0; i < a; ++i) {
     M(a + i, 3 * a + i) = 1.0;
     M(2 * a + i, 3 * a + i) = 1.0;
     M(3 * a + i, i) = ph.mu(i);
     M(3 * a + i, a + i) = -1.0;
     M(3 * a + i, 2 * a + i) = -1.0;
+    q(i) = ph.q(i);
+    q(a + i) = ph.q(a + i);
+    q(2 * a + i) = -ph.q(a + i);
+    q(3 * a + i) = ph.b0(i);
   }
-  Vec q(n);
-  q << ph.q.head(a), ph.q.tail(a), -ph.q.tail(a), ph.b0;
   const LcpStatus st = lcp::lemke<kMaxN>(M, q, opt, z, w, pivots);
   if (st == LcpStatus::solved) {
     u.head(a) = z.head(a);
