@@ -340,35 +340,32 @@ PersistentContactResult solve_dissipative_step(PersistentContactProblem& pb,
   pb.normal = StepVelocity::mean;
   pb.friction = StepVelocity::end;
   const int c = pb.contacts;
-  PersistentContactResult r;
-  r.v = pb.v_free;
-  if (c <= 0 || c > kMax) return r;
+  PersistentContactResult out;  // the one object returned: built in the caller's result
+  out.v = pb.v_free;
+  if (c <= 0 || c > kMax) return out;
   // The scales and, for one contact, the Delassus entries and contact velocities do not depend on
   // which velocity Coulomb's law acts on: formed once for both solves.
-  if (c == 1) {
-    const OneContact one(pb);
-    r.solved = one.solve(pb.v_free, pb.normal, pb.friction, warm, r);
+  const auto solve = [&](const OneContact* one, const Scales& sc, PersistentContactResult& r) {
+    r.solved =
+        one ? one->solve(pb.v_free, pb.normal, pb.friction, warm, r) : solve_many(pb, warm, sc, r);
     if (!r.solved) r.v = pb.v_free;
+  };
+  const auto both = [&](const OneContact* one, const Scales& sc) {
+    solve(one, sc, out);
     double rounding = 0.0;
-    if (r.solved && step_energy(pb, r, &rounding) <= rounding) return r;
+    if (out.solved && step_energy(pb, out, &rounding) <= rounding) return;
     pb.friction = StepVelocity::mean;
     PersistentContactResult m;
-    m.v = pb.v_free;
-    m.solved = one.solve(pb.v_free, pb.normal, pb.friction, warm, m);
-    if (!m.solved) return r;
-    return m;
+    solve(one, sc, m);
+    if (m.solved) out = m;
+  };
+  if (c == 1) {
+    const OneContact one(pb);
+    both(&one, one.sc);
+  } else {
+    both(nullptr, scales(pb));
   }
-  const Scales sc = scales(pb);
-  r.solved = solve_many(pb, warm, sc, r);
-  if (!r.solved) r.v = pb.v_free;
-  double rounding = 0.0;
-  if (r.solved && step_energy(pb, r, &rounding) <= rounding) return r;
-  pb.friction = StepVelocity::mean;
-  PersistentContactResult m;
-  m.v = pb.v_free;
-  m.solved = solve_many(pb, warm, sc, m);
-  if (!m.solved) return r;
-  return m;
+  return out;
 }
 
 }  // namespace fremond

@@ -81,7 +81,9 @@ class Run {
     uniform_law_ = is_uniform(sc_.law);
     const bool coulomb = uses_coulomb(sc_.law);
     for (int k = 0; k < nc_; ++k) {
-      const ContactPoint& p = sc_.body.points[sc_.point_of(k)];
+      point_[k] = &sc_.body.points[sc_.point_of(k)];
+      plane_[k] = &sc_.obstacles[sc_.obstacle_of(k)];
+      const ContactPoint& p = *point_[k];
       mu_[k] = coulomb ? sc_.law.mu[k] : 0.0;
       reach_[k] = p.r.norm() + p.radius;
       mode_[k] = ContactMode::stick;
@@ -179,8 +181,7 @@ class Run {
   }
 
   ContactFrame frame(int k, const Eigen::Vector3d& q, double c, double s) const {
-    return contact_frame(sc_.body.points[sc_.point_of(k)], sc_.obstacles[sc_.obstacle_of(k)],
-                         q.head<2>(), c, s);
+    return contact_frame(*point_[k], *plane_[k], q.head<2>(), c, s);
   }
 
   // ---- impacts -----------------------------------------------------------------------------
@@ -279,8 +280,7 @@ class Run {
       std::array<bool, kMaxC> touching{};
       bool approaching = false, persistent = false;
       for (int k = 0; k < nc_; ++k) {
-        gap[k] = GapFunction::make(sc_.body.points[sc_.point_of(k)],
-                                   sc_.obstacles[sc_.obstacle_of(k)], flight);
+        gap[k] = GapFunction::make(*point_[k], *plane_[k], flight);
         double g, gd, gdd;
         gap[k].eval(0.0, g, gd, gdd);
         touching[k] = g <= opt_.gap_tolerance;
@@ -484,13 +484,9 @@ class Run {
     pp.contacts = n;
     pp.v_before = v;
     pp.v_free = v_out;
-    PersistentContactResult r;
-    if (closing) {
-      pp.normal = pp.friction = StepVelocity::end;
-      r = solve_persistent_contact(pp, warm.data());
-    } else {
-      r = solve_dissipative_step(pp, warm.data());
-    }
+    if (closing) pp.normal = pp.friction = StepVelocity::end;
+    const PersistentContactResult r = closing ? solve_persistent_contact(pp, warm.data())
+                                              : solve_dissipative_step(pp, warm.data());
     if (!r.solved) {
       finish(SimulationStatus::contact_failed,
              "no contact mode satisfies the persistent-contact law (Painlevé-type case)");
@@ -531,8 +527,8 @@ class Run {
       int na = 0;
       const double w2 = v.z() * v.z();
       for (int j = 0; j < nc_; ++j) {
-        const ContactPoint& p = sc_.body.points[sc_.point_of(j)];
-        const HalfPlane& o = sc_.obstacles[sc_.obstacle_of(j)];
+        const ContactPoint& p = *point_[j];
+        const HalfPlane& o = *plane_[j];
         const Eigen::Vector2d& nn = o.normal;
         const Eigen::Vector2d Rr(cth * p.r.x() - sth * p.r.y(), sth * p.r.x() + cth * p.r.y());
         const double n_Rr = nn.dot(Rr);
@@ -619,6 +615,10 @@ class Run {
   SimulationObserver* obs_;
   int nc_ = 0;
   Eigen::Vector3d minv_;
+  // The point and obstacle of each contact, looked up once: Scene::point_of and obstacle_of
+  // divide, and the Moreau–Jean step asks for every contact at every step.
+  std::array<const ContactPoint*, kMaxC> point_{};
+  std::array<const HalfPlane*, kMaxC> plane_{};
   std::array<double, kMaxC> mu_{}, reach_{};
   std::array<ContactMode, kMaxC> mode_{};
   std::array<long, kMaxC> hit_step_{};  // Moreau–Jean step of each contact's last impact
