@@ -91,8 +91,8 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative: κ(M) estimated from the
   // factor's diagonal, (max L_ii / min L_ii)², a lower bound that has the order of κ in practice.
   const auto L = cs.llt.matrixLLT().diagonal().cwiseAbs();
-  const double kappa =
-      L.size() && L.minCoeff() > 0 ? std::pow(L.maxCoeff() / L.minCoeff(), 2) : 1.0;
+  const double ratio = L.size() && L.minCoeff() > 0 ? L.maxCoeff() / L.minCoeff() : 1.0;
+  const double kappa = ratio * ratio;
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
@@ -123,7 +123,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.per_contact.setZero(c);
     return rep;
   }
-  rep.kinetic_energy_A = 0.5 * pb.qdot_A.dot(pb.M * pb.qdot_A);
+  rep.kinetic_energy_A = kinetic_energy(pb.M, pb.qdot_A);
   rep.energy_change = r.energy_change;
   // An energy X is "negative" when X < −tol with tol relative to T_A (never below the rounding of
   // T_A itself, so that a velocity-level answer exact to rounding always passes).

@@ -77,7 +77,7 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
   // law reads the contact velocities D_A (SPEC §1). Where those overflow, no answer can be
   // certified in double precision (T_E − T_A would be ∞ − ∞); refuse, rather than return a NaN
   // energy.
-  const double kinetic = 0.5 * pb.qdot_A.dot(pb.M * pb.qdot_A);
+  const double kinetic = detail::kinetic_energy(pb.M, pb.qdot_A);
   if (!std::isfinite(kinetic))
     throw InvalidArgument("qdot_A",
                           "the kinetic energy 1/2 qdot_A^T M qdot_A overflows double "

@@ -8,8 +8,8 @@ namespace fremond {
 
 /// The data of one impact: mass matrix, contact Jacobians (one column a contact), the obstacles'
 /// velocity terms and the velocity before the impact. Contact velocities are
-/// D_N = W_Nᵀ q̇ + w_N, D_T = W_Tᵀ q̇ + w_T. Without tangential rows (W_T with no columns) the problem
-/// is frictionless and P_T is zero.
+/// D_N = W_Nᵀ q̇ + w_N, D_T = W_Tᵀ q̇ + w_T. Without tangential rows (W_T with no columns) the
+/// problem is frictionless and P_T is zero.
 ///
 /// MaxDofs/MaxContacts bound the sizes; finite bounds keep everything on the stack.
 template <int MaxDofs, int MaxContacts>
@@ -21,12 +21,12 @@ struct ImpactProblemT {
   static constexpr int kMaxDofs = MaxDofs;
   static constexpr int kMaxContacts = MaxContacts;
 
-  Mat M;        ///< n×n, symmetric positive definite.
-  Jac W_N;      ///< n×c normal directions.
-  Jac W_T;      ///< n×c tangential directions, or n×0 for a frictionless problem.
-  CVec w_N;     ///< c, zero for fixed obstacles (may be left empty: zero).
-  CVec w_T;     ///< c (may be left empty: zero).
-  Vec qdot_A;   ///< n, the velocity before the impact.
+  Mat M;       ///< n×n, symmetric positive definite.
+  Jac W_N;     ///< n×c normal directions.
+  Jac W_T;     ///< n×c tangential directions, or n×0 for a frictionless problem.
+  CVec w_N;    ///< c, zero for fixed obstacles (may be left empty: zero).
+  CVec w_T;    ///< c (may be left empty: zero).
+  Vec qdot_A;  ///< n, the velocity before the impact.
 
   int dofs() const { return static_cast<int>(M.rows()); }
   int contacts() const { return static_cast<int>(W_N.cols()); }
@@ -42,6 +42,23 @@ template <int MaxDofs, int MaxContacts>
 void validate(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
 
 namespace detail {
+/// ½ vᵀ M v. A hand loop for the stack-stored sizes, where Eigen's dynamic-size matrix-vector
+/// product costs more in dispatch than in arithmetic.
+template <int N>
+double kinetic_energy(const MatT<N, N>& M, const VecT<N>& v) {
+  if constexpr (N != Dynamic) {
+    double e = 0.0;
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      double Mv = 0.0;
+      for (Eigen::Index j = 0; j < v.size(); ++j) Mv += M(i, j) * v(j);
+      e += v(i) * Mv;
+    }
+    return 0.5 * e;
+  } else {
+    return 0.5 * v.dot(M * v);
+  }
+}
+
 /// validate() without the positive-definiteness test, for callers that factorise M anyway.
 template <int MaxDofs, int MaxContacts>
 void validate_shapes(const ImpactProblemT<MaxDofs, MaxContacts>& problem);

@@ -36,11 +36,14 @@ struct ContactSpaceT {
   int contacts = 0;  ///< all contacts of the problem
   int active = 0;    ///< contacts that take part (D_NA ≤ 0)
   bool tangential = false;
-  Index index;           ///< active → problem contact index
-  Jac W;                 ///< n × rows
-  Jac MinvW;             ///< M⁻¹ W
-  RowMat G;              ///< Delassus matrix of the active rows
-  Rows D_A;              ///< contact velocities before, active rows
+  Index index;  ///< active → problem contact index
+  Jac W;        ///< n × rows
+  Jac MinvW;    ///< M⁻¹ W
+  RowMat G;     ///< Delassus matrix of the active rows
+  Rows D_A;     ///< contact velocities before, active rows
+  /// D_NA and D_TA of every contact (D_T empty without W_T), computed once with
+  /// contact_velocity() for the choice of active contacts and reused by the result.
+  VecT<MaxContacts> D_N, D_T;
   double v_scale = 0.0;  ///< max |D_A| over the active rows, floored to the smallest normal
   Eigen::LLT<MatT<MaxDofs, MaxDofs>> llt;
 
@@ -49,20 +52,75 @@ struct ContactSpaceT {
   int tangential_row(int i) const { return active + i; }
 };
 
+namespace contact_space_kernels {
+
+// Hand loops for the stack-stored small problems (n ≤ 6, ≤ 8 rows): Eigen's triangular solves and
+// products of dynamic size go through its blocked level-3 kernels (packing, blocking), which cost
+// more on a 3×2 problem than the arithmetic. Heap-stored problems keep Eigen's kernels.
+
+/// Y ← L⁻¹ Y (forward substitution) with L the lower triangle of `L`.
+template <class LMat, class Mat>
+void forward_substitute(const LMat& L, Mat& Y) {
+  const Eigen::Index n = L.rows();
+  for (Eigen::Index k = 0; k < Y.cols(); ++k)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double s = Y(i, k);
+      for (Eigen::Index j = 0; j < i; ++j) s -= L(i, j) * Y(j, k);
+      Y(i, k) = s / L(i, i);
+    }
+}
+
+/// X ← L⁻ᵀ X (backward substitution with the transpose of the lower triangle of `L`).
+template <class LMat, class Mat>
+void backward_substitute_transposed(const LMat& L, Mat& X) {
+  const Eigen::Index n = L.rows();
+  for (Eigen::Index k = 0; k < X.cols(); ++k)
+    for (Eigen::Index i = n - 1; i >= 0; --i) {
+      double s = X(i, k);
+      for (Eigen::Index j = i + 1; j < n; ++j) s -= L(j, i) * X(j, k);
+      X(i, k) = s / L(i, i);
+    }
+}
+
+/// G ← YᵀY, both triangles from the same sums (exactly symmetric).
+template <class Mat, class RowMat>
+void gram(const Mat& Y, RowMat& G) {
+  const Eigen::Index r = Y.cols(), n = Y.rows();
+  G.resize(r, r);
+  for (Eigen::Index j = 0; j < r; ++j)
+    for (Eigen::Index k = j; k < r; ++k) {
+      double s = 0.0;
+      for (Eigen::Index i = 0; i < n; ++i) s += Y(i, j) * Y(i, k);
+      G(j, k) = G(k, j) = s;
+    }
+}
+
+}  // namespace contact_space_kernels
+
 /// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
+///
+/// With M = L Lᵀ and Y = L⁻¹ W: G = WᵀM⁻¹W = YᵀY (a Gram matrix: symmetric and positive
+/// semidefinite by construction, also in floating point up to rounding of each entry) and
+/// M⁻¹W = L⁻ᵀ Y.
 template <int MaxDofs, int MaxContacts>
 void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
                          ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  namespace k_ = contact_space_kernels;
+  constexpr bool small = MaxDofs != Dynamic;
   const int n = pb.dofs(), c = pb.contacts();
   cs.dofs = n;
   cs.contacts = c;
   cs.tangential = with_tangential && pb.has_tangential();
   cs.llt.compute(pb.M);
   cs.index.resize(c);
+  cs.D_N.resize(c);
+  cs.D_T.resize(pb.has_tangential() ? c : 0);
   int a = 0;
   for (int i = 0; i < c; ++i) {
-    const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
-    if (contact_velocity(pb.W_N.col(i), pb.qdot_A, w) <= 0.0) cs.index(a++) = i;
+    cs.D_N(i) = contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (pb.has_tangential())
+      cs.D_T(i) = contact_velocity(pb.W_T.col(i), pb.qdot_A, pb.w_T.size() ? pb.w_T(i) : 0.0);
+    if (cs.D_N(i) <= 0.0) cs.index(a++) = i;
   }
   cs.active = a;
   cs.index.conservativeResize(a);
@@ -72,18 +130,26 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   for (int k = 0; k < a; ++k) {
     const int i = cs.index(k);
     cs.W.col(k) = pb.W_N.col(i);
-    cs.D_A(k) = contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
+    cs.D_A(k) = cs.D_N(i);
     if (cs.tangential) {
       cs.W.col(a + k) = pb.W_T.col(i);
-      cs.D_A(a + k) = contact_velocity(pb.W_T.col(i), pb.qdot_A, pb.w_T.size() ? pb.w_T(i) : 0.0);
+      cs.D_A(a + k) = cs.D_T(i);
     }
   }
   // No row (no contact takes part): nothing to solve. Eigen's triangular solve of a matrix with
   // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
   if (r > 0) {
-    cs.MinvW = cs.llt.solve(cs.W);
-    cs.G.noalias() = cs.W.transpose() * cs.MinvW;
-    cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+    cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
+    if constexpr (small) {
+      k_::forward_substitute(cs.llt.matrixLLT(), cs.MinvW);
+      k_::gram(cs.MinvW, cs.G);
+      k_::backward_substitute_transposed(cs.llt.matrixLLT(), cs.MinvW);
+    } else {
+      cs.llt.matrixL().solveInPlace(cs.MinvW);
+      cs.G.noalias() = cs.MinvW.transpose() * cs.MinvW;
+      cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+      cs.llt.matrixU().solveInPlace(cs.MinvW);
+    }
     // G = Wᵀ M⁻¹ W of a contact that takes part must be a number: |W|²/|M| beyond 1e308 leaves no
     // percussion representable (P ~ D_A / G), and a factorisation of a matrix holding ∞ is
     // undefined (Eigen's SVD reads out of bounds). The data are finite, their scale is not.
@@ -125,27 +191,39 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     out.P_N(cs.index(k)) = P(k);
     if (cs.tangential) out.P_T(cs.index(k)) = P(cs.active + k);
   }
-  out.D_NA.resize(c);
+  out.D_NA = cs.D_N;
   out.D_NE.resize(c);
-  out.D_TA.setZero(c);
   out.D_TE.setZero(c);
-  out.takes_part.setZero(c);
+  if (pb.has_tangential())
+    out.D_TA = cs.D_T;
+  else
+    out.D_TA.setZero(c);
+  out.takes_part.resize(c);
   for (int i = 0; i < c; ++i) {
-    const double wn = pb.w_N.size() ? pb.w_N(i) : 0.0;
-    out.D_NA(i) = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn);
-    out.D_NE(i) = contact_velocity(pb.W_N.col(i), out.qdot_E, wn);
+    out.D_NE(i) = contact_velocity(pb.W_N.col(i), out.qdot_E, pb.w_N.size() ? pb.w_N(i) : 0.0);
     out.takes_part(i) = out.D_NA(i) <= 0.0 ? 1 : 0;
-    if (pb.has_tangential()) {
-      const double wt = pb.w_T.size() ? pb.w_T(i) : 0.0;
-      out.D_TA(i) = contact_velocity(pb.W_T.col(i), pb.qdot_A, wt);
-      out.D_TE(i) = contact_velocity(pb.W_T.col(i), out.qdot_E, wt);
-    }
+    if (pb.has_tangential())
+      out.D_TE(i) = contact_velocity(pb.W_T.col(i), out.qdot_E, pb.w_T.size() ? pb.w_T(i) : 0.0);
   }
   // T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from velocities.
   // No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
-  const auto dq = (out.qdot_E - pb.qdot_A).eval();
-  out.energy_change =
-      (dq.array() == 0.0).all() ? 0.0 : 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
+  const int n = cs.dofs;
+  bool moved = false;
+  for (int i = 0; i < n && !moved; ++i) moved = out.qdot_E(i) != pb.qdot_A(i);
+  if (!moved) {
+    out.energy_change = 0.0;
+  } else if constexpr (MaxDofs != Dynamic) {  // a hand loop: no temporary, no gemv dispatch
+    double e = 0.0;
+    for (int i = 0; i < n; ++i) {
+      double Ms = 0.0;
+      for (int j = 0; j < n; ++j) Ms += pb.M(i, j) * (out.qdot_E(j) + pb.qdot_A(j));
+      e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms;
+    }
+    out.energy_change = 0.5 * e;
+  } else {
+    const auto dq = (out.qdot_E - pb.qdot_A).eval();
+    out.energy_change = 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
+  }
 }
 
 }  // namespace fremond::detail
