@@ -82,9 +82,7 @@ MethodOutcome solve_decoupled(const FremondRowsT<N, C>& rows, Rows<N, C>& P) {
   o.status = SolverStatus::converged;
   o.criterion = StopCriterion::exact;
   o.message = "decoupled rows: one exact prox per row";
-  Rows<N, C> z, R;
-  o.residual = rows.residual(P, z, R);
-  return o;
+  return o;  // the residual is check_exact's (or, for a guess, nobody's)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -249,16 +247,16 @@ int one_contact_coulomb_modes(const FremondRowsT<N, C>& rows, std::array<Contact
 /// else 0 (eq. 16). The reaction acts where the natural map is on its bound branch,
 /// prox_{τφ_N}(z_N − τP_N) < D_NA/2: the same test the residual uses, so the split agrees with
 /// the solver's own convergence, whatever rounding left in D_NE.
+/// `z` is the mean velocity of P (rows.mean_velocity).
 template <int N, int C>
-void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, ImpactResultT<N, C>& out) {
+void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, const Rows<N, C>& z,
+                    ImpactResultT<N, C>& out) {
   const auto& cs = *rows.cs;
   out.P_N_reaction.setZero(cs.contacts);
-  Rows<N, C> z;
-  rows.mean_velocity(P, z);
   for (int k = 0; k < cs.active; ++k) {
     const Potential& phi = rows.law->normal[rows.contact(k)];
     const double lb = rows.lower_bound(k);
-    const bool bound_branch = (!rows.row_has_prox(k) || !std::isfinite(z(k)))
+    const bool bound_branch = (!(rows.all_prox || rows.row_has_prox(k)) || !std::isfinite(z(k)))
                                   ? z(k) <= lb + 64 * kEps * (std::fabs(lb) + std::fabs(z(k)))
                                   : phi.prox(z(k) - rows.tau(k) * P(k), rows.tau(k)) < lb;
     if (bound_branch) out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + phi.subgradient(z(k)));
@@ -268,13 +266,12 @@ void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, ImpactR
 /// The percussion is determined by the velocities except on rows whose ∂ψ is set-valued (an
 /// active reaction, a sticking Coulomb contact, a kink of a potential); P is unique iff the
 /// columns of W for those rows are independent.
+/// `z` is the mean velocity of P (rows.mean_velocity).
 template <int N, int C>
-bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, const Rows<N, C>& z,
                        const ImpactResultT<N, C>& out) {
   const auto& cs = *rows.cs;
   const int r = cs.rows();
-  Rows<N, C> z;
-  rows.mean_velocity(P, z);
   MatT<N, ContactSpaceT<N, C>::kMaxRows> Ws(cs.dofs, r);
   int m = 0;
   for (int j = 0; j < r; ++j) {
@@ -332,7 +329,11 @@ MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const S
   if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return o;
   Rows<N, C> z, R;
   const double target = opt.tolerance * rows.cs->v_scale;
-  if (std::isfinite(rows.residual(P, z, R)) && rows.converged(P, R, target)) return o;
+  if (std::isfinite(rows.residual(P, z, R)) && rows.converged(P, R, target)) {
+    o.residual = R.cwiseAbs().maxCoeff();  // what plain_residual(P) would compute again
+    o.residual_is_plain = true;
+    return o;
+  }
   Rows<N, C> Q = P;
   if (law_has_prox(*rows.law)) {
     MethodOutcome n = semismooth_newton(rows, Q, opt);
@@ -398,11 +399,14 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   rows.init(cs, law);
   Rows<N, C> P = Rows<N, C>::Zero(cs.rows());
   const SolverMethod want = opt.method;
+  Rows<N, C> z;  // the mean velocity of the answer, shared by the split and the uniqueness test
   auto finish = [&](MethodOutcome o, SolverMethod m) {
-    if (cs.rows() && P.allFinite()) o.residual = rows.plain_residual(P);  // the law's residual
+    if (cs.rows() && P.allFinite() && !o.residual_is_plain)
+      o.residual = rows.plain_residual(P);  // the law's residual
     write_outcome(o, m, cs.v_scale, opt, out);
     scatter_solution(pb, cs, P, out);
-    split_reaction(rows, P, out);
+    rows.mean_velocity(P, z);
+    split_reaction(rows, P, z, out);
     // No NaN or infinity leaves the library, whatever the status: percussions a failed method
     // left so large that the velocities or the energy overflow are no answer; return none
     // (q̇_E = q̇_A) and say so.
@@ -412,7 +416,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
           out.P_N_reaction.allFinite())) {
       P.setZero();
       scatter_solution(pb, cs, P, out);
-      split_reaction(rows, P, out);
+      rows.mean_velocity(P, z);
+      split_reaction(rows, P, z, out);
       if (out.solver.status == SolverStatus::converged) out.solver.status = SolverStatus::failed;
       out.solver.message =
           "the method's answer overflows (velocities, energy or reaction not finite): no "
@@ -420,7 +425,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       if (cs.rows()) out.solver.residual = rows.plain_residual(P) / cs.v_scale;
     }
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
-      out.unique = percussion_unique(rows, P, out);
+      out.unique = percussion_unique(rows, P, z, out);
   };
 
   if (cs.active == 0) {
@@ -454,8 +459,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       (automatic || want == SolverMethod::mode_enumeration)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
-    const int n =
-        keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt, &exhaustive);
+    const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,
+                                &exhaustive);
     if (n > 0 || exhaustive) {
       MethodOutcome o;
       o.criterion = StopCriterion::exact;
@@ -480,15 +485,15 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       }
       P(0) = sols[best].PN;
       P(1) = sols[best].PT;
-      Rows<N, C> z, R;
-      o.residual = rows.residual(P, z, R);
+      Rows<N, C> zb, R;
+      o.residual = rows.residual(P, zb, R);
       o.status = SolverStatus::converged;
       o.message = n == 1 ? "one contact with Coulomb: every mode tried, one solution"
                          : "one contact with Coulomb: several solutions; the most dissipative one";
       out.solutions_found = n;
       out.unique = (n == 1) && exhaustive;
       finish(check_exact(rows, P, opt, o), SolverMethod::mode_enumeration);
-      if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, out);
+      if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, z, out);
       return;
     }
   }
@@ -537,9 +542,9 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     // guess's: the splitting converges linearly from anywhere, so every order of magnitude Newton
     // gained is sweeps saved (a singular G with every reaction active, 3 contacts on 2 degrees of
     // freedom: 12,000 sweeps instead of 40,000).
-    Rows<N, C> z, R;
-    const double from_newton = rows.residual(P, z, R);
-    if (!(std::isfinite(from_newton) && from_newton < rows.residual(P0, z, R))) P = P0;
+    Rows<N, C> zn, R;
+    const double from_newton = rows.residual(P, zn, R);
+    if (!(std::isfinite(from_newton) && from_newton < rows.residual(P0, zn, R))) P = P0;
   }
   if (has_prox && (automatic || want == SolverMethod::proximal)) {
     const auto o = proximal_iterations(rows, P, opt);
@@ -596,8 +601,8 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
   if (cs.active == 1 && rows.coulomb && law_has_prox(law) && !decoupled(cs)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
-    const int n =
-        keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt, &exhaustive);
+    const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,
+                                &exhaustive);
     for (int s = 0; s < n; ++s) {
       ImpactResult r;
       Rows<Dynamic, Dynamic> P(2), z, R;
@@ -611,7 +616,8 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
       o.residual = rows.plain_residual(P);
       write_outcome(o, SolverMethod::mode_enumeration, cs.v_scale, opt, r);
       scatter_solution(pb, cs, P, r);
-      split_reaction(rows, P, r);
+      rows.mean_velocity(P, z);
+      split_reaction(rows, P, z, r);
       r.unique = n == 1 && exhaustive;
       r.solutions_found = n;
       all.push_back(std::move(r));

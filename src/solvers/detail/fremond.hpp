@@ -16,6 +16,9 @@ struct MethodOutcome {
   StopCriterion criterion = StopCriterion::none;
   int iterations = 0;
   double residual = 0.0;  ///< ‖R‖∞ (unscaled)
+  /// True when `residual` is already the law's plain residual ‖R(P)‖∞ of the returned P (then
+  /// the driver need not evaluate it again).
+  bool residual_is_plain = false;
   const char* message = "not run";
   int native_code = 0;
 };
@@ -30,18 +33,20 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
 
 /// Semismooth Newton on R(P) = z − prox(z − τP) from the P given; P is overwritten.
 template <int N, int C>
-MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename FremondRowsT<N, C>::Rows& P,
-                                const SolverOptions& options);
+MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
+                                typename FremondRowsT<N, C>::Rows& P, const SolverOptions& options);
 
 /// Accelerated proximal gradient (FISTA with restart) on the dual in contact space.
 template <int N, int C>
 MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
-                                  typename FremondRowsT<N, C>::Rows& P, const SolverOptions& options);
+                                  typename FremondRowsT<N, C>::Rows& P,
+                                  const SolverOptions& options);
 
 /// NLopt (SLSQP) on the velocity-space minimisation of SPEC §2; uses value and one subgradient.
 template <int N, int C>
 MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
-                                   typename FremondRowsT<N, C>::Rows& P, const SolverOptions& options);
+                                   typename FremondRowsT<N, C>::Rows& P,
+                                   const SolverOptions& options);
 
 /// Scaled Frémond residual of an answer (law_residual for Frémond's law).
 template <int N, int C>

@@ -102,8 +102,21 @@ struct FremondRowsT {
     return law->mu[contact(j)] * std::fabs(P(j - cs->active));
   }
 
-  /// z = D_A + G P / 2.
-  void mean_velocity(const Rows& P, Rows& z) const { z.noalias() = cs->D_A + 0.5 * (cs->G * P); }
+  /// z = D_A + G P / 2. A hand loop for the stack-stored sizes (≤ 8 rows), where Eigen's
+  /// dynamic-size matrix-vector product costs more in dispatch than in arithmetic.
+  void mean_velocity(const Rows& P, Rows& z) const {
+    if constexpr (N != Dynamic) {
+      const int r = cs->rows();
+      z.resize(r);
+      for (int j = 0; j < r; ++j) {
+        double s = 0.0;
+        for (int k = 0; k < r; ++k) s += cs->G(j, k) * P(k);
+        z(j) = cs->D_A(j) + 0.5 * s;
+      }
+    } else {
+      z.noalias() = cs->D_A + 0.5 * (cs->G * P);
+    }
+  }
 
   /// R = z − prox(z − τP); returns the weighted norm max_j weight_j |R_j|.
   double residual(const Rows& P, Rows& z, Rows& R) const {
@@ -139,10 +152,10 @@ struct FremondRowsT {
       // The floor is capped at 1e-6 of the velocity scale: percussions so large that a row
       // cannot be resolved better than that (P_N = −P_T = 1e23 on W_T = W_N, residual 1.0) are
       // no answer in double precision, whatever their rounding.
-      const double floor = std::min(eps16 * (std::fabs(cs->D_A(j)) +
-                                             0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
-                                             tau(j) * std::fabs(P(j))),
-                                    kFloorCap * cs->v_scale);
+      const double floor = std::min(
+          eps16 * (std::fabs(cs->D_A(j)) + 0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
+                   tau(j) * std::fabs(P(j))),
+          kFloorCap * cs->v_scale);
       if (!(a <= floor)) return false;
     }
     return true;
@@ -166,7 +179,6 @@ struct FremondRowsT {
     }
     return tau(j) * (P(j) + law->tangential_potential[contact(j)].subgradient(zj));
   }
-
 };
 
 }  // namespace fremond::detail
