@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "detail/fremond.hpp"
+#include "detail/small_lu.hpp"
 
 namespace fremond::detail {
 
@@ -15,19 +16,20 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 }
 
 // Newton's step solves J ΔP = −R with J = (I − D) G/2 + D T (+ the Coulomb coupling ∂R_T/∂P_N),
-// D = diag(∂prox/∂x) ∈ [0,1], T = diag(τ). J is singular where the law leaves P undetermined (a flat
-// bar sticking with both ends: two identical rows); then a Levenberg–Marquardt step
-// (JᵀJ + λI)ΔP = −JᵀR with λ = ‖R‖ keeps fast local convergence (Yamashita–Fukushima).
+// D = diag(∂prox/∂x) ∈ [0,1], T = diag(τ). J is singular where the law leaves P undetermined (a
+// flat bar sticking with both ends: two identical rows); then a Levenberg–Marquardt step (JᵀJ +
+// λI)ΔP = −JᵀR with λ = ‖R‖ keeps fast local convergence (Yamashita–Fukushima).
 template <int N, int C>
-MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename FremondRowsT<N, C>::Rows& P,
-                                const SolverOptions& opt) {
+MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
+                                typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
   using Rows = typename FremondRowsT<N, C>::Rows;
   using RowMat = typename ContactSpaceT<N, C>::RowMat;
   const auto& cs = *rows.cs;
   const int r = cs.rows(), a = cs.active;
   MethodOutcome o;
-  Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r);
+  Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r), newton_dP(r);
   RowMat J(r, r);
+  SmallLU<ContactSpaceT<N, C>::kMaxRows> small_lu;  // used for the stack-stored sizes only
   double nr = rows.residual(P, z, R);
   const double target = opt.tolerance * cs.v_scale;
   double nr_10_ago = nr;  // Newton that has not halved the residual in 10 steps is stuck at a
@@ -78,21 +80,45 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
     const double theta0 = 0.5 * R.squaredNorm();
     double nrt = nr;
     bool accepted = false;
-    Eigen::PartialPivLU<RowMat> lu(J);
-    RowMat JtJ = J.transpose() * J;
-    const Rows JtR = J.transpose() * R;
-    const double jscale = std::max(JtJ.diagonal().maxCoeff(), std::numeric_limits<double>::min());
-    // λ relative to JᵀJ: ‖R‖/v_scale is dimensionless, so the damping does not depend on the units
-    // of P and D (λ = ‖R‖ itself, a velocity beside JᵀJ in velocity²/percussion², damped steps on
-    // rows with G_jj ~ 1e-6 a millionfold: Newton crawled, halving its residual every 10 steps).
-    double lambda = jscale * std::max(nr / cs.v_scale, kEps);
+    // The Newton direction where J is well conditioned (rcond > 1e-12).
+    bool have_newton = false;
+    if constexpr (N != Dynamic) {
+      small_lu.compute(J);
+      if (small_lu.rcond() > 1e-12) {
+        small_lu.solve(-R, newton_dP);
+        have_newton = true;
+      }
+    } else {
+      Eigen::PartialPivLU<RowMat> lu(J);
+      if (lu.rcond() > 1e-12) {
+        newton_dP = lu.solve(-R);
+        have_newton = true;
+      }
+    }
+    // The Levenberg–Marquardt data, formed only when the Newton step is not taken.
+    RowMat JtJ;
+    Rows JtR;
+    double lambda = 0.0;
+    bool lm_ready = false;
     for (int attempt = 0; attempt < 12 && !accepted; ++attempt) {
       bool ok = false;
-      if (attempt == 0 && lu.rcond() > 1e-12) {
-        dP = lu.solve(-R);
+      if (attempt == 0 && have_newton) {
+        dP = newton_dP;
         ok = dP.allFinite();
       }
       if (!ok) {
+        if (!lm_ready) {
+          JtJ.noalias() = J.transpose().lazyProduct(J);
+          JtR.noalias() = J.transpose().lazyProduct(R);
+          const double jscale =
+              std::max(JtJ.diagonal().maxCoeff(), std::numeric_limits<double>::min());
+          // λ relative to JᵀJ: ‖R‖/v_scale is dimensionless, so the damping does not depend on
+          // the units of P and D (λ = ‖R‖ itself, a velocity beside JᵀJ in
+          // velocity²/percussion², damped steps on rows with G_jj ~ 1e-6 a millionfold: Newton
+          // crawled, halving its residual every 10 steps).
+          lambda = jscale * std::max(nr / cs.v_scale, kEps);
+          lm_ready = true;
+        }
         RowMat A = JtJ;
         A.diagonal().array() += lambda;
         dP = A.llt().solve(-JtR);
@@ -125,12 +151,12 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows, typename Fremond
 }
 
 // Proximal iterations by splitting: a projected Gauss–Seidel sweep over the rows, each row solved
-// exactly by its own prox with the others fixed (the nonsmooth Gauss–Seidel of Moreau and Jean, as in
-// Siconos's NSGS). With x_j = z_j − G_jj P_j/2 the row alone reads z_j = x_j + G_jj P_j/2,
-// −P_j ∈ ∂ψ_j(z_j), so z_j = prox_{τ_j ψ_j}(x_j) with τ_j = G_jj/2 and P_j = (z_j − x_j)/τ_j.
-// Normal rows come first in each sweep, so a Coulomb row sees the bound μ|P_N| of the same sweep.
-// It needs only the prox, works with a singular G, and converges linearly where Newton may not
-// (a poor start, kinks everywhere); its cost per sweep is O(rows²).
+// exactly by its own prox with the others fixed (the nonsmooth Gauss–Seidel of Moreau and Jean, as
+// in Siconos's NSGS). With x_j = z_j − G_jj P_j/2 the row alone reads z_j = x_j + G_jj P_j/2, −P_j
+// ∈ ∂ψ_j(z_j), so z_j = prox_{τ_j ψ_j}(x_j) with τ_j = G_jj/2 and P_j = (z_j − x_j)/τ_j. Normal
+// rows come first in each sweep, so a Coulomb row sees the bound μ|P_N| of the same sweep. It needs
+// only the prox, works with a singular G, and converges linearly where Newton may not (a poor
+// start, kinks everywhere); its cost per sweep is O(rows²).
 template <int N, int C>
 MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
                                   typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
@@ -181,8 +207,9 @@ MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
         if (it + needed > opt.max_proximal_iterations) {
           o.status = SolverStatus::max_iterations;
           o.criterion = StopCriterion::iterations;
-          o.message = "proximal iterations: at the observed linear rate the iteration budget "
-                      "cannot reach the tolerance";
+          o.message =
+              "proximal iterations: at the observed linear rate the iteration budget "
+              "cannot reach the tolerance";
           return o;
         }
       }
@@ -206,10 +233,10 @@ MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
 }
 
 #define FREMOND_INSTANTIATE(N, C)                                                                  \
-  template MethodOutcome semismooth_newton(const FremondRowsT<N, C>&,                             \
-                                           FremondRowsT<N, C>::Rows&, const SolverOptions&);      \
-  template MethodOutcome proximal_iterations(const FremondRowsT<N, C>&,                           \
-                                             FremondRowsT<N, C>::Rows&, const SolverOptions&);
+  template MethodOutcome semismooth_newton(const FremondRowsT<N, C>&, FremondRowsT<N, C>::Rows&,   \
+                                           const SolverOptions&);                                  \
+  template MethodOutcome proximal_iterations(const FremondRowsT<N, C>&, FremondRowsT<N, C>::Rows&, \
+                                             const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE
