@@ -46,10 +46,9 @@ double Potential::prox(double x, double tau, double* dprox) const {
   // ±∞ is accepted: every do_prox answers the limit of the prox there, which is well defined (the
   // prox is monotone), so a solver's diverging iterate gives a number and not an exception.
   if (std::isnan(x)) throw InvalidArgument("x", "the prox argument is NaN");
-  const auto caps = do_capabilities();
-  if (!caps.prox && !caps.subdifferential)
-    throw InvalidArgument(std::string(name()),
-                          "this potential gives neither a prox nor its subdifferential");
+  // A potential with its own prox answers here; the capability test is in the generic do_prox
+  // below, the only one that needs the subdifferential (the solvers call prox in their inner
+  // loops).
   return do_prox(x, tau, dprox);
 }
 
@@ -76,6 +75,9 @@ double Potential::do_conjugate(double) const {
 // bracket grows geometrically from x: the root lies between x and the point where the subgradient
 // changes sign, i.e. inside [x − τ|g(x)| − 1, x + τ|g(x)| + 1] widened until it brackets.
 double Potential::do_prox(double x, double tau, double* dprox) const {
+  if (!do_capabilities().subdifferential)
+    throw InvalidArgument(std::string(name()),
+                          "this potential gives neither a prox nor its subdifferential");
   if (std::isinf(x)) return prox_at_infinity(*this, x, tau, dprox);
   auto sign_at = [&](double y) {  // −1: y below the root, +1: above, 0: y is the root
     const Interval sd = do_subdifferential(y);
