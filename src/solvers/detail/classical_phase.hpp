@@ -27,6 +27,7 @@
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
 #include "lemke.hpp"
+#include "small_null_space.hpp"
 
 namespace fremond::detail::classical {
 
@@ -475,13 +476,33 @@ MatT<times(MaxC, 2), times(MaxC, 2)> null_space(const typename Phase<MaxC>::RowM
   const int r = static_cast<int>(G.rows());
   if (r == 0) return RowMat(0, 0);
   // A full-pivoting LU gives a basis of the kernel cheaply; Gram-Schmidt makes it orthonormal.
-  Eigen::FullPivLU<RowMat> lu(G);
-  lu.setThreshold(1e-10);
-  if (lu.rank() == r) return RowMat(r, 0);
-  RowMat N = lu.kernel();
-  for (int j = 0; j < N.cols(); ++j) {
-    for (int k = 0; k < j; ++k) N.col(j) -= N.col(k).dot(N.col(j)) * N.col(k);
-    N.col(j).normalize();
+  RowMat N;
+  if constexpr (MaxC != Dynamic) {
+    // The same elimination by hand loops: Eigen's blocked kernels cost more than the arithmetic.
+    if (small_kernel<times(MaxC, 2)>(G, 1e-10, N) == r) return N;
+    const int dim = static_cast<int>(N.cols());
+    for (int j = 0; j < dim; ++j) {
+      for (int k = 0; k < j; ++k) {
+        double d = 0.0;
+        for (int i = 0; i < r; ++i) d += N(i, k) * N(i, j);
+        for (int i = 0; i < r; ++i) N(i, j) -= d * N(i, k);
+      }
+      double z = 0.0;
+      for (int i = 0; i < r; ++i) z += N(i, j) * N(i, j);
+      if (z > 0.0) {
+        const double norm = std::sqrt(z);
+        for (int i = 0; i < r; ++i) N(i, j) /= norm;
+      }
+    }
+  } else {
+    Eigen::FullPivLU<RowMat> lu(G);
+    lu.setThreshold(1e-10);
+    if (lu.rank() == r) return RowMat(r, 0);
+    N = lu.kernel();
+    for (int j = 0; j < N.cols(); ++j) {
+      for (int k = 0; k < j; ++k) N.col(j) -= N.col(k).dot(N.col(j)) * N.col(k);
+      N.col(j).normalize();
+    }
   }
   return N;
 }
