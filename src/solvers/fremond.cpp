@@ -471,15 +471,28 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
         out.unique = false;
         return;
       }
-      // Several solutions: return the one that dissipates most (the least T_E).
+      // Several solutions: return the one that dissipates most (the least T_E). T_E − T_A = P·z
+      // (eq. 9) is known only to |P| times the rounding of z = D_A + GP/2: a degenerate mode
+      // (G of rank one, g ≈ 0) yields percussions 1e10 times the natural scale that cancel, and
+      // its P·z is rounding noise of either sign. Energies that overlap within their rounding are
+      // a tie, and a tie goes to the better resolved answer (the smaller rounding).
       int best = 0;
-      double best_e = std::numeric_limits<double>::infinity();
+      double best_e = std::numeric_limits<double>::infinity(), best_u = 0.0;
       for (int s = 0; s < n; ++s) {
-        const double zN = cs.D_A(0) + 0.5 * (cs.G(0, 0) * sols[s].PN + cs.G(0, 1) * sols[s].PT);
-        const double zT = cs.D_A(1) + 0.5 * (cs.G(1, 0) * sols[s].PN + cs.G(1, 1) * sols[s].PT);
-        const double e = sols[s].PN * zN + sols[s].PT * zT;  // T_E − T_A, eq. 9
-        if (e < best_e) {
+        const double PN = sols[s].PN, PT = sols[s].PT;
+        const double zN = cs.D_A(0) + 0.5 * (cs.G(0, 0) * PN + cs.G(0, 1) * PT);
+        const double zT = cs.D_A(1) + 0.5 * (cs.G(1, 0) * PN + cs.G(1, 1) * PT);
+        const double e = PN * zN + PT * zT;  // T_E − T_A, eq. 9
+        const double dz = std::fabs(cs.D_A(0)) + std::fabs(cs.D_A(1)) +
+                          0.5 * (std::fabs(cs.G(0, 0) * PN) +
+                                 2 * std::fabs(cs.G(0, 1)) * (std::fabs(PN) + std::fabs(PT)) +
+                                 std::fabs(cs.G(1, 1) * PT));
+        const double u = 8 * kEps * (std::fabs(PN) + std::fabs(PT)) * dz;
+        const bool clearly_better = e + u < best_e - best_u;
+        const bool tie = !clearly_better && !(e - u > best_e + best_u);
+        if (s == 0 || clearly_better || (tie && u < best_u)) {
           best_e = e;
+          best_u = u;
           best = s;
         }
       }

@@ -560,5 +560,34 @@ TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVel
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
+// --- One contact with Coulomb on one degree of freedom (found by a stress run of fremond_coulomb,
+// #23090 of the default seed, once G = WᵀM⁻¹W was formed as YᵀY). G is of rank one, so the stick
+// mode's Schur complement g is rounding noise, and the mode enumeration found beside the exact
+// answer (an elastic reversal; p = 1.004 makes φ_N a near-step) a second one with P_N = −4.9e4,
+// P_T = 1.1e4 that cancel to the velocity's last bits. Its P·z (eq. 9) is rounding noise of
+// 2.6e-6 beside the exact answer's 1e-17, and picking the "most dissipative" by that noise
+// returned it: 2.7e-7 of the velocity scale off the quad reference. Energies within their
+// rounding are now a tie, won by the better resolved answer.
+TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
+  namespace ref = fremond_reference;
+  ImpactProblem pb = make(Eigen::MatrixXd::Constant(1, 1, 1.141077505025105),
+                          Eigen::MatrixXd::Constant(1, 1, 0.21896564660306428),
+                          Eigen::MatrixXd::Constant(1, 1, 0.94339497341054979),
+                          Eigen::VectorXd::Constant(1, -7.9854704372147104e-06));
+  const double k = 59382.205337100742, p = 1.0039401041457969, mu = 6.6907886637691369;
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
+  const auto r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                             {k, p}, ref::TangentialLaw::coulomb(mu));
+  ASSERT_FALSE(sols.empty());
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& s : sols)
+    nearest = std::min(nearest, std::fabs(r.qdot_E(0) - ref::to_double(s.qdot_E[0])));
+  EXPECT_LE(nearest, 1e-12 * std::fabs(pb.qdot_A(0)));
+  EXPECT_LT(std::fabs(r.P_N(0)), 1.0);  // the natural scale is 1e-5, not the cancelling 5e4
+  EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
+}
+
 }  // namespace
 }  // namespace fremond
