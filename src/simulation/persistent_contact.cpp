@@ -181,10 +181,9 @@ struct OneContact {
     n_free = n.dot(pb.v_free);
     t_before = t.dot(pb.v_before);
     t_free = t.dot(pb.v_free);
-    // As in solve_persistent_contact, expression for expression (the same bits).
+    // As in scales(), expression for expression (the same bits; gnn is its W_Nᵀ M⁻¹ W_N).
     sc.v = std::max({0.0, std::fabs(n_free), std::fabs(t_free), std::fabs(t_before)});
-    const double g = n.dot(pb.minv.cwiseProduct(n));
-    if (g > 0.0) sc.p = std::max(0.0, sc.v / g);
+    if (gnn > 0.0) sc.p = std::max(0.0, sc.v / gnn);
     sc.v = std::max(sc.v, 1e-300);
     sc.p = std::max(sc.p, 1e-300);
   }

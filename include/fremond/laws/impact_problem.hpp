@@ -2,6 +2,7 @@
 /// @file One impact problem (SPEC §1): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
 #include <Eigen/Cholesky>
 
+#include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 
 namespace fremond {
@@ -47,13 +48,7 @@ namespace detail {
 template <int N>
 double kinetic_energy(const MatT<N, N>& M, const VecT<N>& v) {
   if constexpr (N != Dynamic) {
-    double e = 0.0;
-    for (Eigen::Index i = 0; i < v.size(); ++i) {
-      double Mv = 0.0;
-      for (Eigen::Index j = 0; j < v.size(); ++j) Mv += M(i, j) * v(j);
-      e += v(i) * Mv;
-    }
-    return 0.5 * e;
+    return small_dense::half_quadratic_form(M, v);
   } else {
     return 0.5 * v.dot(M * v);
   }

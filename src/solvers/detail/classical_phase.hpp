@@ -24,6 +24,7 @@
 #include <limits>
 #include <new>
 
+#include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
 #include "lemke.hpp"
@@ -75,16 +76,7 @@ struct FixedList {
 /// contact has at most 4 per phase; more contacts are only enumerated up to 3.
 inline constexpr int kMaxSolutions = 24;
 
-/// y += A x by hand loops, column by column. On these bounded dynamic sizes (at most 8 × 8)
-/// Eigen's product goes through its general GEMV kernel, whose set-up costs more than the product.
-template <class Mat, class VecX, class VecY>
-void add_product(const Mat& A, const VecX& x, VecY& y) {
-  const Eigen::Index rows = A.rows(), cols = A.cols();
-  for (Eigen::Index j = 0; j < cols; ++j) {
-    const double xj = x(j);
-    for (Eigen::Index i = 0; i < rows; ++i) y(i) += A(i, j) * xj;
-  }
-}
+using small_dense::add_product;
 
 template <int MaxC>
 struct Phase {

@@ -106,13 +106,9 @@ struct FremondRowsT {
   /// dynamic-size matrix-vector product costs more in dispatch than in arithmetic.
   void mean_velocity(const Rows& P, Rows& z) const {
     if constexpr (N != Dynamic) {
-      const int r = cs->rows();
-      z.resize(r);
-      for (int j = 0; j < r; ++j) {
-        double s = 0.0;
-        for (int k = 0; k < r; ++k) s += cs->G(j, k) * P(k);
-        z(j) = cs->D_A(j) + 0.5 * s;
-      }
+      Rows GP = Rows::Zero(cs->rows());
+      small_dense::add_product(cs->G, P, GP);
+      z = cs->D_A + 0.5 * GP;
     } else {
       z.noalias() = cs->D_A + 0.5 * (cs->G * P);
     }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/detail/accurate_dot.hpp"
@@ -52,51 +53,6 @@ struct ContactSpaceT {
   int tangential_row(int i) const { return active + i; }
 };
 
-namespace contact_space_kernels {
-
-// Hand loops for the stack-stored small problems (n ≤ 6, ≤ 8 rows): Eigen's triangular solves and
-// products of dynamic size go through its blocked level-3 kernels (packing, blocking), which cost
-// more on a 3×2 problem than the arithmetic. Heap-stored problems keep Eigen's kernels.
-
-/// Y ← L⁻¹ Y (forward substitution) with L the lower triangle of `L`.
-template <class LMat, class Mat>
-void forward_substitute(const LMat& L, Mat& Y) {
-  const Eigen::Index n = L.rows();
-  for (Eigen::Index k = 0; k < Y.cols(); ++k)
-    for (Eigen::Index i = 0; i < n; ++i) {
-      double s = Y(i, k);
-      for (Eigen::Index j = 0; j < i; ++j) s -= L(i, j) * Y(j, k);
-      Y(i, k) = s / L(i, i);
-    }
-}
-
-/// X ← L⁻ᵀ X (backward substitution with the transpose of the lower triangle of `L`).
-template <class LMat, class Mat>
-void backward_substitute_transposed(const LMat& L, Mat& X) {
-  const Eigen::Index n = L.rows();
-  for (Eigen::Index k = 0; k < X.cols(); ++k)
-    for (Eigen::Index i = n - 1; i >= 0; --i) {
-      double s = X(i, k);
-      for (Eigen::Index j = i + 1; j < n; ++j) s -= L(j, i) * X(j, k);
-      X(i, k) = s / L(i, i);
-    }
-}
-
-/// G ← YᵀY, both triangles from the same sums (exactly symmetric).
-template <class Mat, class RowMat>
-void gram(const Mat& Y, RowMat& G) {
-  const Eigen::Index r = Y.cols(), n = Y.rows();
-  G.resize(r, r);
-  for (Eigen::Index j = 0; j < r; ++j)
-    for (Eigen::Index k = j; k < r; ++k) {
-      double s = 0.0;
-      for (Eigen::Index i = 0; i < n; ++i) s += Y(i, j) * Y(i, k);
-      G(j, k) = G(k, j) = s;
-    }
-}
-
-}  // namespace contact_space_kernels
-
 /// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
 ///
 /// With M = L Lᵀ and Y = L⁻¹ W: G = WᵀM⁻¹W = YᵀY (a Gram matrix: symmetric and positive
@@ -105,7 +61,6 @@ void gram(const Mat& Y, RowMat& G) {
 template <int MaxDofs, int MaxContacts>
 void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
                          ContactSpaceT<MaxDofs, MaxContacts>& cs) {
-  namespace k_ = contact_space_kernels;
   constexpr bool small = MaxDofs != Dynamic;
   const int n = pb.dofs(), c = pb.contacts();
   cs.dofs = n;
@@ -141,9 +96,9 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   if (r > 0) {
     cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
     if constexpr (small) {
-      k_::forward_substitute(cs.llt.matrixLLT(), cs.MinvW);
-      k_::gram(cs.MinvW, cs.G);
-      k_::backward_substitute_transposed(cs.llt.matrixLLT(), cs.MinvW);
+      small_dense::forward_substitute(cs.llt.matrixLLT(), cs.MinvW);
+      small_dense::gram(cs.MinvW, cs.G);
+      small_dense::backward_substitute_transposed(cs.llt.matrixLLT(), cs.MinvW);
     } else {
       cs.llt.matrixL().solveInPlace(cs.MinvW);
       cs.G.noalias() = cs.MinvW.transpose() * cs.MinvW;
@@ -212,13 +167,11 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   for (int i = 0; i < n && !moved; ++i) moved = out.qdot_E(i) != pb.qdot_A(i);
   if (!moved) {
     out.energy_change = 0.0;
-  } else if constexpr (MaxDofs != Dynamic) {  // a hand loop: no temporary, no gemv dispatch
+  } else if constexpr (MaxDofs != Dynamic) {
+    VecT<MaxDofs> Ms = VecT<MaxDofs>::Zero(n);
+    small_dense::add_product(pb.M, out.qdot_E + pb.qdot_A, Ms);
     double e = 0.0;
-    for (int i = 0; i < n; ++i) {
-      double Ms = 0.0;
-      for (int j = 0; j < n; ++j) Ms += pb.M(i, j) * (out.qdot_E(j) + pb.qdot_A(j));
-      e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms;
-    }
+    for (int i = 0; i < n; ++i) e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms(i);
     out.energy_change = 0.5 * e;
   } else {
     const auto dq = (out.qdot_E - pb.qdot_A).eval();
