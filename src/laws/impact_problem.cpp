@@ -27,7 +27,7 @@ std::string dims(Eigen::Index r, Eigen::Index c) {
 template <int N, int C>
 void validate(const ImpactProblemT<N, C>& pb) {
   detail::validate_shapes(pb);
-  Eigen::LLT<MatT<N, N>> llt(pb.M);
+  const detail::CholeskyT<N> llt(pb.M);
   detail::require_positive_definite(pb.M, llt);
 }
 
@@ -102,7 +102,7 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
 }
 
 template <int N>
-void detail::require_positive_definite(const MatT<N, N>& M, const Eigen::LLT<MatT<N, N>>& llt) {
+void detail::require_positive_definite(const MatT<N, N>& M, const CholeskyT<N>& llt) {
   bool spd = llt.info() == Eigen::Success;
   if (spd) {  // a positive pivot that is rounding noise is not positive definite either
     const double scale = M.cwiseAbs().maxCoeff();
@@ -116,9 +116,9 @@ template void validate(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::validate_shapes(const ImpactProblemT<Dynamic, Dynamic>&);
 template void detail::validate_shapes(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::require_positive_definite(const MatT<Dynamic, Dynamic>&,
-                                                const Eigen::LLT<MatT<Dynamic, Dynamic>>&);
+                                                const detail::CholeskyT<Dynamic>&);
 template void detail::require_positive_definite(const MatT<kSmallDofs, kSmallDofs>&,
-                                                const Eigen::LLT<MatT<kSmallDofs, kSmallDofs>>&);
+                                                const detail::CholeskyT<kSmallDofs>&);
 
 bool fits_small(const ImpactProblem& pb) {
   return pb.M.rows() <= kSmallDofs && pb.M.cols() <= kSmallDofs && pb.W_N.rows() <= kSmallDofs &&

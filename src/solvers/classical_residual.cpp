@@ -38,7 +38,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   if (r.P_N.size() != c || r.P_T.size() != c) return inf;
   if (poisson && (!r.has_phases || r.P_NC.size() != c || r.P_TC.size() != c)) return inf;
 
-  Eigen::LLT<MatT<N, N>> llt(pb.M);
+  const detail::CholeskyT<N> llt(pb.M);
   auto wn = [&](int i) { return pb.w_N.size() ? pb.w_N(i) : 0.0; };
   auto wt = [&](int i) { return pb.w_T.size() ? pb.w_T(i) : 0.0; };
   // Velocities after the percussions (PN, PT), from the problem data only.

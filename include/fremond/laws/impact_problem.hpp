@@ -1,7 +1,8 @@
 #pragma once
 /// @file One impact problem (SPEC §1): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 
+#include "fremond/core/detail/cholesky.hpp"
 #include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 
@@ -59,8 +60,7 @@ template <int MaxDofs, int MaxContacts>
 void validate_shapes(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
 /// The positive-definiteness test of validate() on a Cholesky factorisation of M.
 template <int MaxDofs>
-void require_positive_definite(const MatT<MaxDofs, MaxDofs>& M,
-                               const Eigen::LLT<MatT<MaxDofs, MaxDofs>>& llt);
+void require_positive_definite(const MatT<MaxDofs, MaxDofs>& M, const CholeskyT<MaxDofs>& llt);
 }  // namespace detail
 
 /// Copies a problem into the stack-stored small form; throws InvalidArgument if it does not fit.

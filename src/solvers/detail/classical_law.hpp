@@ -49,7 +49,7 @@ struct PhaseOutcome {
 template <int C>
 struct Factored {
   using RowMat = typename Phase<C>::RowMat;
-  Eigen::LLT<RowMat> llt;
+  CholeskyT<RowMat::MaxRowsAtCompileTime> llt;
   bool regular = false;
   RowMat null;  ///< orthonormal basis of null(G), no columns when G is regular
 

@@ -3,11 +3,11 @@
 ///
 /// Rows are ordered [normal rows of the active contacts, then their tangential rows]. G = Wᵀ M⁻¹ W
 /// is formed from a Cholesky factor of M; it may be singular and is never inverted.
-#include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "fremond/core/detail/cholesky.hpp"
 #include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
@@ -45,8 +45,8 @@ struct ContactSpaceT {
   /// D_NA and D_TA of every contact (D_T empty without W_T), computed once with
   /// contact_velocity() for the choice of active contacts and reused by the result.
   VecT<MaxContacts> D_N, D_T;
-  double v_scale = 0.0;  ///< max |D_A| over the active rows, floored to the smallest normal
-  Eigen::LLT<MatT<MaxDofs, MaxDofs>> llt;
+  double v_scale = 0.0;    ///< max |D_A| over the active rows, floored to the smallest normal
+  CholeskyT<MaxDofs> llt;  ///< of M
 
   int rows() const { return tangential ? 2 * active : active; }
   int normal_row(int i) const { return i; }
@@ -95,16 +95,14 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
   if (r > 0) {
     cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
+    cs.llt.solve_lower_in_place(cs.MinvW);
     if constexpr (small) {
-      small_dense::forward_substitute(cs.llt.matrixLLT(), cs.MinvW);
       small_dense::gram(cs.MinvW, cs.G);
-      small_dense::backward_substitute_transposed(cs.llt.matrixLLT(), cs.MinvW);
     } else {
-      cs.llt.matrixL().solveInPlace(cs.MinvW);
       cs.G.noalias() = cs.MinvW.transpose() * cs.MinvW;
       cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
-      cs.llt.matrixU().solveInPlace(cs.MinvW);
     }
+    cs.llt.solve_upper_in_place(cs.MinvW);
     // G = Wᵀ M⁻¹ W of a contact that takes part must be a number: |W|²/|M| beyond 1e308 leaves no
     // percussion representable (P ~ D_A / G), and a factorisation of a matrix holding ∞ is
     // undefined (Eigen's SVD reads out of bounds). The data are finite, their scale is not.

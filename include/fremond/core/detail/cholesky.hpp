@@ -1,0 +1,111 @@
+#pragma once
+/// @file The Cholesky factor L Lᵀ of a symmetric positive definite matrix, by hand loops for the
+/// stack-stored sizes and by Eigen's LLT for the heap-stored ones.
+///
+/// Eigen's LLT on a bounded dynamic-size 3×3 matrix goes through its blocked driver, a GEMV per
+/// column and the 1-norm it keeps for rcond(): about 500 instructions, more than the rest of a
+/// one-contact impact's contact space. The hand loop is Eigen's unblocked algorithm (the same
+/// pivot test, the same operations per column), summing in index order.
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <type_traits>
+
+#include "fremond/core/detail/small_dense.hpp"
+#include "fremond/core/types.hpp"
+
+namespace fremond::detail {
+
+template <int MaxN>
+class CholeskyT {
+ public:
+  using Mat = MatT<MaxN, MaxN>;
+  static constexpr bool kHandLoops = MaxN != Dynamic;
+
+  CholeskyT() = default;
+  explicit CholeskyT(const Mat& A) { compute(A); }
+
+  /// Factorises the lower triangle of A. info() says whether every pivot was positive.
+  CholeskyT& compute(const Mat& A) {
+    if constexpr (kHandLoops) {
+      L_ = A;
+      info_ = factorize_in_place(L_) ? Eigen::Success : Eigen::NumericalIssue;
+    } else {
+      llt_.compute(A);
+    }
+    return *this;
+  }
+
+  Eigen::ComputationInfo info() const {
+    if constexpr (kHandLoops)
+      return info_;
+    else
+      return llt_.info();
+  }
+
+  /// L in the lower triangle (the upper one holds A's, as Eigen's LLT::matrixLLT()).
+  const Mat& matrixLLT() const {
+    if constexpr (kHandLoops)
+      return L_;
+    else
+      return llt_.matrixLLT();
+  }
+
+  /// A⁻¹ b by forward and backward substitution.
+  template <class Rhs>
+  VecT<MaxN> solve(const Rhs& b) const {
+    VecT<MaxN> x = b;
+    if constexpr (kHandLoops) {
+      small_dense::forward_substitute(L_, x);
+      small_dense::backward_substitute_transposed(L_, x);
+    } else {
+      llt_.solveInPlace(x);
+    }
+    return x;
+  }
+
+  /// Y ← L⁻¹ Y.
+  template <class Y>
+  void solve_lower_in_place(Y& y) const {
+    if constexpr (kHandLoops)
+      small_dense::forward_substitute(L_, y);
+    else
+      llt_.matrixL().solveInPlace(y);
+  }
+
+  /// X ← L⁻ᵀ X.
+  template <class X>
+  void solve_upper_in_place(X& x) const {
+    if constexpr (kHandLoops)
+      small_dense::backward_substitute_transposed(L_, x);
+    else
+      llt_.matrixU().solveInPlace(x);
+  }
+
+ private:
+  // Eigen's llt_inplace<Lower>::unblocked: column k's pivot A_kk − |L_k,0:k|², refused unless
+  // positive (a NaN pivot passes, as in Eigen; the callers test the data's finiteness first), then
+  // the column below it.
+  static bool factorize_in_place(Mat& A) {
+    const Eigen::Index n = A.rows();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      double x = A(k, k);
+      for (Eigen::Index j = 0; j < k; ++j) x -= A(k, j) * A(k, j);
+      if (x <= 0.0) return false;
+      x = std::sqrt(x);
+      A(k, k) = x;
+      for (Eigen::Index i = k + 1; i < n; ++i) {
+        double s = A(i, k);
+        for (Eigen::Index j = 0; j < k; ++j) s -= A(i, j) * A(k, j);
+        A(i, k) = s / x;
+      }
+    }
+    return true;
+  }
+
+  struct Empty {};
+  std::conditional_t<kHandLoops, Mat, Empty> L_{};
+  Eigen::ComputationInfo info_ = Eigen::InvalidInput;
+  std::conditional_t<kHandLoops, Empty, Eigen::LLT<Mat>> llt_{};
+};
+
+}  // namespace fremond::detail
