@@ -12,15 +12,21 @@ namespace fremond {
 
 namespace {
 
-// How much f can change when its argument x moves by up to d (the larger one-sided change; an
+// f at x and at x ∓ d: each value is computed once and shared by the noise estimate and the
+// resolvability test below (a potential's value may cost a pow).
+struct Around {
+  double at, below, above;
+};
+Around around(const auto& f, double x, double fx, double d) {
+  return {fx, f(x - d), f(x + d)};
+}
+
+// How much f can change when its argument moves by up to d (the larger one-sided change; an
 // infinite side, e.g. across an indicator's boundary, does not count).
-double change_within(const auto& f, double x, double d) {
-  const double fx = f(x);
+double change_within(const Around& f) {
   double worst = 0.0;
-  for (double y : {x - d, x + d}) {
-    const double fy = f(y);
-    if (std::isfinite(fy)) worst = std::max(worst, std::fabs(fy - fx));
-  }
+  for (double fy : {f.below, f.above})
+    if (std::isfinite(fy)) worst = std::max(worst, std::fabs(fy - f.at));
   return worst;
 }
 
@@ -60,17 +66,18 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
   const double fs = on_domain([&](double x) { return phi.conjugate(x); }, s, ds);
   if (!std::isfinite(fz) || !std::isfinite(fs) || !std::isfinite(s * z))
     return subdifferential_miss();
-  const double conj_noise = change_within([&](double x) { return phi.conjugate(x); }, s, ds);
-  const double noise = change_within([&](double x) { return phi.value(x); }, z, dz) + conj_noise +
-                       dz * std::fabs(s) + ds * std::fabs(z);
+  const Around conj = around([&](double x) { return phi.conjugate(x); }, s, fs, ds);
+  const double conj_noise = change_within(conj);
+  const double noise = change_within(around([&](double x) { return phi.value(x); }, z, fz, dz)) +
+                       conj_noise + dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
   const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
   if (gap == 0.0) return 0.0;
   // The values decide wherever φ* is resolvable near s, so that a wrong conjugate (a user's
   // potential that lies about itself) is caught; only where φ* within ds of s leaves double
   // precision or swings by the gap's own size does the subdifferential test decide.
-  const bool resolvable = std::isfinite(phi.conjugate(s - ds)) &&
-                          std::isfinite(phi.conjugate(s + ds)) && conj_noise < 0.5 * scale;
+  const bool resolvable =
+      std::isfinite(conj.below) && std::isfinite(conj.above) && conj_noise < 0.5 * scale;
   return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
 
