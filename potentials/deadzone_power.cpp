@@ -22,14 +22,18 @@ PotentialCapabilities DeadZonePowerPotential::do_capabilities() const {
   return c;
 }
 
+// q = 2 (the viscous law) without pow: e² and e¹ are correctly rounded either way, the same
+// numbers at a fraction of the cost.
 double DeadZonePowerPotential::do_value(double y) const {
   const double e = std::fabs(y) - r_;
-  return e > 0.0 ? k_ * std::pow(e, q_) / q_ : 0.0;
+  if (!(e > 0.0)) return 0.0;
+  return k_ * (q_ == 2.0 ? e * e : std::pow(e, q_)) / q_;
 }
 
 double DeadZonePowerPotential::do_subgradient(double y) const {
   const double e = std::fabs(y) - r_;
-  return e > 0.0 ? std::copysign(k_ * std::pow(e, q_ - 1.0), y) : 0.0;
+  if (!(e > 0.0)) return 0.0;
+  return std::copysign(k_ * (q_ == 2.0 ? e : std::pow(e, q_ - 1.0)), y);
 }
 
 double DeadZonePowerPotential::do_prox(double x, double tau, double* dprox) const {
