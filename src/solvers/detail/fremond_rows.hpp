@@ -106,9 +106,14 @@ struct FremondRowsT {
   /// dynamic-size matrix-vector product costs more in dispatch than in arithmetic.
   void mean_velocity(const Rows& P, Rows& z) const {
     if constexpr (N != Dynamic) {
-      Rows GP = Rows::Zero(cs->rows());
-      small_dense::add_product(cs->G, P, GP);
-      z = cs->D_A + 0.5 * GP;
+      // Fused (z = D_A + ½ G P in one pass, no temporary): it runs at every Newton step.
+      const int r = cs->rows();
+      z.resize(r);
+      for (int j = 0; j < r; ++j) {
+        double s = 0.0;
+        for (int k = 0; k < r; ++k) s += cs->G(j, k) * P(k);
+        z(j) = cs->D_A(j) + 0.5 * s;
+      }
     } else {
       z.noalias() = cs->D_A + 0.5 * (cs->G * P);
     }

@@ -50,16 +50,12 @@ class CholeskyT {
       return llt_.matrixLLT();
   }
 
-  /// A⁻¹ b by forward and backward substitution.
+  /// A⁻¹ b by forward and backward substitution (what Eigen's LLT::solveInPlace does).
   template <class Rhs>
   VecT<MaxN> solve(const Rhs& b) const {
     VecT<MaxN> x = b;
-    if constexpr (kHandLoops) {
-      small_dense::forward_substitute(L_, x);
-      small_dense::backward_substitute_transposed(L_, x);
-    } else {
-      llt_.solveInPlace(x);
-    }
+    solve_lower_in_place(x);
+    solve_upper_in_place(x);
     return x;
   }
 

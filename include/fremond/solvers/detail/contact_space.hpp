@@ -166,10 +166,12 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   if (!moved) {
     out.energy_change = 0.0;
   } else if constexpr (MaxDofs != Dynamic) {
-    VecT<MaxDofs> Ms = VecT<MaxDofs>::Zero(n);
-    small_dense::add_product(pb.M, out.qdot_E + pb.qdot_A, Ms);
-    double e = 0.0;
-    for (int i = 0; i < n; ++i) e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms(i);
+    double e = 0.0;  // fused: no temporary
+    for (int i = 0; i < n; ++i) {
+      double Ms = 0.0;
+      for (int j = 0; j < n; ++j) Ms += pb.M(i, j) * (out.qdot_E(j) + pb.qdot_A(j));
+      e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms;
+    }
     out.energy_change = 0.5 * e;
   } else {
     const auto dq = (out.qdot_E - pb.qdot_A).eval();
