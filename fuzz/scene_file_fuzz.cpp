@@ -5,8 +5,9 @@
 //  - the reader either accepts or throws InvalidArgument with a name and a reason; nothing else
 //    escapes;
 //  - what it accepts validates again (Scene::validate, SimulationOptions::validate);
-//  - a run of it, shortened so that one input stays cheap (t_end ≤ 0.2 s, at most 200 impacts and
-//    2,000 steps), ends with a status, at a finite time and state, and never past t_end.
+//  - a run of it, shortened so that one input stays cheap (t_end ≤ 0.2 s, at most 200 impacts,
+//    2,000 steps and 200,000 gap evaluations per event search), ends with a status, at a finite
+//    time and state, and never past t_end.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -43,6 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.step = std::clamp(o.step, o.t_end / 2000.0, o.t_end);
   o.sample_interval = std::max(o.sample_interval, o.t_end / 50.0);
   o.max_impacts = std::min(o.max_impacts, 200L);
+  o.max_gap_evaluations = std::min(o.max_gap_evaluations, 200'000L);
   o.accumulation_interval = std::min(o.accumulation_interval, o.t_end);
   try {
     o.validate();
@@ -57,8 +59,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (r.status == SimulationStatus::not_run) fuzz::fail("simulate ended with status not_run");
   if (!std::isfinite(r.t) || r.t > o.t_end * (1 + 1e-12) + 1e-12)
-    fuzz::fail("simulate stopped at t = " + std::to_string(r.t) + ", t_end " + std::to_string(o.t_end));
-  if (r.ok() && (!r.state.q.allFinite() || !r.state.qdot.allFinite() || !std::isfinite(r.energy_final)))
+    fuzz::fail("simulate stopped at t = " + std::to_string(r.t) + ", t_end " +
+               std::to_string(o.t_end));
+  if (r.ok() &&
+      (!r.state.q.allFinite() || !r.state.qdot.allFinite() || !std::isfinite(r.energy_final)))
     fuzz::fail("simulate completed with a state that is not finite");
   return 0;
 }

@@ -4,8 +4,9 @@
 //
 // Exit status: 0 the run reached its end time (or --max-impacts); 1 input refused (the message
 // names the key or option; nothing written); 2 the run stopped early because an impact or a
-// persistent contact could not be solved (the files are written up to there, and the summary says
-// why); 3 the output could not be written.
+// persistent contact could not be solved, or a free flight's events could not be resolved within
+// the event search's budget (the files are written up to there, and the summary says why); 3 the
+// output could not be written.
 //
 // Output files are complete or absent: each is written to a temporary file in DIR and renamed.
 #include <sys/stat.h>
@@ -52,6 +53,7 @@ struct SimulateArguments {
   double step = std::nan("");
   double sample_interval = std::nan("");
   long max_impacts = -1;
+  long max_gap_evaluations = -1;
   bool no_progress = false;
 };
 
@@ -137,6 +139,7 @@ Setup load(const SimulateArguments& a) {
   if (!std::isnan(a.step)) o.step = a.step;
   if (!std::isnan(a.sample_interval)) o.sample_interval = a.sample_interval;
   if (a.max_impacts >= 0) o.max_impacts = a.max_impacts;
+  if (a.max_gap_evaluations >= 0) o.max_gap_evaluations = a.max_gap_evaluations;
   if (!a.integrator.empty()) {
     try {
       o.integrator = integrator_from_string(a.integrator);
@@ -153,6 +156,8 @@ Setup load(const SimulateArguments& a) {
     if (key == "integrator.step" && !std::isnan(a.step)) throw InvalidArgument("--step", reason);
     if (key == "integrator.max_impacts" && a.max_impacts >= 0)
       throw InvalidArgument("--max-impacts", reason);
+    if (key == "integrator.max_gap_evaluations" && a.max_gap_evaluations >= 0)
+      throw InvalidArgument("--max-gap-evaluations", reason);
     if (key == "output.sample_interval" && !std::isnan(a.sample_interval))
       throw InvalidArgument("--sample-interval", reason);
     throw InvalidArgument(key, reason);
@@ -398,6 +403,8 @@ void add_simulate_command(CLI::App& app) {
                   "summary.json into (created if needed)");
   cmd->add_option("--t-end", args->t_end, "End time (s)");
   cmd->add_option("--max-impacts", args->max_impacts, "Stop after this many impacts");
+  cmd->add_option("--max-gap-evaluations", args->max_gap_evaluations,
+                  "Budget of one free flight's event search (gap evaluations per contact, >= 100)");
   cmd->add_option("--integrator", args->integrator, "event_driven (default) or moreau_jean");
   cmd->add_option("--step", args->step, "Moreau-Jean step (s)");
   cmd->add_option("--sample-interval", args->sample_interval,

@@ -129,9 +129,9 @@ void integrator_from_json(const json& j, SimulationOptions& o) {
   const std::string where = "integrator";
   detail::require_object(j, where);
   detail::check_keys(j, where,
-                     {"method", "step", "max_impacts", "simultaneity_tolerance", "gap_tolerance",
-                      "velocity_tolerance", "accumulation_interval", "accumulation_impacts",
-                      "return_after_free_steps"},
+                     {"method", "step", "max_impacts", "max_gap_evaluations",
+                      "simultaneity_tolerance", "gap_tolerance", "velocity_tolerance",
+                      "accumulation_interval", "accumulation_impacts", "return_after_free_steps"},
                      "the integrator");
   const auto num = [&](std::string_view key, double& out) {
     if (const json* v = detail::optional_key(j, key))
@@ -146,6 +146,8 @@ void integrator_from_json(const json& j, SimulationOptions& o) {
   num("accumulation_interval", o.accumulation_interval);
   if (const json* v = detail::optional_key(j, "max_impacts"))
     o.max_impacts = integer_from_json(*v, "integrator.max_impacts");
+  if (const json* v = detail::optional_key(j, "max_gap_evaluations"))
+    o.max_gap_evaluations = integer_from_json(*v, "integrator.max_gap_evaluations");
   // Range-checked as long before narrowing, so that 1e12 is refused rather than wrapped.
   const auto small_int = [&](std::string_view key, int& out) {
     const json* v = detail::optional_key(j, key);

@@ -52,7 +52,8 @@ void bind_enums(py::module_& m) {
                    &phase_from_string);
   using R = SimulationStatus;
   bind_enum<R>(m, "SimulationStatus", doc::kSimulationStatus,
-               {R::not_run, R::completed, R::max_impacts, R::impact_failed, R::contact_failed},
+               {R::not_run, R::completed, R::max_impacts, R::impact_failed, R::contact_failed,
+                R::event_search_failed},
                &simulation_status_from_string);
   using K = ImpactKind;
   bind_enum<K>(m, "ImpactKind", doc::kImpactKind, {K::event, K::time_step, K::accumulation},

@@ -116,6 +116,7 @@ void bind_scenes(py::module_& m) {
 
   py::class_<FirstImpact>(m, "FirstImpact")
       .def_readonly("found", &FirstImpact::found)
+      .def_readonly("resolved", &FirstImpact::resolved)
       .def_readonly("t", &FirstImpact::t)
       .def_readonly("state", &FirstImpact::state)
       .def_property_readonly("contacts", [](const FirstImpact& f) {

@@ -64,6 +64,7 @@ void bind_simulation(py::module_& m) {
       .def_readwrite("t_end", &SimulationOptions::t_end)
       .def_readwrite("step", &SimulationOptions::step)
       .def_readwrite("max_impacts", &SimulationOptions::max_impacts)
+      .def_readwrite("max_gap_evaluations", &SimulationOptions::max_gap_evaluations)
       .def_readwrite("simultaneity_tolerance", &SimulationOptions::simultaneity_tolerance)
       .def_readwrite("gap_tolerance", &SimulationOptions::gap_tolerance)
       .def_readwrite("velocity_tolerance", &SimulationOptions::velocity_tolerance)

@@ -24,7 +24,14 @@ FirstImpact first_impact(const Scene& scene_in, double t_max, double simultaneit
   for (int k = 0; k < nc; ++k) {
     const GapFunction g = GapFunction::make(scene.body.points[scene.point_of(k)],
                                             scene.obstacles[scene.obstacle_of(k)], flight);
-    when[k] = find_first_event(g, std::min(t_max, best + simultaneity_tolerance), false).s;
+    const EventSearchResult r =
+        find_first_event(g, std::min(t_max, best + simultaneity_tolerance), false);
+    if (r.exhausted) {
+      FirstImpact out;
+      out.resolved = false;
+      return out;
+    }
+    when[k] = r.s;
     best = std::min(best, when[k]);
   }
   FirstImpact out;
@@ -153,6 +160,9 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
 
 double first_impact_normal_stiffness(const Scene& scene, double p, double restitution) {
   const FirstImpact first = first_impact(scene, 1e4);
+  if (!first.resolved)
+    throw InvalidArgument("scene",
+                          "turns too fast for the event search to find its first contact event");
   if (!first.found) throw InvalidArgument("scene", "never reaches an obstacle");
   const int n = std::min(first.contact_count, kSmallContacts);
   const SmallImpactProblem pb = impact_problem(scene, first.state, first.contacts.data(), n);

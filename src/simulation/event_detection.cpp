@@ -37,7 +37,7 @@ struct Point {
   double s, g, gd, gdd;
 };
 
-Point sample(const GapFunction& f, double s, int& evaluations) {
+Point sample(const GapFunction& f, double s, long& evaluations) {
   Point p{s, 0.0, 0.0, 0.0};
   f.eval(s, p.g, p.gd, p.gdd);
   ++evaluations;
@@ -53,7 +53,7 @@ double min_width(double b, double floor) {
 // The single root of a decreasing g on [lo, hi] with g(lo) > 0 ≥ g(hi): Newton from the last
 // point, kept inside the bracket, bisection when it leaves it. Returns the left-most point found
 // with g ≤ 0, within a few units in the last place of the true crossing.
-double refine(const GapFunction& f, Point lo, Point hi, int& evaluations) {
+double refine(const GapFunction& f, Point lo, Point hi, long& evaluations) {
   const auto min_width = [](double x) { return 4.0 * ulp(x); };
   Point last = hi;
   for (int it = 0; it < 200; ++it) {
@@ -96,7 +96,8 @@ double refine(const GapFunction& f, Point lo, Point hi, int& evaluations) {
 
 }  // namespace
 
-EventSearchResult find_first_event(const GapFunction& f, double s_max, bool touching_start) {
+EventSearchResult find_first_event(const GapFunction& f, double s_max, bool touching_start,
+                                   long max_evaluations) {
   EventSearchResult out;
   if (!(s_max >= 0.0)) return out;
   Point start = sample(f, 0.0, out.evaluations);
@@ -138,6 +139,12 @@ EventSearchResult find_first_event(const GapFunction& f, double s_max, bool touc
         return out;
       }
       continue;  // a dip below zero of at most K h²/8, below the rounding of positions
+    }
+    // The refinement above is bounded (at most 600 evaluations) and always finishes: a root
+    // proven is never thrown away for the budget. Only the splitting is cut.
+    if (out.evaluations >= max_evaluations) {
+      out.exhausted = true;
+      return out;
     }
     const Point m = sample(f, a.s + 0.5 * h, out.evaluations);
     if (top + 2 > static_cast<int>(stack.size())) break;  // cannot happen (see above)

@@ -311,9 +311,16 @@ class Run {
       std::array<double, kMaxC> when;
       double best = kInf;
       for (int k = 0; k < nc_; ++k) {
-        const EventSearchResult r =
-            find_first_event(gap[k], std::min(horizon, best + tau), touching[k]);
+        const EventSearchResult r = find_first_event(gap[k], std::min(horizon, best + tau),
+                                                     touching[k], opt_.max_gap_evaluations);
         res_.gap_evaluations += r.evaluations;
+        if (r.exhausted) {  // the state stays at the start of the flight: nothing is guessed
+          finish(SimulationStatus::event_search_failed,
+                 "the event search of a free flight spent integrator.max_gap_evaluations without "
+                 "deciding where the next contact event is: the body turns too fast for its "
+                 "events to be resolved");
+          return;
+        }
         when[k] = r.s;
         best = std::min(best, r.s);
       }

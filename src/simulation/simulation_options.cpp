@@ -16,12 +16,13 @@ constexpr EnumNames<Integrator, 2> kIntegrators{
     {{Integrator::event_driven, "event_driven"}, {Integrator::moreau_jean, "moreau_jean"}}};
 constexpr EnumNames<Phase, 2> kPhases{
     {{Phase::event_driven, "event_driven"}, {Phase::moreau_jean, "moreau_jean"}}};
-constexpr EnumNames<SimulationStatus, 5> kStatus{
+constexpr EnumNames<SimulationStatus, 6> kStatus{
     {{SimulationStatus::not_run, "not_run"},
      {SimulationStatus::completed, "completed"},
      {SimulationStatus::max_impacts, "max_impacts"},
      {SimulationStatus::impact_failed, "impact_failed"},
-     {SimulationStatus::contact_failed, "contact_failed"}}};
+     {SimulationStatus::contact_failed, "contact_failed"},
+     {SimulationStatus::event_search_failed, "event_search_failed"}}};
 constexpr EnumNames<ImpactKind, 3> kKinds{{{ImpactKind::event, "event"},
                                            {ImpactKind::time_step, "time_step"},
                                            {ImpactKind::accumulation, "accumulation"}}};
@@ -67,6 +68,9 @@ std::pair<std::string, std::string> first_invalid(const SimulationOptions& o) {
   if (!non_negative(o.simultaneity_tolerance))
     return {"integrator.simultaneity_tolerance",
             "must be a finite number >= 0, got " + format_number(o.simultaneity_tolerance)};
+  if (o.max_gap_evaluations < 100)
+    return {"integrator.max_gap_evaluations",
+            "must be >= 100, got " + std::to_string(o.max_gap_evaluations)};
   if (!non_negative(o.gap_tolerance))
     return {"integrator.gap_tolerance",
             "must be a finite number >= 0, got " + format_number(o.gap_tolerance)};

@@ -51,6 +51,7 @@ refused "law with a file" "--law" "only with --preset" "$SCENES/ball_newton.json
 refused "negative t_end" "--t-end" "> 0" --preset paper-bar --law newton --t-end -1 --out "$TMP/out"
 refused "zero step" "--step" "(0, t_end]" --preset paper-bar --law newton --step 0 --out "$TMP/out"
 refused "zero max impacts" "--max-impacts" ">= 1" --preset paper-bar --law newton --max-impacts 0 --out "$TMP/out"
+refused "small gap budget" "--max-gap-evaluations" ">= 100" --preset paper-bar --law newton --max-gap-evaluations 10 --out "$TMP/out"
 refused "bad integrator" "--integrator" "unknown value 'rk4'" --preset paper-bar --law newton --integrator rk4 --out "$TMP/out"
 refused "missing file" "/nonexistent/scene.json" "cannot open" /nonexistent/scene.json --out "$TMP/out"
 refused "a directory" "$SCENES" "is a directory" "$SCENES" --out "$TMP/out"
@@ -66,6 +67,8 @@ edited "missing law" "law" "missing" 'del d["law"]'
 edited "bad e" "law.e" "[0, 1]" 'd["law"]["e"] = 2'
 edited "too many mu" "law.mu" "one per contact" 'd["law"]["mu"] = [1, 1, 1]'
 edited "bad method" "integrator.method" "unknown value" 'd["integrator"]["method"] = "euler"'
+edited "small gap budget" "integrator.max_gap_evaluations" ">= 100" 'd["integrator"]["max_gap_evaluations"] = 5'
+edited "fractional gap budget" "integrator.max_gap_evaluations" "whole number" 'd["integrator"]["max_gap_evaluations"] = 1000.5'
 edited "bad sample interval" "output.sample_interval" "> 0" 'd["output"]["sample_interval"] = -1'
 
 if [ "$failures" -ne 0 ]; then

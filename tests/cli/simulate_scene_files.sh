@@ -85,6 +85,30 @@ assert rows[-1][0] == 0.5 and all(r[0] <= 0.5 for r in rows), rows[-1]
 assert len(rows) == 501 + 2 * len(imp), (len(rows), len(imp))
 ' "$TMP/mj"
 
+# A body spinning at 1e9 rad/s, 1 m above the ground without gravity: its events cannot be
+# resolved within the event search's budget. The run stops at t = 0 with exit status 2, says why,
+# and writes its files up to there (one trajectory row, no impact).
+cat >"$TMP/spin.json" <<'EOF'
+{"body": {"shape": "bar", "mass": 1, "half_length": 0.5}, "gravity": 0,
+ "initial": {"q": [0, 1, 0.3], "qdot": [0, 0, 1e9]}, "law": {"type": "newton", "e": 0.9},
+ "t_end": 1, "integrator": {"max_gap_evaluations": 20000}}
+EOF
+"$FREMOND" simulate "$TMP/spin.json" --out "$TMP/spin" --no-progress >"$TMP/stdout" 2>"$TMP/err"
+rc=$?
+[ $rc -eq 2 ] && grep -q "event_search_failed" "$TMP/err" && grep -q "max_gap_evaluations" "$TMP/err" &&
+  pass || fail "spin: exit $rc: $(cat "$TMP/err")"
+check "spin" '
+assert s["status"] == "event_search_failed" and s["t"] == 0, s
+assert imp == [] and len(rows) == 1 and rows[0][0] == 0, (imp, rows)
+' "$TMP/spin"
+# The same flight at 1e3 rad/s is resolved: no impact, the run completes.
+sed 's/1e9/1e3/' "$TMP/spin.json" >"$TMP/spin3.json"
+"$FREMOND" simulate "$TMP/spin3.json" --out "$TMP/spin3" --no-progress >/dev/null 2>"$TMP/err" &&
+  pass || fail "spin at 1e3 rad/s: $(cat "$TMP/err")"
+check "spin3" '
+assert s["status"] == "completed" and s["t"] == 1 and imp == [], s
+' "$TMP/spin3"
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed, $checks passed" >&2
   exit 1

@@ -21,7 +21,8 @@ SIMULATION = ["code", "law", "step", "steps", "impacts", "cpu_seconds", "ns_per_
 METHODS = {"automatic", "closed_form", "scalar_newton", "mode_enumeration", "semismooth_newton",
            "proximal", "nlopt"}
 STATUSES = {"converged", "max_iterations", "stalled", "no_solution", "failed"}
-SIM_STATUSES = {"completed", "max_impacts", "impact_failed", "contact_failed"}
+SIM_STATUSES = {"completed", "max_impacts", "impact_failed", "contact_failed",
+                "event_search_failed"}
 
 
 def fail(msg):

@@ -287,5 +287,19 @@ def test_all_solutions_and_residual():
         assert rep.failed == f.Inequality.total_15
 
 
+def test_a_flight_too_fast_to_resolve_stops_the_run():
+    """A bar 1 m up, no gravity, spinning at 1e9 rad/s: its lowest point stays 0.5 m above the
+    ground, but the event search cannot prove it within its budget; the run says so at t = 0."""
+    scene = f.bar_scene(f.BarParameters(), f.ImpactLaw.newton(0.9))
+    scene.gravity = 0.0
+    scene.initial = f.PlanarState(q=np.array([0.0, 1.0, 0.3]), qdot=np.array([0.0, 0.0, 1e9]))
+    opts = f.SimulationOptions(t_end=1.0, max_gap_evaluations=1000)
+    r = f.simulate(scene, opts).result
+    assert r.status == f.SimulationStatus.event_search_failed and not r.ok(), r.status
+    assert str(r.status) == "event_search_failed" and r.t == 0.0 and r.impacts == 0
+    assert r.gap_evaluations == 1000
+    opts.max_gap_evaluations = 10
+    assert not opts.is_valid()
+
 if __name__ == "__main__":
     run_tests(globals())

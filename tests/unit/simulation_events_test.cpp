@@ -1,6 +1,7 @@
 // Free flight and event detection: closed forms, a dense brute-force reference, grazing touches.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -177,6 +178,59 @@ TEST(EventDetection, ALeavingContactDoesNotRetrigger) {
   ASSERT_GT(gdd, 0.0);
   const auto r1 = find_first_event(g1, 0.05, true);
   EXPECT_FALSE(r1.found());
+}
+
+TEST(EventDetection, TheBudgetCutsTheSearchAndChangesNoAnswer) {
+  // The spinning bars above: a budget of at least the evaluations an unbounded search spends
+  // gives the same answer from the same samples; any smaller one gives the same answer or ends
+  // `exhausted` after exactly the budget, never a different event.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
+  int cut = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const FreeFlight f{0.0,
+                       {Eigen::Vector3d(0, 0.4 + 0.5 * u(rng), 2 * kPi * u(rng)),
+                        Eigen::Vector3d(1, 3 * u(rng), (u(rng) - 0.5) * 120)},
+                       9.81};
+    const GapFunction g = GapFunction::make(bar.body.points[trial % 2], bar.obstacles[0], f);
+    if (g.value(0.0) <= 0.0) continue;
+    const auto full = find_first_event(g, 1.0, false, std::numeric_limits<long>::max());
+    ASSERT_FALSE(full.exhausted);
+    const auto same = find_first_event(g, 1.0, false, full.evaluations);
+    EXPECT_FALSE(same.exhausted) << trial;
+    EXPECT_EQ(same.s, full.s) << trial;
+    EXPECT_EQ(same.evaluations, full.evaluations) << trial;
+    const long budget = std::max(2L, full.evaluations / 3);
+    const auto part = find_first_event(g, 1.0, false, budget);
+    if (part.exhausted) {
+      ++cut;
+      EXPECT_FALSE(part.found()) << trial;
+      EXPECT_EQ(part.evaluations, budget) << trial;
+    } else {
+      EXPECT_EQ(part.s, full.s) << trial;
+    }
+  }
+  EXPECT_GT(cut, 50);
+}
+
+TEST(EventDetection, ASpinTooFastToResolveEndsExhausted) {
+  // A bar 1 m above the ground without gravity: its lowest point stays at 1 − 0.5 m, so no flight
+  // has an event. At 10³ rad/s (160 turns) the search proves it; at 10⁹ rad/s it would need about
+  // 10⁹ intervals, and ends at its budget instead.
+  const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
+  for (double omega : {1e3, 1e9}) {
+    const FreeFlight f{0.0, {Eigen::Vector3d(0, 1.0, 0.3), Eigen::Vector3d(0, 0, omega)}, 0.0};
+    const GapFunction g = GapFunction::make(bar.body.points[0], bar.obstacles[0], f);
+    const auto r = find_first_event(g, 1.0, false, 100000);
+    EXPECT_FALSE(r.found()) << omega;
+    EXPECT_EQ(r.exhausted, omega > 1e6) << omega << " " << r.evaluations;
+    if (r.exhausted) {
+      EXPECT_EQ(r.evaluations, 100000);
+    } else {
+      EXPECT_LT(r.evaluations, 100000);
+    }
+  }
 }
 
 // The event search's unit in the last place by bit pattern is std::nextafter's, value for value:

@@ -20,7 +20,8 @@ TEST(SimulationOptions, EveryEnumRoundTripsThroughItsName) {
     EXPECT_EQ(phase_from_string(to_string(v)), v);
   for (auto v :
        {SimulationStatus::not_run, SimulationStatus::completed, SimulationStatus::max_impacts,
-        SimulationStatus::impact_failed, SimulationStatus::contact_failed})
+        SimulationStatus::impact_failed, SimulationStatus::contact_failed,
+        SimulationStatus::event_search_failed})
     EXPECT_EQ(simulation_status_from_string(to_string(v)), v);
   for (auto v : {ImpactKind::event, ImpactKind::time_step, ImpactKind::accumulation})
     EXPECT_EQ(impact_kind_from_string(to_string(v)), v);
@@ -55,6 +56,8 @@ TEST(SimulationOptions, EachOutOfRangeValueIsNamed) {
   refused([](SimulationOptions& o) { o.t_end = NAN; }, "t_end");
   refused([](SimulationOptions& o) { o.step = 4.0; }, "integrator.step");
   refused([](SimulationOptions& o) { o.max_impacts = 0; }, "integrator.max_impacts");
+  refused([](SimulationOptions& o) { o.max_gap_evaluations = 99; },
+          "integrator.max_gap_evaluations");
   refused([](SimulationOptions& o) { o.simultaneity_tolerance = -1; },
           "integrator.simultaneity_tolerance");
   refused([](SimulationOptions& o) { o.gap_tolerance = INFINITY; }, "integrator.gap_tolerance");
@@ -121,6 +124,38 @@ TEST(SimulationOptions, MaxImpactsStopsTheRunThere) {
   EXPECT_EQ(r.impacts, 3);
   ASSERT_EQ(log.impacts.size(), 3u);
   EXPECT_EQ(r.t, log.impacts.back().t);
+}
+
+TEST(SimulationOptions, AFlightTooFastToResolveStopsTheRunWhereItStands) {
+  // A bar 1 m above the ground, no gravity: its lowest point stays 0.5 m up, so no impact ever.
+  // Spinning at 10³ rad/s the run proves it and completes with the energy it started with; at
+  // 10⁹ rad/s the first flight's search spends its budget and the run stops at t = 0, unchanged.
+  Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
+  bar.gravity = 0.0;
+  SimulationOptions o;
+  o.t_end = 1.0;
+  o.max_gap_evaluations = 50000;
+  for (double omega : {1e3, 1e9}) {
+    bar.initial = {Eigen::Vector3d(0, 1.0, 0.3), Eigen::Vector3d(0, 0, omega)};
+    Log log;
+    const SimulationResult r = simulate(bar, o, &log);
+    EXPECT_EQ(r.impacts, 0);
+    if (omega < 1e6) {
+      EXPECT_EQ(r.status, SimulationStatus::completed) << r.message;
+      EXPECT_EQ(r.t, 1.0);
+      EXPECT_NEAR(r.energy_final, r.energy_initial, 1e-12 * r.energy_initial);
+      continue;
+    }
+    EXPECT_EQ(r.status, SimulationStatus::event_search_failed);
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(r.message.find("max_gap_evaluations"), std::string_view::npos) << r.message;
+    EXPECT_EQ(r.t, 0.0);
+    EXPECT_EQ(r.state.q, bar.initial.q);
+    EXPECT_EQ(r.state.qdot, bar.initial.qdot);
+    EXPECT_EQ(r.gap_evaluations, o.max_gap_evaluations);  // the first contact's search, then stop
+    ASSERT_FALSE(log.samples.empty());
+    EXPECT_EQ(log.samples.back().t, 0.0);
+  }
 }
 
 }  // namespace

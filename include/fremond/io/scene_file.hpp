@@ -18,12 +18,13 @@
 /// corners as in presets.hpp) — or a general body {"mass", "inertia", "points": [{"r": [x, y],
 /// "radius": ρ}, ...]} ("radius" optional, 0). Required: body, initial, law. Optional, with their
 /// defaults: obstacles (the ground y ≥ 0), gravity (9.81), t_end (3), integrator (every key of
-/// SimulationOptions: method, step, max_impacts, simultaneity_tolerance, gap_tolerance,
-/// velocity_tolerance, accumulation_interval, accumulation_impacts, return_after_free_steps; the
-/// defaults of simulation_options.hpp), output (sample_interval). The law is read exactly as in
-/// the impact-problem file (SPEC §7), with one value per contact in the order of
-/// Scene::contact_count(). Unknown keys, missing keys, wrong types and out-of-range values are
-/// refused with an InvalidArgument naming the key (`body.mass`, `integrator.step`, `law.e`, ...).
+/// SimulationOptions: method, step, max_impacts, max_gap_evaluations, simultaneity_tolerance,
+/// gap_tolerance, velocity_tolerance, accumulation_interval, accumulation_impacts,
+/// return_after_free_steps; the defaults of simulation_options.hpp), output (sample_interval).
+/// The law is read exactly as in the impact-problem file (SPEC §7), with one value per contact in
+/// the order of Scene::contact_count(). Unknown keys, missing keys, wrong types and out-of-range
+/// values are refused with an InvalidArgument naming the key (`body.mass`, `integrator.step`,
+/// `law.e`, ...).
 #include <string>
 #include <string_view>
 

@@ -15,6 +15,9 @@ namespace fremond {
 /// Where a scene's first free flight ends.
 struct FirstImpact {
   bool found = false;
+  /// False when the event search ran out of its budget (kDefaultEventSearchBudget per contact)
+  /// before deciding: the body turns too fast for its events to be resolved, and found is false.
+  bool resolved = true;
   double t = 0.0;
   PlanarState state;  ///< just before the impact.
   int contact_count = 0;
@@ -48,8 +51,8 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
 
 /// The k_N that gives `restitution` at the first impact of `scene` from its initial state, with
 /// the normal law alone: calibrate_normal_stiffness at the first contact of that impact. The
-/// scene's own law is not used. Throws InvalidArgument if the scene never touches before 10⁴ s
-/// or the calibration does not converge.
+/// scene's own law is not used. Throws InvalidArgument if the scene never touches before 10⁴ s,
+/// its first flight cannot be resolved, or the calibration does not converge.
 double first_impact_normal_stiffness(const Scene& scene, double p, double restitution);
 
 /// SPEC §3's k_N for the bar: first_impact_normal_stiffness of the bar of §5 (p = 3,

@@ -61,6 +61,9 @@ enum class SimulationStatus {
   impact_failed,   ///< the impact solver did not converge (its report is in the last impact).
   contact_failed,  ///< no persistent-contact mode satisfies the law (Painlevé-type), or more than
                    ///< four contacts closed at once in a Moreau–Jean step.
+  event_search_failed,  ///< a free flight's event search spent options.max_gap_evaluations
+                        ///< without deciding where the next event is (the body turns too fast);
+                        ///< the run stops at the start of that flight.
 };
 std::string_view to_string(SimulationStatus s);
 SimulationStatus simulation_status_from_string(std::string_view s);

@@ -3,6 +3,7 @@
 #include <string>
 #include <string_view>
 
+#include "fremond/simulation/event_detection.hpp"
 #include "fremond/solvers/solver_options.hpp"
 
 namespace fremond {
@@ -38,6 +39,10 @@ struct SimulationOptions {
   /// Contacts whose events fall within this time of the first one enter the same impact (s),
   /// ≥ 0. Contacts with a gap below gap_tolerance at the impact also enter it.
   double simultaneity_tolerance = 1e-12;
+  /// Evaluations of the gap one free flight's event search may spend, per contact, ≥ 100. A
+  /// flight that needs more (a body spinning too fast for its events to be resolved) stops the
+  /// run with status event_search_failed.
+  long max_gap_evaluations = kDefaultEventSearchBudget;
   /// A contact with |gap| ≤ gap_tolerance is touching (m), ≥ 0.
   double gap_tolerance = 1e-10;
   /// A touching contact with |D_N| ≤ velocity_tolerance is at rest on its obstacle (m/s), ≥ 0:
