@@ -139,6 +139,13 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.solver.message =
         "the law's answer overflows double precision (percussions, velocities or energy not "
         "finite): no percussion is returned";
+  } else if (lo.beyond_precision) {
+    out.solver.status = SolverStatus::failed;
+    out.solver.message =
+        "a solution exists (the same LCP with the contact normals' Gram matrix in place of "
+        "G = W^T M^-1 W, which has the same solvability, is solved), but Lemke's method on G "
+        "ended on a ray: M is too ill-conditioned for double precision to find it. The state "
+        "before the impact (no percussion) is returned, with its residual";
   } else if (lo.exhaustive) {
     out.solver.status = SolverStatus::no_solution;
     out.solver.message = "no solution: no contact mode satisfies the law";

@@ -4,6 +4,7 @@
 // method, with every solution listed where the enumeration can list them. Header-only so that the
 // benchmarks time exactly what solve_impact runs; the results are filled in classical.cpp.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "classical_phase.hpp"
@@ -108,7 +109,8 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Fact
     }
     if (!friction) {
       // Symmetric positive semidefinite LCP: the velocities are unique, and a ray proves that
-      // there is no solution.
+      // there is no solution in exact arithmetic (solve_law checks that rounding agrees:
+      // ray_is_proof).
       if (have) out.u.push(u);
       out.exhaustive = true;
     } else if (ph.a <= 3 && (all || !have)) {
@@ -162,15 +164,54 @@ struct LawOutcome {
   bool percussion_unique = true;
   bool compression_unique = true;  ///< Poisson: the compression percussion
   bool continuum = false;
+  /// Frictionless: Lemke's method ended on a ray of G's LCP, yet a solution exists (see
+  /// ray_is_proof): G lost its small eigenvalues to rounding. Then exhaustive is false.
+  bool beyond_precision = false;
 
   void reset() {
     solutions.clear();
     method = SolverMethod::closed_form;
     pivots = fallbacks = 0;
     exhaustive = percussion_unique = compression_unique = true;
-    continuum = false;
+    continuum = beyond_precision = false;
   }
 };
+
+/// Whether a ray of Lemke's method on a frictionless phase (q, G = WᵀM⁻¹W) proves that the phase
+/// has no solution. In exact arithmetic it does: G is positive semidefinite, so the LCP has a
+/// solution exactly when it is feasible, and by Farkas it is not exactly when some y ≥ 0 has
+/// Gy = 0 and qᵀy < 0. As M⁻¹ is positive definite, Gy = 0 ⟺ Wy = 0: solvability depends on W
+/// and q alone, and LCP(Dq, D WᵀW D), D = diag(1/|W_i|), has a solution exactly when the phase
+/// has one. That LCP does not see M. When M is so ill-conditioned that G's small eigenvalues are
+/// lost to rounding, G's LCP ends on a ray where this one is solved: a solution exists, out of
+/// double precision's reach, and "no solution" would be a false claim.
+template <int N, int C>
+bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph) {
+  const int a = ph.a;
+  Phase<C> wp;
+  wp.a = a;
+  wp.friction = false;
+  wp.G.resize(a, a);
+  wp.q.resize(a);
+  wp.mu.setZero(a);
+  wp.b0.setZero(a);
+  VecT<C> d(a);
+  for (int i = 0; i < a; ++i) {
+    const double norm = cs.W.col(i).norm();
+    if (!std::isfinite(norm)) return true;  // G's LCP decides
+    // A zero column is its own certificate when q_i < 0 (y = e_i), and no constraint otherwise:
+    // left as it is, Lemke sees exactly that.
+    d(i) = norm > 0.0 ? 1.0 / norm : 1.0;
+  }
+  for (int i = 0; i < a; ++i) {
+    wp.q(i) = d(i) * ph.q(i);
+    for (int j = 0; j <= i; ++j)
+      wp.G(i, j) = wp.G(j, i) = d(i) * d(j) * cs.W.col(i).dot(cs.W.col(j));
+  }
+  typename Phase<C>::Rows u(a);
+  int pivots = 0;
+  return lemke_phase(wp, LemkeOptions{}, u, pivots) != LcpStatus::solved;
+}
 
 /// One contact: the whole law on scalars with the closed forms of one_contact (eqs. 7-8 with eq. 5
 /// or Poisson's phases), no matrix work. False when its 2×2 G is degenerate (then the general path
@@ -283,6 +324,11 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   else
     out.percussion_unique = first.percussion_unique;
 
+  if (!ph.friction && first.u.size == 0 && !ray_is_proof(cs, ph)) {
+    out.exhaustive = false;
+    out.beyond_precision = true;
+  }
+
   for (int k = 0; k < first.u.size; ++k) {
     const SolverMethod mk = k == 0 ? first.primary : first.others;
     if (!poisson) {
@@ -307,6 +353,10 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     out.pivots += second.pivots;
     out.fallbacks += second.fallbacks;
     out.exhaustive = out.exhaustive && second.exhaustive;
+    if (!ph.friction && second.u.size == 0 && !ray_is_proof(cs, ex)) {
+      out.exhaustive = false;
+      out.beyond_precision = true;
+    }
     out.continuum = out.continuum || second.continuum;
     out.percussion_unique = out.percussion_unique && second.percussion_unique;
     for (int j = 0; j < second.u.size; ++j) {
