@@ -158,6 +158,37 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   }
 }
 
+// The classical laws are LCPs: closed forms, Lemke and the mode enumeration solve them, chosen per
+// phase (a Poisson law may use two). Naming one of these is the same as `automatic`; an iterative
+// method of Frémond's law (scalar or semismooth Newton, proximal, NLopt) does not apply, and
+// saying so beats answering by another method under its name.
+bool method_applies(SolverMethod m) {
+  switch (m) {
+    case SolverMethod::automatic:
+    case SolverMethod::trivial:
+    case SolverMethod::closed_form:
+    case SolverMethod::lemke:
+    case SolverMethod::mode_enumeration:
+      return true;
+    default:
+      return false;
+  }
+}
+
+template <int N, int C>
+void fill_unsupported(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                      const ImpactLaw& law, const SolverOptions& options,
+                      ImpactResultT<N, C>& out) {
+  LawOutcome<C> none;
+  none.exhaustive = false;
+  fill_failure(pb, cs, law, none, out);
+  out.solver.method = options.method;
+  out.solver.status = SolverStatus::unsupported;
+  out.solver.message =
+      "the requested method is not one of the classical laws' (closed_form, lemke, "
+      "mode_enumeration, chosen per phase by automatic)";
+}
+
 // Nothing but finite numbers leaves the library.
 template <int N, int C>
 bool all_finite(const ImpactResultT<N, C>& r) {
@@ -208,6 +239,10 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
 template <int N, int C>
 void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+  if (!method_applies(options.method)) {
+    fill_unsupported(pb, cs, law, options, out);
+    return;
+  }
   if (cs.active == 0) {
     fill_trivial(pb, cs, law, out);
     return;
@@ -226,6 +261,10 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   ContactSpaceT<Dynamic, Dynamic> cs;
   build_contact_space(pb, law.has_friction(), cs);
   std::vector<ImpactResult> all;
+  if (!method_applies(options.method)) {
+    fill_unsupported(pb, cs, law, options, all.emplace_back());
+    return all;
+  }
   if (cs.active == 0) {
     fill_trivial(pb, cs, law, all.emplace_back());
     return all;

@@ -422,5 +422,41 @@ TEST(ClassicalPoissonCoulomb, RandomAnswersSatisfyTheLaw) {
   EXPECT_GT(ok, 90);
 }
 
+TEST(ClassicalMethods, AMethodOfFremondsLawIsUnsupportedAndTheLcpMethodsAgree) {
+  // The classical laws choose closed form, Lemke or the enumeration per phase: naming one of them
+  // gives the automatic answer to the bit; an iterative method of Frémond's law is refused in
+  // the result, with no percussion, never answered by another method under its name.
+  for (const ImpactProblem& pb : {bar_first_impact(), flat_bar(Eigen::Vector3d(0.3, -1.0, 0.2))}) {
+    for (const ImpactLaw& law :
+         {ImpactLaw::newton_coulomb(0.9, 1.0), ImpactLaw::poisson_coulomb(0.5, 0.3)}) {
+      const ImpactResult automatic = solve_impact(pb, law);
+      ASSERT_TRUE(automatic.ok()) << automatic.solver.message;
+      for (SolverMethod m :
+           {SolverMethod::closed_form, SolverMethod::lemke, SolverMethod::mode_enumeration}) {
+        SolverOptions o;
+        o.method = m;
+        const ImpactResult r = solve_impact(pb, law, o);
+        EXPECT_EQ(r.solver.status, automatic.solver.status) << to_string(m);
+        EXPECT_EQ(r.solver.method, automatic.solver.method) << to_string(m);
+        EXPECT_EQ(r.qdot_E, automatic.qdot_E) << to_string(m);
+      }
+      for (SolverMethod m : {SolverMethod::scalar_newton, SolverMethod::semismooth_newton,
+                             SolverMethod::proximal, SolverMethod::nlopt}) {
+        SolverOptions o;
+        o.method = m;
+        const ImpactResult r = solve_impact(pb, law, o);
+        EXPECT_EQ(r.solver.status, SolverStatus::unsupported) << to_string(m);
+        EXPECT_EQ(r.solver.method, m);
+        EXPECT_FALSE(r.ok());
+        EXPECT_EQ(r.P_N.cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_EQ(r.qdot_E, pb.qdot_A);
+        const auto all = solve_impact_all(pb, law, o);
+        ASSERT_EQ(all.size(), 1u);
+        EXPECT_EQ(all[0].solver.status, SolverStatus::unsupported);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fremond

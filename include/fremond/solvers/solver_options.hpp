@@ -8,13 +8,16 @@ namespace fremond {
 
 struct SolverOptions {
   /// Method: `automatic` picks the cheapest exact method the law and its potentials allow
-  /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt).
+  /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt). A method that
+  /// does not apply gives status `unsupported`. The classical laws choose among closed_form, lemke
+  /// and mode_enumeration per phase: naming one of them is the same as automatic.
   SolverMethod method = SolverMethod::automatic;
   /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
-  /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none. Range [1e-16, 1e-2].
+  /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none.
+  /// Range [1e-16, 1e-2].
   double tolerance = 1e-13;
-  /// Relative residual accepted from the NLopt fallback (SLSQP on the velocity-space problem), which
-  /// cannot reach Newton's tolerance on non-smooth potentials. Range [tolerance, 1e-2].
+  /// Relative residual accepted from the NLopt fallback (SLSQP on the velocity-space problem),
+  /// which cannot reach Newton's tolerance on non-smooth potentials. Range [tolerance, 1e-2].
   double nlopt_tolerance = 1e-9;
   /// Newton iterations (semismooth, scalar). Range ≥ 1.
   int max_iterations = 100;
