@@ -209,13 +209,18 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         const double s = -r.P_T(i);
         const double scale = b * std::fabs(zT) + std::fabs(s * zT) + energy + 1e-300;
         const double over = std::fabs(s) - b;
-        // Outside the cone the conjugate is +∞; an excess that is rounding of the largest
-        // percussion of the impact is not counted as one.
-        if (over > 1e-12 * (b + std::fabs(s)))
-          fy = std::max(fy, over / (b + std::fabs(s) + p_scale));
+        // Outside the cone the conjugate is +∞. But P_T is known only to ds, and b = μ|P_N| to
+        // μ·ds: an excess within that, or within the rounding of the two, is not counted as one.
+        // (A contact touching below rounding beside fast sliding with μ = 1e8 has P_N and P_T
+        // of 1e-12 while ds is 2e-9: its percussions are noise the law cannot be held to.)
+        const double known = (1.0 + law.mu[i]) * ds + 1e-12 * (b + std::fabs(s));
+        if (over > known)
+          fy = std::max(fy, (over - known) / (b + std::fabs(s) + p_scale));
         else
+          // The gap b|z_T| + P_T z_T less what the errors of z_T (dz), of P_T (ds) and of b
+          // (μ·ds) can make of it.
           fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT - (b + std::fabs(s)) * dz -
-                                              law.mu[i] * ds * std::fabs(zT)) /
+                                              (1.0 + law.mu[i]) * ds * std::fabs(zT)) /
                                 scale);
       }
     }

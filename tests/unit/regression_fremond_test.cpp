@@ -589,5 +589,58 @@ TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
   EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
 }
 
+// Two contacts on one normal row (a repeated row), touching below rounding (D_NA = -1.3e-14) beside
+// sliding at 25 and -48 m/s, with mu = 1e8 and cond(M) = 3e9 (fremond_coulomb #10340 of the stress
+// seed). P_N = -5.9e-20 and P_T = 6e-12 change the velocities by 6e-14, below their rounding: the
+// percussions are noise, known to ds = 2e-9 (the stopping test's resolution, tolerance · v /
+// (G_max/2)). The certificate held P_T to the cone |P_T| <= mu|P_N| to 1e-12 relative and refused
+// an excess of 1.3e-14: mu|P_N| is known only to mu · ds = 0.2. The law holds to what is known.
+TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[167788258156.5007, 57049729490.485641, 105780350143.83472],
+          [57049729490.485641, 19826116106.440102, 26502640462.792095],
+          [105780350143.83472, 26502640462.792095, 275643125988.53314]],
+    "W_N": [[0.98598807760072882, 0.054832956462968818, 0.10059072674679737, 0.98598807760072882],
+            [-0.77126874854338878, 0.032157359376771666, 0.10079457029353933, -0.77126874854338878],
+            [0.047452966504261562, 0.71490344181680543, 0.80127562237689887, 0.047452966504261562]],
+    "W_T": [[-0.098442621115678253, 0.35034965313644695, 0.19289940769464353, 0.70475741781556733],
+            [-0.7436538693936402, 0.93319215125006294, 0.94044236500099943, -0.6843077747684857],
+            [0.36743323790915383, 0.19873104400809938, 0.50327368312455412, -0.52801213630642896]],
+    "qdot_A": [1.6809499158952406, 7.2958549061238713, 83.654797567337198],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": 591772.56244563102, "p": 4.6516317712858655},
+            "tangential": {"potential": "coulomb", "mu": 100000000}}})",
+                                           PotentialRegistry::with_builtins());
+  const SolverOptions opt;
+  const auto r = solve_impact(file.problem, file.law, opt);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  // Nothing the percussions do is visible in the velocities: they stay at q̇_A to 1e-14.
+  EXPECT_LT((r.qdot_E - file.problem.qdot_A).cwiseAbs().maxCoeff(), 1e-13);
+
+  // The allowance is the percussions' resolution, no more: on the paper's bar at its first impact
+  // (mu = 0.01: it slides), a P_T outside the cone by 1e-6 of itself is still refused.
+  SmallImpactProblem bar;
+  bar.M = Eigen::Vector3d(1.0, 1.0, 0.25 / 3).asDiagonal();
+  bar.W_N.resize(3, 1);
+  bar.W_T.resize(3, 1);
+  const double c = std::sqrt(0.5), sn = std::sqrt(0.5);
+  bar.W_N << 0.0, 1.0, -0.5 * c;
+  bar.W_T << 1.0, 0.0, 0.5 * sn;
+  bar.qdot_A = Eigen::Vector3d(2.0, -std::sqrt(2 * 9.81 * (1 - 0.5 * sn)), 0.0);
+  const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 0.01);
+  const auto ok = solve_impact(bar, coulomb, opt);
+  ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << ok.solver.message;
+  ASSERT_NEAR(std::fabs(ok.P_T(0)), 0.01 * std::fabs(ok.P_N(0)), 1e-14 * std::fabs(ok.P_N(0)))
+      << "no longer sliding: the case this test is about";
+  SmallImpactResult wrong = ok;
+  wrong.P_T(0) *= 1 + 1e-6;
+  const auto rep = check_admissibility(bar, coulomb, wrong, opt);
+  EXPECT_FALSE(rep.admissible);
+  EXPECT_EQ(rep.failed, Inequality::fenchel_young);
+}
+
 }  // namespace
 }  // namespace fremond
