@@ -152,16 +152,17 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   } else {
     out.solver.status = SolverStatus::failed;
     out.solver.message =
-        "Lemke's method stopped without a solution (a secondary ray, or its pivot budget); with "
-        "friction on more than 3 contacts no enumeration settles whether a solution exists. The "
-        "state before the impact (no percussion) is returned, with its residual";
+        "Lemke's method stopped without a solution (a secondary ray, or its pivot budget), and "
+        "no enumeration of contact modes settled whether one exists (friction on more than 3 "
+        "contacts, or method lemke forced). The state before the impact (no percussion) is "
+        "returned, with its residual";
   }
 }
 
-// The classical laws are LCPs: closed forms, Lemke and the mode enumeration solve them, chosen per
-// phase (a Poisson law may use two). Naming one of these is the same as `automatic`; an iterative
-// method of Frémond's law (scalar or semismooth Newton, proximal, NLopt) does not apply, and
-// saying so beats answering by another method under its name.
+// The classical laws are LCPs, solved by closed forms, Lemke's method and the enumeration of
+// contact modes, which `automatic` chooses per phase (a Poisson law has two). Naming one of them
+// forces it, where it applies; an iterative method of Frémond's law (scalar or semismooth Newton,
+// proximal, NLopt) does not, and saying so beats answering by another method under its name.
 bool method_applies(SolverMethod m) {
   switch (m) {
     case SolverMethod::automatic:
@@ -185,8 +186,14 @@ void fill_unsupported(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>&
   out.solver.method = options.method;
   out.solver.status = SolverStatus::unsupported;
   out.solver.message =
-      "the requested method is not one of the classical laws' (closed_form, lemke, "
-      "mode_enumeration, chosen per phase by automatic)";
+      !method_applies(options.method)
+          ? "the requested method is not one of the classical laws' (closed_form, lemke, "
+            "mode_enumeration; automatic chooses among them per phase)"
+      : options.method == SolverMethod::trivial
+          ? "the requested method applies only when no contact takes part"
+          : "the requested method does not apply to this problem (closed_form: one contact with "
+            "a regular Delassus matrix, or every contact closed and sticking; mode_enumeration: "
+            "up to 3 contacts)";
 }
 
 // Nothing but finite numbers leaves the library.
@@ -243,12 +250,17 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     fill_unsupported(pb, cs, law, options, out);
     return;
   }
-  if (cs.active == 0) {
+  if (cs.active == 0) {  // nothing to solve, whichever exact method was asked for
     fill_trivial(pb, cs, law, out);
     return;
   }
   LawOutcome<C> lo;
-  solve_law(pb, cs, law, options.check_uniqueness, lo);
+  if (options.method != SolverMethod::trivial)
+    solve_law(pb, cs, law, options.check_uniqueness, lo, options.method);
+  if (options.method == SolverMethod::trivial || lo.unsupported) {
+    fill_unsupported(pb, cs, law, options, out);
+    return;
+  }
   if (lo.solutions.size == 0) {
     fill_failure(pb, cs, law, lo, out);
     return;
@@ -270,7 +282,11 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
     return all;
   }
   LawOutcome<Dynamic> lo;
-  solve_law(pb, cs, law, true, lo);
+  if (options.method != SolverMethod::trivial) solve_law(pb, cs, law, true, lo, options.method);
+  if (options.method == SolverMethod::trivial || lo.unsupported) {
+    fill_unsupported(pb, cs, law, options, all.emplace_back());
+    return all;
+  }
   if (lo.solutions.size == 0) {
     // An empty list means "no solution"; when that is not proven, say so in one failed result.
     if (!lo.exhaustive) fill_failure(pb, cs, law, lo, all.emplace_back());

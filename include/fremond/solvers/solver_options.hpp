@@ -9,8 +9,8 @@ namespace fremond {
 struct SolverOptions {
   /// Method: `automatic` picks the cheapest exact method the law and its potentials allow
   /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt). A method that
-  /// does not apply gives status `unsupported`. The classical laws choose among closed_form, lemke
-  /// and mode_enumeration per phase: naming one of them is the same as automatic.
+  /// does not apply gives status `unsupported`. The classical laws take closed_form, lemke and
+  /// mode_enumeration (which `automatic` chooses among per phase); naming one forces it.
   SolverMethod method = SolverMethod::automatic;
   /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
   /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none.

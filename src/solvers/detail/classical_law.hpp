@@ -43,6 +43,7 @@ struct PhaseOutcome {
   bool exhaustive = false;        ///< u holds every solution (up to equal velocities)
   bool percussion_unique = true;  ///< false when a minimum-norm choice was made
   bool continuum = false;         ///< a singular mode may hold a continuum of velocities
+  bool unsupported = false;       ///< the method forced does not apply to this phase
 };
 
 /// G once per law: its Cholesky factor (the eq. 6 guess) and, when it is singular, null(G) (the
@@ -69,20 +70,33 @@ struct Factored {
   }
 };
 
+/// `force`: automatic takes the cheapest exact method, with the enumeration as fallback and for
+/// `all`; closed_form, lemke or mode_enumeration use that method alone (unsupported where it does
+/// not apply: no closed form, or more contacts than the enumeration takes).
 template <int C>
 void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Factored<C>& fg,
-                 const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out) {
+                 const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out,
+                 SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
   const int r = ph.rows();
   Rows u(r);
   bool enumerate = false;
-  if (ph.a == 1) {
+  const bool automatic = force == SolverMethod::automatic;
+  if (force == SolverMethod::mode_enumeration) {
+    if (ph.a > kMaxEnumerated) {
+      out.unsupported = true;
+      return;
+    }
+    enumerate = true;
+    out.primary = out.others = SolverMethod::mode_enumeration;
+  } else if (ph.a == 1 && force != SolverMethod::lemke) {
     const bool f = ph.friction;
     const OneContact oc =
         one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0),
                     f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0, f ? ph.b0(0) : 0.0, f, tol);
     if (!oc.degenerate) {
-      for (int k = 0; k < oc.count; ++k) {
+      // count ≤ 4 by construction; said here too, or GCC 12 warns of a read past x[3].
+      for (int k = 0; k < std::min(oc.count, 4); ++k) {
         u(0) = oc.x[k];
         if (f) u(1) = oc.t[k];
         out.u.push(u);
@@ -91,14 +105,21 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Fact
       out.exhaustive = true;
       return;  // one contact with a regular 2×2 G: the percussion is fixed by the velocity
     }
+    if (!automatic) {  // closed_form: a singular 2×2 G has none
+      out.unsupported = true;
+      return;
+    }
     enumerate = true;  // singular 2×2 G: only the enumeration is sure
     out.primary = out.others = SolverMethod::mode_enumeration;
   } else {
     const bool friction = !frictionless(ph);
     bool have = false;
-    if (all_closed_guess(ph, tol, fg.llt, fg.regular, u)) {
+    if (force != SolverMethod::lemke && all_closed_guess(ph, tol, fg.llt, fg.regular, u)) {
       have = true;
       out.primary = SolverMethod::closed_form;
+    } else if (force == SolverMethod::closed_form) {
+      out.unsupported = true;
+      return;
     } else {
       int pivots = 0;
       have = lemke_phase(ph, LemkeOptions{}, u, pivots) == LcpStatus::solved;
@@ -113,7 +134,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Fact
       // ray_is_proof).
       if (have) out.u.push(u);
       out.exhaustive = true;
-    } else if (ph.a <= 3 && (all || !have)) {
+    } else if (automatic && ph.a <= kMaxEnumerated && (all || !have)) {
       enumerate = true;
       out.others = SolverMethod::mode_enumeration;
       if (have) {
@@ -167,13 +188,14 @@ struct LawOutcome {
   /// Frictionless: Lemke's method ended on a ray of G's LCP, yet a solution exists (see
   /// ray_is_proof): G lost its small eigenvalues to rounding. Then exhaustive is false.
   bool beyond_precision = false;
+  bool unsupported = false;  ///< the method forced does not apply to a phase
 
   void reset() {
     solutions.clear();
     method = SolverMethod::closed_form;
     pivots = fallbacks = 0;
     exhaustive = percussion_unique = compression_unique = true;
-    continuum = beyond_precision = false;
+    continuum = beyond_precision = unsupported = false;
   }
 };
 
@@ -275,14 +297,17 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
 }
 
 /// Solves the law on the active contacts of `cs`. `all`: list every solution the enumeration can
-/// find (friction on up to 3 contacts); otherwise one, by the cheapest exact method.
+/// find (friction on up to 3 contacts); otherwise one, by the cheapest exact method. `force`: see
+/// solve_phase.
 template <int N, int C>
 void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
-               bool all, LawOutcome<C>& out) {
+               bool all, LawOutcome<C>& out, SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
   out.reset();
   const int a = cs.active;
-  if (a == 1 && solve_law_one_contact(pb, cs, law, out)) return;
+  if (a == 1 && (force == SolverMethod::automatic || force == SolverMethod::closed_form) &&
+      solve_law_one_contact(pb, cs, law, out))
+    return;
   const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
   Phase<C> ph;
   ph.a = a;
@@ -314,7 +339,12 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   ph.q = cs.D_A.head(r);
   if (!poisson) ph.q.head(a) = ph.q.head(a).cwiseProduct((e.array() + 1.0).matrix());
   PhaseOutcome<C> first;
-  solve_phase(ph, tol, all, fg, zero, first);
+  solve_phase(ph, tol, all, fg, zero, first, force);
+  if (first.unsupported) {
+    out.unsupported = true;
+    out.exhaustive = false;
+    return;
+  }
   out.pivots = first.pivots;
   out.fallbacks = first.fallbacks;
   out.exhaustive = first.exhaustive;
@@ -349,7 +379,13 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     add_product(ph.G, shift, ex.q);
     if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
     PhaseOutcome<C> second;
-    solve_phase(ex, tol, all, fg, shift, second);
+    solve_phase(ex, tol, all, fg, shift, second, force);
+    if (second.unsupported) {
+      out.solutions.clear();
+      out.unsupported = true;
+      out.exhaustive = false;
+      return;
+    }
     out.pivots += second.pivots;
     out.fallbacks += second.fallbacks;
     out.exhaustive = out.exhaustive && second.exhaustive;

@@ -409,13 +409,15 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
 /// Solutions with the same velocities are one (their percussions differ only where G is singular;
 /// `minimum_norm` then picks one). `continuum` is set when a singular mode may hold a continuum of
 /// velocities.
+inline constexpr int kMaxEnumerated = 3;  ///< the most contacts enumerate_modes takes
+
 template <int MaxC>
 void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
                      FixedList<typename Phase<MaxC>::Rows, kMaxSolutions>& out, bool& continuum) {
   using Rows = typename Phase<MaxC>::Rows;
   const int a = ph.a;
   continuum = false;
-  constexpr int kMaxEnum = 3;
+  constexpr int kMaxEnum = kMaxEnumerated;
   if (a > kMaxEnum) return;
   // Per contact, the list of (closed, tangential) modes that make sense.
   std::array<std::array<std::pair<int, Tangential>, 6>, kMaxEnum> modes{};
