@@ -37,7 +37,8 @@
 /// about 1e-33, and up to cond(M)·1e-34 for ill-conditioned M. Cost: a few ms for one contact, up
 /// to about a second for several contacts with stiff masses.
 /// Not handled: α = 0 exactly in a Coulomb slide mode (μ G_NT = ±G_NN: a continuum of solutions or
-/// none; that mode is skipped), W_T parallel to W_N (G singular on one contact: stick is skipped),
+/// none; that mode is skipped), stick with W_T parallel to W_N (G singular on one contact) and
+/// D_NE = 0 exactly (the reaction free: a continuum),
 /// Coulomb on several contacts, more than 12 contacts taking part in newton_frictionless (2^c
 /// active sets). Observed, not proved: on one contact with Coulomb the number of solutions found
 /// was always odd (1 or 3) over 20000 random draws up to μ = 400, never 0.
@@ -703,12 +704,24 @@ inline std::vector<Solution> fremond_one_contact(const Problem& p, const PowerLa
   // complement S = G_NN − G_NT²/G_TT.
   if (GTT > 0) {
     const quad S = GNN - GNT * GNT / GTT, b = DNA - GNT * DTA / GTT;
-    if (S > 0) {
+    if (S > ldexpq(1, -66) * GNN) {
       for (const NormalCandidate& nc : normal_candidates(normal, S, b, lower)) {
         const quad PT = -(2 * DTA + GNT * nc.P_N) / GTT;
         if (fabsq(PT) <= mu * fabsq(nc.P_N) * (1 + tol) + tol * fabsq(DTA) / GTT)
           add(finish(nc.P_N, PT, nc.reaction,
                      std::string(nc.clamped ? "reaction" : "free") + "/stick"));
+      }
+    } else if (GNT != 0) {
+      // G singular on the contact (W_T ∥ W_N in the metric of M⁻¹; one degree of freedom, say):
+      // the velocity changes are tied, ΔD_T = (G_NT/G_NN) ΔD_N, so z_T = 0 fixes
+      // ΔD_N = −2 D_TA G_NN/G_NT, hence z_N and D_NE. With D_NE > 0 the normal law gives P_N and
+      // G_NN P_N + G_NT P_T = ΔD_N gives P_T. (D_NE < 0 is no solution; D_NE = 0 exactly leaves the
+      // reaction free, a continuum, left out.) Each solution's own residual checks it.
+      const quad dDN = -2 * DTA * GNN / GNT, zN = DNA + dDN / 2;
+      if (DNA + dDN > 0) {
+        const quad PN = -f_normal(normal, zN), PT = (dDN - GNN * PN) / GNT;
+        if (fabsq(PT) <= mu * fabsq(PN) * (1 + tol) + tol * fabsq(DTA) / GTT)
+          add(finish(PN, PT, 0, "free/stick (G singular)"));
       }
     }
   }

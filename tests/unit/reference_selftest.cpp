@@ -286,6 +286,37 @@ TEST(ReferenceSelfTest, CoulombPaperBarHasOneSolution) {
   }
 }
 
+TEST(ReferenceSelfTest, CoulombStickWithSingularDelassusIsFound) {
+  // One degree of freedom: W_N = a, W_T = b, so G = [a² ab; ab b²]/m is singular and the stick
+  // mode z_T = 0 fixes q̇_E (stress fremond_coulomb #83520 of seed 7, which the reference missed
+  // while the library found it). Reference values: the same formulas on the same doubles in
+  // 60-digit decimal arithmetic (q̇_E from z_T = 0, P_N = −k z_N|z_N|^(p−2), P_T from the momentum
+  // balance m(q̇_E − q̇_A) = a P_N + b P_T), |P_T| = 0.0028 μ|P_N|: inside the cone.
+  ref::Problem pb;
+  pb.M = {{q(0.0028379215886040884)}};
+  pb.W_N = {{q(0.42917416608492132)}};
+  pb.W_T = {{q(-0.65327746418471921)}};
+  pb.w_N = {q(-4455216.1252557226)};
+  pb.w_T = {q(15788121.301822092)};
+  pb.qdot_A = {q(-18298939.238373473)};
+  const auto sols = ref::fremond_one_contact(pb, {q(43.708842614189592), q(3.054328906495555)},
+                                             ref::TangentialLaw::coulomb(q(235.7948076084015)));
+  ASSERT_EQ(sols.size(), 3u);  // the stick and two slides with P_N of either sign
+  const ref::Solution* stick = nullptr;
+  for (const auto& s : sols)
+    if (s.mode.find("stick") != std::string::npos) stick = &s;
+  ASSERT_NE(stick, nullptr);
+  EXPECT_LT(d(rel(stick->P_N[0], -strtoflt128("3570052178866716.83537083350183131481", nullptr))),
+            1e-28);
+  EXPECT_LT(d(rel(stick->P_T[0], -strtoflt128("2345365102863212.70316143691780912242", nullptr))),
+            1e-28);
+  // D_NE from q̇_A + M⁻¹WP, where the percussions of 3.6e15 cancel to 2e5: 1e10 times quad's ε.
+  EXPECT_LT(d(rel(stick->D_NE[0], strtoflt128("24142399.3535064840217217296283299", nullptr))),
+            1e-22);
+  // Its backward error, by the same cancellation.
+  EXPECT_LT(d(stick->residual), 1e-22);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Internal consistency over the ranges the cross-checks use.
 
