@@ -140,12 +140,16 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   double v_scale = std::numeric_limits<double>::min();
   for (int i = 0; i < c; ++i)
     if (r.takes_part(i)) v_scale = std::max({v_scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
-  // Nor below the rounding of the energies P·z themselves: z carries the rounding of forming it
-  // (`rounding`, 16ε Σ|G_jk P_k| when G is ill-conditioned), which at velocities near 1e-10 is
-  // above the relative tolerance times T_A.
+  const double solved_to =
+      r.solver.method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
+  // Nor below how well the energies P·z themselves are known: z carries the rounding of forming
+  // it (`rounding`, 16ε Σ|G_jk P_k| when G is ill-conditioned), which at velocities near 1e-10 is
+  // above the relative tolerance times T_A, and the solver's stopping tolerance (NLopt's 1e-9 of
+  // the velocities moves P·z by 1e-9 of itself, above 1e-9·T_A when P·z is about T_A).
   double energy_rounding = 0.0;
   for (int i = 0; i < c; ++i) {
-    const double dz = std::max(rounding.size() == c ? rounding(i) : 0.0, 8 * eps * v_scale);
+    const double dz = std::max(rounding.size() == c ? rounding(i) : 0.0,
+                               std::max(8 * eps, 2 * solved_to) * v_scale);
     energy_rounding += (std::fabs(r.P_N(i)) + std::fabs(r.P_T(i))) * dz;
   }
   rep.tolerance = std::max(rep.tolerance, energy_rounding);
@@ -156,8 +160,6 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
   const bool fremond = law.type == LawType::fremond;
-  const double solved_to =
-      r.solver.method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
   double worst_contact_value = 0.0;
