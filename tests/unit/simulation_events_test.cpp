@@ -96,18 +96,22 @@ double brute_first_root(const GapFunction& g, double s_max, double ds) {
   return std::numeric_limits<double>::infinity();
 }
 
-TEST(EventDetection, FastSpinningBarMissesNoEventAgainstDenseSampling) {
-  // A bar spinning at up to 60 rad/s (a turn every 0.1 s) above the ground: its ends dip down
-  // many times; every first dip that reaches the ground must be found, none invented.
-  std::mt19937_64 rng(11);
+// A flight of the paper's bar from 0.4-0.9 m up at any angle, spinning at up to 60 rad/s (a turn
+// every 0.1 s): its ends dip down many times.
+FreeFlight random_spinning_bar_flight(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double y = 0.4 + 0.5 * u(rng), theta = 2 * kPi * u(rng);
+  const double ydot = 3 * u(rng), omega = (u(rng) - 0.5) * 120;
+  return FreeFlight{0.0, {Eigen::Vector3d(0, y, theta), Eigen::Vector3d(1, ydot, omega)}, 9.81};
+}
+
+TEST(EventDetection, FastSpinningBarMissesNoEventAgainstDenseSampling) {
+  // Every first dip of a spinning bar that reaches the ground must be found, none invented.
+  std::mt19937_64 rng(11);
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   int found = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const FreeFlight f{0.0,
-                       {Eigen::Vector3d(0, 0.4 + 0.5 * u(rng), 2 * kPi * u(rng)),
-                        Eigen::Vector3d(1, 3 * u(rng), (u(rng) - 0.5) * 120)},
-                       9.81};
+    const FreeFlight f = random_spinning_bar_flight(rng);
     for (int k = 0; k < 2; ++k) {
       const GapFunction g = GapFunction::make(bar.body.points[k], bar.obstacles[0], f);
       if (g.value(0.0) <= 0.0) continue;
@@ -185,14 +189,10 @@ TEST(EventDetection, TheBudgetCutsTheSearchAndChangesNoAnswer) {
   // gives the same answer from the same samples; any smaller one gives the same answer or ends
   // `exhausted` after exactly the budget, never a different event.
   std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   int cut = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const FreeFlight f{0.0,
-                       {Eigen::Vector3d(0, 0.4 + 0.5 * u(rng), 2 * kPi * u(rng)),
-                        Eigen::Vector3d(1, 3 * u(rng), (u(rng) - 0.5) * 120)},
-                       9.81};
+    const FreeFlight f = random_spinning_bar_flight(rng);
     const GapFunction g = GapFunction::make(bar.body.points[trial % 2], bar.obstacles[0], f);
     if (g.value(0.0) <= 0.0) continue;
     const auto full = find_first_event(g, 1.0, false, std::numeric_limits<long>::max());
