@@ -86,8 +86,10 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
 namespace detail {
 
 template <int N, int C>
-VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, C>& r) {
+VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, C>& r,
+                          VecT<C>* percussion) {
   VecT<C> out = VecT<C>::Zero(cs.contacts);
+  if (percussion) percussion->setZero(cs.contacts);
   const int rows = cs.rows();
   if (r.P_N.size() != cs.contacts || r.P_T.size() != cs.contacts) return out;
   typename ContactSpaceT<N, C>::Rows P = ContactSpaceT<N, C>::Rows::Zero(rows);
@@ -106,12 +108,21 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
   const auto qE = r.qdot_E.cwiseAbs().eval();
   const bool stored = qE.size() == cs.dofs;
+  const double g_max = percussion ? delassus_max(cs) : 0.0;
   for (int j = 0; j < rows; ++j) {
-    const double d =
-        eps16 * (std::fabs(cs.D_A(j)) + kappa * cs.G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
-                 (stored ? cs.W.col(j).cwiseAbs().dot(qE) : 0.0));
+    const double GP = cs.G.row(j).cwiseAbs().dot(P.cwiseAbs());
+    const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * GP +
+                              (stored ? cs.W.col(j).cwiseAbs().dot(qE) : 0.0));
     const int i = cs.index(j < cs.active ? j : j - cs.active);
     out(i) = std::max(out(i), d);
+    if (percussion) {
+      // The same τ_j and floor as the stopping test (fremond_rows.hpp).
+      const double g = cs.G(j, j);
+      const double tau = g > 1e-14 * g_max ? 0.5 * g : (g_max > 0.0 ? 0.5 * g_max : 1.0);
+      const double floor = std::min(
+          eps16 * (std::fabs(cs.D_A(j)) + 0.5 * GP + tau * std::fabs(P(j))), 1e-6 * cs.v_scale);
+      (*percussion)(i) = std::max((*percussion)(i), floor / tau);
+    }
   }
   return out;
 }
@@ -120,7 +131,7 @@ template <int N, int C>
 AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                             const ImpactResultT<N, C>& r,
                                             const SolverOptions& options, const VecT<C>& rounding,
-                                            double g_max) {
+                                            double g_max, const VecT<C>* percussion) {
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
   // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
@@ -194,7 +205,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       // D_NA ≪ D_TA) has its P known to that, not to the tolerance times max|P|. The same
       // percussion scale as the reference's, max(max|P|, v_scale/max G_jj).
       const double p_known = std::max(p_scale, g_max > 0.0 ? 2.0 * v_scale / g_max : 0.0);
-      const double ds = std::max(8 * eps * p_scale, 2 * solved_to * p_known);
+      // And a row that stopped at its rounding floor knows its percussion only to floor/τ_j.
+      const double ds = std::max({8 * eps * p_scale, 2 * solved_to * p_known,
+                                  percussion && percussion->size() == c ? (*percussion)(i) : 0.0});
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
       const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
       // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
@@ -267,7 +280,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
                                             const SolverOptions& options) {
   // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
   // cannot be factorised (M not positive definite) gets no rounding allowance.
-  VecT<C> rounding = VecT<C>::Zero(pb.contacts());
+  VecT<C> rounding = VecT<C>::Zero(pb.contacts()), percussion = VecT<C>::Zero(pb.contacts());
   double g_max = 0.0;
   const bool shapes =
       pb.M.rows() == pb.dofs() && pb.M.cols() == pb.dofs() && pb.W_N.rows() == pb.dofs() &&
@@ -280,21 +293,21 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
         cs);
     if (cs.llt.info() == Eigen::Success) {
-      rounding = detail::velocity_rounding(cs, r);
+      rounding = detail::velocity_rounding(cs, r, &percussion);
       g_max = detail::delassus_max(cs);
     }
   }
-  return detail::check_admissibility(pb, law, r, options, rounding, g_max);
+  return detail::check_admissibility(pb, law, r, options, rounding, g_max, &percussion);
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                \
-  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&, \
-                                             const ImpactResultT<N, C>&);        \
-  template AdmissibilityReportT<C> detail::check_admissibility(                  \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
-      const SolverOptions&, const VecT<C>&, double);                             \
-  template AdmissibilityReportT<C> check_admissibility(                          \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&, \
+#define FREMOND_INSTANTIATE(N, C)                                                   \
+  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&,    \
+                                             const ImpactResultT<N, C>&, VecT<C>*); \
+  template AdmissibilityReportT<C> detail::check_admissibility(                     \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
+      const SolverOptions&, const VecT<C>&, double, const VecT<C>*);                \
+  template AdmissibilityReportT<C> check_admissibility(                             \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
       const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

@@ -1,11 +1,11 @@
 // The driver (SPEC §2, §4): validate → trivial → law-specific chain → admissibility.
 #include "fremond/solvers/solve_impact.hpp"
 
+#include "../admissibility/detail/admissibility.hpp"
+#include "detail/fremond.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
-#include "detail/fremond.hpp"
-#include "../admissibility/detail/admissibility.hpp"
 
 namespace fremond {
 
@@ -18,16 +18,19 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   ImpactResultT<N, C> out;
   detail::ContactSpaceT<N, C> cs;
   // Frémond's law has tangential rows whenever it has a tangential law (it may be "none").
-  build_contact_space(pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none
-                                                       : law.has_friction(), cs);
+  build_contact_space(
+      pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
+      cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
   if (law.type == LawType::fremond) {
     detail::solve_fremond(pb, cs, law, options, out);
   } else {
     detail::solve_classical(pb, cs, law, options, out);
   }
-  out.admissibility = detail::check_admissibility(
-      pb, law, out, options, detail::velocity_rounding(cs, out), detail::delassus_max(cs));
+  VecT<C> percussion;
+  const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
+  out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
+                                                  detail::delassus_max(cs), &percussion);
   return out;
 }
 

@@ -669,5 +669,63 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
   }
 }
 
+// Four contacts on two degrees of freedom (cond(M) = 2.6e7) at 1e-6 m/s, p = 1.0008, tangential dead
+// zones up to q = 14 (fremond_viscous #14485 of the stress seed). Contact 2's tangential row has
+// G_TT = 1.8e-7 beside G_max = 5.7e-3: its percussion moves no velocity the solver can see, and
+// the stopping test passed it at its rounding floor with P_T = -2.4e-15 where the law gives
+// -3e-73. The certificate held P_T to the tolerance-based 2.6e-16 and, as φ*(s) ~ s^1.08 there,
+// reported a Fenchel-Young gap of 9e-8. The answer is right (the quad reference agrees to 1e-13
+// of the velocity scale); a percussion is known only to floor/τ_j, what the stopping test allows.
+TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[2411443355.0589151, -2972571842.9256873], [-2972571842.9256873, 3664272168.661943]],
+    "W_N": [[0.91917551971180544, -0.36382028611603712, 0.77532524754481735, -0.55295128216327805],
+            [0.027531430321135586, 0.046597669435604949, -0.0040098961078239848, 0.11714549175805367]],
+    "W_T": [[0.70271968097825188, -0.67473772531209653, 0.75782668468147074, -0.20084004444052028],
+            [-0.64066279161147155, -0.99103095348902404, -0.94442181159832139, 0.78228790430991513]],
+    "qdot_A": [-1.0250647436780529e-06, 7.5988988080315097e-07],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": 0.00049050937836775637, "p": 1.000820691735105},
+            "tangential": {"potential": "deadzone_power",
+                           "k": [14.88502353783856, 1154.6988903384376, 41906.101178029494, 24.164179232474531],
+                           "q": [2, 2.8930278237854203, 14.139930359435946, 2],
+                           "r": [0, 1.7510611956900893e-10, 1.6720677391770606e-07, 0]}}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, file.law, opt);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+
+  namespace ref = fremond_reference;
+  std::vector<ref::PowerLaw> normal;
+  std::vector<ref::TangentialLaw> tangential;
+  const double kT[] = {14.88502353783856, 1154.6988903384376, 41906.101178029494,
+                       24.164179232474531};
+  const double qT[] = {2, 2.8930278237854203, 14.139930359435946, 2};
+  const double rT[] = {0, 1.7510611956900893e-10, 1.6720677391770606e-07, 0};
+  for (int i = 0; i < 4; ++i) {
+    normal.push_back({0.00049050937836775637, 1.000820691735105});
+    tangential.push_back(ref::TangentialLaw::dead_zone(kT[i], qT[i], rT[i]));
+  }
+  const ref::Solution s =
+      ref::fremond_several(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, tangential);
+  ASSERT_TRUE(s.ok);
+  const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(r.D_NE(i), ref::to_double(s.D_NE[i]), 1e-12 * v) << i;
+    EXPECT_NEAR(r.D_TE(i), ref::to_double(s.D_TE[i]), 1e-12 * v) << i;
+  }
+  // Only that row gets the allowance, and only its size: a P_T of 6e-10 there (1e4 times what
+  // its floor allows) is still refused.
+  ImpactResult wrong = r;
+  wrong.P_T(2) = -6e-10;
+  const auto rep = check_admissibility(pb, file.law, wrong, opt);
+  EXPECT_FALSE(rep.admissible);
+  EXPECT_EQ(rep.failed, Inequality::fenchel_young);
+}
+
 }  // namespace
 }  // namespace fremond
