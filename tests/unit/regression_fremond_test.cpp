@@ -727,5 +727,41 @@ TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau)
   EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
+// One contact, Frémond + Coulomb in the Painlevé-type case with p = 1.0088 (fremond_coulomb #60 of
+// stress seed 7): the scalar normal roots of the modes lie far below the smallest double, so
+// the mode enumeration resolved none and the library said no_solution, while the quad reference
+// finds two solutions and semismooth Newton, forced, converged to one. Semismooth Newton now
+// gets a try before "no solution" is said; its answer is one of the reference's.
+TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
+  ImpactProblem pb;
+  pb.M.setConstant(1, 1, 0.18526508520387094);
+  pb.W_N.setConstant(1, 1, 0.73510282991790632);
+  pb.W_T.setConstant(1, 1, -0.099815775930470196);
+  pb.qdot_A.setConstant(1, -1.2682265492543971e-06);
+  const double k = 0.0025384904419304874, p = 1.0087654540432078, mu = 1.0059053110563478;
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, law, opt);
+  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible);
+  EXPECT_FALSE(r.unique);  // the enumeration could not list the solutions
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+
+  namespace ref = fremond_reference;
+  const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                             {k, p}, ref::TangentialLaw::coulomb(mu));
+  ASSERT_EQ(sols.size(), 2u);
+  const double v = std::max(std::fabs(r.D_NA(0)), std::fabs(r.D_TA(0)));
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& s : sols)
+    best = std::min(best, std::max(std::fabs(r.D_NE(0) - ref::to_double(s.D_NE[0])),
+                                   std::fabs(r.D_TE(0) - ref::to_double(s.D_TE[0]))));
+  EXPECT_LE(best, 1e-12 * v);
+  // solve_impact_all, which lists what the enumeration finds, gives it too rather than nothing.
+  const auto all = solve_impact_all(pb, law, opt);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].D_NE(0), r.D_NE(0));
+}
+
 }  // namespace
 }  // namespace fremond
