@@ -68,16 +68,19 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
     return subdifferential_miss();
   const Around conj = around([&](double x) { return phi.conjugate(x); }, s, fs, ds);
   const double conj_noise = change_within(conj);
-  const double noise = change_within(around([&](double x) { return phi.value(x); }, z, fz, dz)) +
-                       conj_noise + dz * std::fabs(s) + ds * std::fabs(z);
+  const Around val = around([&](double x) { return phi.value(x); }, z, fz, dz);
+  const double noise = change_within(val) + conj_noise + dz * std::fabs(s) + ds * std::fabs(z);
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
   const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
   if (gap == 0.0) return 0.0;
-  // The values decide wherever φ* is resolvable near s, so that a wrong conjugate (a user's
-  // potential that lies about itself) is caught; only where φ* within ds of s leaves double
-  // precision or swings by the gap's own size does the subdifferential test decide.
-  const bool resolvable =
-      std::isfinite(conj.below) && std::isfinite(conj.above) && conj_noise < 0.5 * scale;
+  // The values decide wherever φ and φ* are resolvable near (z, s), so that a wrong conjugate (a
+  // user's potential that lies about itself) is caught; only where φ within dz of z or φ* within
+  // ds of s leaves double precision (an indicator's boundary, or p = 33 on a z known to ±1e12 when
+  // cond(M) = 1e9 and the percussions are 1e18), or φ* swings by the gap's own size, does the
+  // subdifferential test decide.
+  const bool resolvable = std::isfinite(val.below) && std::isfinite(val.above) &&
+                          std::isfinite(conj.below) && std::isfinite(conj.above) &&
+                          conj_noise < 0.5 * scale;
   return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
 

@@ -669,9 +669,9 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
   }
 }
 
-// Four contacts on two degrees of freedom (cond(M) = 2.6e7) at 1e-6 m/s, p = 1.0008, tangential dead
-// zones up to q = 14 (fremond_viscous #14485 of the stress seed). Contact 2's tangential row has
-// G_TT = 1.8e-7 beside G_max = 5.7e-3: its percussion moves no velocity the solver can see, and
+// Four contacts on two degrees of freedom (cond(M) = 2.6e7) at 1e-6 m/s, p = 1.0008, tangential
+// dead zones up to q = 14 (fremond_viscous #14485 of the stress seed). Contact 2's tangential row
+// has G_TT = 1.8e-7 beside G_max = 5.7e-3: its percussion moves no velocity the solver can see, and
 // the stopping test passed it at its rounding floor with P_T = -2.4e-15 where the law gives
 // -3e-73. The certificate held P_T to the tolerance-based 2.6e-16 and, as φ*(s) ~ s^1.08 there,
 // reported a Fenchel-Young gap of 9e-8. The answer is right (the quad reference agrees to 1e-13
@@ -761,6 +761,31 @@ TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   const auto all = solve_impact_all(pb, law, opt);
   ASSERT_EQ(all.size(), 1u);
   EXPECT_EQ(all[0].D_NE(0), r.D_NE(0));
+}
+
+// Three contacts, cond(M) > 1e9, mu = 1e8, normal laws with p = 33.4, 2 and 1.0000067
+// (fremond_coulomb #56347 of the stress seed): percussions of 1e18 over a G known to ε·κ(M) leave z
+// known to ±1e12 m/s beside a velocity scale of 4e7. φ = k|z|^33.4/33.4 overflows within that
+// range, and the certificate, ignoring the infinite sides, reported a Fenchel-Young gap of 1 from
+// values it could not resolve. Where φ leaves double precision within dz of z the subdifferential
+// test decides, as it already did for φ*.
+TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflow) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[125000062.57066964, -949955992.2925596, -1645520312.5896292, -2606696082.471574], [-949955992.2925596, 7948775769.1295, 13924218057.298784, 21937793763.261864], [-1645520312.5896292, 13924218057.298784, 24421690588.95565, 38453798491.80018], [-2606696082.471574, 21937793763.261864, 38453798491.80018, 60565863345.31273]],
+    "W_N": [[0.4787267937291053, -0.08683242965363736, -0.4210609111044834], [-0.8084675337150657, 0.03647172793015718, -0.7355935126875468], [-0.5563861323287764, 0.842514941620643, -0.5811278140422054], [0.2000123698526326, 0.8783999440749626, 0.006148175263548605]],
+    "W_T": [[-0.3717056929289614, -0.6938961263960699, -0.04054879026117453], [0.8725201347098359, 0.7690574134294319, -0.7584536401438577], [0.29658261263131447, -0.976429169593582, 0.4321954230345302], [0.7472610423049573, 0.22029502092372977, 0.35670737844042444]],
+    "qdot_A": [-5777084.423631682, 23273085.832061473, 5244595.184206579, 26515620.067889404],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": [0.0032736712099822023, 743548.42242870771, 0.0031172209005096278],
+                       "p": [33.436994726657858, 2, 1.0000066679059119]},
+            "tangential": {"potential": "coulomb", "mu": 100000000}}})",
+                                           PotentialRegistry::with_builtins());
+  const SolverOptions opt;
+  const auto r = solve_impact(file.problem, file.law, opt);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
 }
 
 }  // namespace
