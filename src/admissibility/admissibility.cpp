@@ -2,6 +2,7 @@
 // (19) for the dissipative part, Fenchel–Young gaps and non-penetration.
 #include "fremond/admissibility/admissibility.hpp"
 
+#include "../solvers/detail/fremond_rows.hpp"
 #include "detail/admissibility.hpp"
 
 #include <algorithm>
@@ -119,11 +120,9 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
     const int i = cs.index(j < cs.active ? j : j - cs.active);
     out(i) = std::max(out(i), d);
     if (percussion) {
-      // The same τ_j and floor as the stopping test (fremond_rows.hpp).
-      const double g = cs.G(j, j);
-      const double tau = g > 1e-14 * g_max ? 0.5 * g : (g_max > 0.0 ? 0.5 * g_max : 1.0);
-      const double floor = std::min(
-          eps16 * (std::fabs(cs.D_A(j)) + 0.5 * GP + tau * std::fabs(P(j))), 1e-6 * cs.v_scale);
+      // The stopping test's own τ_j and floor (fremond_rows.hpp).
+      const double tau = row_tau(cs.G(j, j), g_max);
+      const double floor = row_rounding_floor(cs.D_A(j), GP, tau, P(j), cs.v_scale);
       (*percussion)(i) = std::max((*percussion)(i), floor / tau);
     }
   }

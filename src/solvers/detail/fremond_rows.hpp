@@ -19,6 +19,21 @@
 
 namespace fremond::detail {
 
+/// The prox step of a row with Delassus entry g, G_max the largest: g/2, or G_max/2 for a row that
+/// moves no velocity (g ≤ 1e-14 G_max). Shared by the stopping test and the certificate.
+inline double row_tau(double g, double g_max) {
+  return g > 1e-14 * g_max ? 0.5 * g : (g_max > 0.0 ? 0.5 * g_max : 1.0);
+}
+
+/// The rounding floor at which the stopping test accepts a row:
+/// min(16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|), 1e-6 v_scale), with abs_GP = Σ_k |G_jk P_k|.
+/// The cap: percussions so large that a row cannot be resolved better than that (P_N = −P_T =
+/// 1e23 on W_T = W_N, residual 1.0) are no answer in double precision, whatever their rounding.
+inline double row_rounding_floor(double D_A, double abs_GP, double tau, double P, double v_scale) {
+  const double eps16 = 16.0 * std::numeric_limits<double>::epsilon();
+  return std::min(eps16 * (std::fabs(D_A) + 0.5 * abs_GP + tau * std::fabs(P)), 1e-6 * v_scale);
+}
+
 template <int N, int C>
 struct FremondRowsT {
   using CS = ContactSpaceT<N, C>;
@@ -45,6 +60,7 @@ struct FremondRowsT {
     tau.setZero(r);
     double gmax = 0.0;
     for (int j = 0; j < r; ++j) gmax = std::max(gmax, space.G(j, j));
+    // row_tau, written out: inlined here, GCC 12 warns of a read of tau before it is set.
     const double fallback = gmax > 0.0 ? 0.5 * gmax : 1.0;
     for (int j = 0; j < r; ++j) {
       const double g = space.G(j, j);
@@ -141,22 +157,15 @@ struct FremondRowsT {
 
   /// The stopping test of every solver: each row within the target or at its own rounding floor,
   ///   weight_j |R_j| ≤ target  or  |R_j| ≤ min(16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|),
-  ///                                              1e-6 v_scale),
+  ///                                              1e-6 v_scale)   (row_rounding_floor),
   /// with R from the last call of residual().
-  static constexpr double kFloorCap = 1e-6;
   bool converged(const Rows& P, const Rows& R, double target) const {
     const int r = cs->rows();
-    const double eps16 = 16.0 * std::numeric_limits<double>::epsilon();
     for (int j = 0; j < r; ++j) {
       const double a = std::fabs(R(j));
       if (weight(j) * a <= target) continue;
-      // The floor is capped at 1e-6 of the velocity scale: percussions so large that a row
-      // cannot be resolved better than that (P_N = −P_T = 1e23 on W_T = W_N, residual 1.0) are
-      // no answer in double precision, whatever their rounding.
-      const double floor = std::min(
-          eps16 * (std::fabs(cs->D_A(j)) + 0.5 * cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()) +
-                   tau(j) * std::fabs(P(j))),
-          kFloorCap * cs->v_scale);
+      const double floor = row_rounding_floor(cs->D_A(j), cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()),
+                                              tau(j), P(j), cs->v_scale);
       if (!(a <= floor)) return false;
     }
     return true;
