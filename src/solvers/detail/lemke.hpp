@@ -3,8 +3,8 @@
 // with the lexicographic rule of §4.9), templated on the largest problem size so that the small
 // impact problems pivot on a stack-stored tableau.
 //
-// The tableau holds B⁻¹ [I | −M | −e | q] for the basis B of the system I w − M z − e z₀ = q, one
-// row per basic variable; its first n columns are B⁻¹ itself, which is what the lexicographic ratio
+// The method works on B⁻¹ [I | −M | −e | q] for the basis B of the system I w − M z − e z₀ = q,
+// one row per basic variable; its w columns are B⁻¹ itself, which is what the lexicographic ratio
 // test compares. Because B⁻¹ is invertible no two rows are lexicographically equal, so each pivot
 // row is unique and the method cannot cycle, whatever the degeneracy of q.
 #include <Eigen/LU>
@@ -21,25 +21,30 @@
 namespace fremond::detail::lcp {
 
 /// The tableau's storage: on the stack for a finite MaxN (no heap, no zeroing), else on the heap.
-/// Row-major with a leading dimension of 2n + 2 for the actual size n, so that the small problems
+/// Row-major with a leading dimension of n + 2 for the actual size n, so that the small problems
 /// touch only the entries they use.
 template <int MaxN>
 struct TableauStorage {
-  std::array<double, static_cast<std::size_t>(MaxN) * (2 * MaxN + 2)> values;
-  std::array<int, MaxN> basis, w_basic;
-  std::array<double, MaxN> col_max;
+  std::array<double, static_cast<std::size_t>(MaxN) * (MaxN + 2)> values;
+  std::array<int, MaxN> basis;
+  std::array<int, MaxN + 1> nonbasic;
+  std::array<int, 2 * MaxN + 1> position;
+  std::array<double, MaxN> col_max, ratio;
   void resize(int) {}
 };
 template <>
 struct TableauStorage<Dynamic> {
   std::vector<double> values;
-  std::vector<int> basis, w_basic;
-  std::vector<double> col_max;
+  std::vector<int> basis, nonbasic, position;
+  std::vector<double> col_max, ratio;
   void resize(int n) {
-    values.resize(static_cast<std::size_t>(n) * (2 * n + 2));
-    basis.resize(static_cast<std::size_t>(n));
-    w_basic.resize(static_cast<std::size_t>(n));
-    col_max.resize(static_cast<std::size_t>(n));
+    const auto m = static_cast<std::size_t>(n);
+    values.resize(m * (m + 2));
+    basis.resize(m);
+    nonbasic.resize(m + 1);
+    position.resize(2 * m + 1);
+    col_max.resize(m);
+    ratio.resize(m);
   }
 };
 
@@ -64,14 +69,19 @@ double complementarity_error(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, con
 /// Solves w = Mz + q ≥ 0, z ≥ 0, zᵀw = 0. Writes z and w (= Mz + q recomputed) and the number of
 /// pivots. No heap allocation for a finite MaxN.
 ///
-/// The tableau is a plain row-major array worked by hand loops: the problems of the impact laws
-/// have 2 to 16 unknowns, where Eigen's dynamic-size block expressions cost more in set-up than in
-/// arithmetic (a pivot of the 8-unknown flat-bar LCP is 144 multiply-adds).
+/// The tableau is condensed: of B⁻¹ [I | −M | −e | q] it keeps only the n + 1 columns of the
+/// non-basic variables and the right-hand side, since a basic variable's column is a unit vector.
+/// That halves the work of a pivot against the full tableau. The lexicographic test still reads
+/// B⁻¹ = the columns of w: a basic w_k's column is the unit vector of its row, a non-basic one's is
+/// stored. A plain row-major array worked by hand loops: the problems of the impact laws have 2 to
+/// 16 unknowns, where Eigen's dynamic-size block expressions cost more in set-up than in
+/// arithmetic.
 template <int MaxN>
 LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptions& opt,
                 VecT<MaxN>& z, VecT<MaxN>& w, int& pivots) {
   const int n = static_cast<int>(q.size());
-  const int ld = 2 * n + 2, c_z0 = 2 * n, c_rhs = 2 * n + 1;
+  // Variables: w_k = k, z_k = n + k, the artificial z₀ = 2n. Columns: n + 1 non-basic, then rhs.
+  const int ld = n + 2, c_rhs = n + 1, z0 = 2 * n;
   pivots = 0;
   z.setZero(n);
   w = q;
@@ -80,22 +90,33 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
   TableauStorage<MaxN> storage;
   storage.resize(n);
   double* const T = storage.values.data();
-  int* const basis = storage.basis.data();
-  int* const w_basic = storage.w_basic.data();
+  int* const basis = storage.basis.data();        // row → basic variable
+  int* const nonbasic = storage.nonbasic.data();  // column → non-basic variable
+  int* const position = storage.position.data();  // variable → its row or column
   double* const col_max = storage.col_max.data();
+  double* const ratio = storage.ratio.data();
   auto at = [&](int i, int c) -> double& { return T[i * ld + c]; };
+  auto is_basic = [&](int v) {
+    const int p = position[v];
+    return p < n && basis[p] == v;
+  };
   const double* const Md = M.data();
   const Eigen::Index ldm = M.outerStride();
+  // B = I: w basic, the z and z₀ columns are −M and −e.
   for (int i = 0; i < n; ++i) {
     double* row = T + i * ld;
-    for (int c = 0; c < n; ++c) row[c] = 0.0;
-    row[i] = 1.0;
-    for (int c = 0; c < n; ++c) row[n + c] = -Md[c * ldm + i];
-    row[c_z0] = -1.0;
+    for (int c = 0; c < n; ++c) row[c] = -Md[c * ldm + i];
+    row[n] = -1.0;
     row[c_rhs] = q(i);
-    basis[i] = i;  // w basic: B = I
-    w_basic[i] = 1;
+    basis[i] = i;
+    position[i] = i;
   }
+  for (int c = 0; c < n; ++c) {
+    nonbasic[c] = n + c;
+    position[n + c] = c;
+  }
+  nonbasic[n] = z0;
+  position[z0] = n;
   // Largest |M_ij| per column (the pivot threshold's scale) and overall (the final residual's).
   for (int c = 0; c < n; ++c) {
     double m = 0.0;
@@ -104,12 +125,17 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
   }
 
   const double eps = std::numeric_limits<double>::epsilon();
+  // Entry (i, k) of B⁻¹: the column of w_k.
+  auto binv = [&](int i, int k) {
+    const int p = position[k];
+    return is_basic(k) ? (p == i ? 1.0 : 0.0) : at(i, p);
+  };
   // Rounding scales of the right-hand side and of the B⁻¹ block, computed when a comparison first
-  // needs them after a pivot (negative: stale). The B⁻¹ scale (n² entries) is only needed when the
-  // right-hand sides tie, i.e. on degenerate steps.
+  // needs them after a pivot (negative: stale). The B⁻¹ scale is only needed when the right-hand
+  // sides tie, i.e. on degenerate steps.
   double rhs_scale = -1.0, binv_scale = -1.0;
-  auto scale_of = [&](int col) {
-    if (col == c_rhs) {
+  auto scale_of = [&](int k) {
+    if (k < 0) {
       if (rhs_scale < 0.0) {
         rhs_scale = 0.0;
         for (int i = 0; i < n; ++i) rhs_scale = std::max(rhs_scale, std::fabs(at(i, c_rhs)));
@@ -117,78 +143,110 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
       return rhs_scale;
     }
     if (binv_scale < 0.0) {
-      // The column of a basic w_k is a unit vector (pivoting leaves it exactly so): its largest
-      // entry is 1 and needs no scan.
       binv_scale = 0.0;
-      for (int i = 0; i < n; ++i)
-        if (basis[i] < n) binv_scale = 1.0;
-      for (int c = 0; c < n; ++c) {
-        if (w_basic[c]) continue;
-        for (int i = 0; i < n; ++i) binv_scale = std::max(binv_scale, std::fabs(at(i, c)));
+      for (int v = 0; v < n; ++v) {
+        if (is_basic(v)) {
+          binv_scale = std::max(binv_scale, 1.0);
+          continue;
+        }
+        for (int i = 0; i < n; ++i)
+          binv_scale = std::max(binv_scale, std::fabs(at(i, position[v])));
       }
     }
     return binv_scale;
   };
-  // Is row i / d_i lexicographically smaller than row k / d_k, comparing (rhs, B⁻¹ row)? Two
-  // entries are tied when they differ by less than the tie tolerance or than the rounding of their
-  // column; then the next component decides. The B⁻¹ rows are independent, so some component does.
+  // Two ratios of component k (−1: the right-hand side) are tied when they differ by less than the
+  // tie tolerance or than the rounding of their column.
+  auto tied = [&](double a, double b, int k, double d_min) {
+    const double rounding = 64 * eps * scale_of(k) / d_min;
+    return std::fabs(a - b) <= opt.tie_tolerance * std::max(std::fabs(a), std::fabs(b)) + rounding;
+  };
+  // Is row i / d_i lexicographically smaller than row k / d_k, comparing (rhs, B⁻¹ row)? On a tie
+  // the next component decides. The B⁻¹ rows are independent, so some component does. The test of
+  // `tied` multiplied through by d_i d_k > 0, without divisions: on degenerate problems (many equal
+  // contacts) the comparisons walk long runs of B⁻¹ entries, most of them zero in both rows.
   auto lex_less = [&](int i, int k, double di, double dk) {
-    const double inv_min = 1.0 / std::min(di, dk);
+    const double d_max = std::max(di, dk);
     for (int c = -1; c < n; ++c) {
-      const int col = c < 0 ? c_rhs : c;
-      const double a = at(i, col) / di, b = at(k, col) / dk;
-      const double rounding = 64 * eps * scale_of(col) * inv_min;
-      if (std::fabs(a - b) > opt.tie_tolerance * std::max(std::fabs(a), std::fabs(b)) + rounding)
-        return a < b;
+      const double a = c < 0 ? at(i, c_rhs) : binv(i, c);
+      const double b = c < 0 ? at(k, c_rhs) : binv(k, c);
+      if (a == 0.0 && b == 0.0) continue;
+      const double x = a * dk, y = b * di;
+      const double tie =
+          opt.tie_tolerance * std::max(std::fabs(x), std::fabs(y)) + 64 * eps * scale_of(c) * d_max;
+      if (std::fabs(x - y) > tie) return x < y;
     }
     return i > k;  // unreachable for an invertible basis; keeps the order total
   };
+  // Exchanges the basic variable of row r with the non-basic one of column j.
   auto pivot = [&](int r, int j) {
+    // Divisions, not a product by 1/p: one rounding per entry, as the full tableau had.
     double* const pr = T + r * ld;
     const double p = pr[j];
     for (int c = 0; c < ld; ++c) pr[c] /= p;
+    pr[j] = 1.0 / p;  // the leaving variable's column: 1/p in its row, −d_i/p elsewhere
     for (int i = 0; i < n; ++i) {
       if (i == r) continue;
       double* const pi = T + i * ld;
       const double f = pi[j];
-      if (f != 0.0)
-        for (int c = 0; c < ld; ++c) pi[c] -= f * pr[c];
-      pi[j] = 0.0;
+      if (f == 0.0) continue;
+      for (int c = 0; c < ld; ++c) pi[c] -= f * pr[c];
+      pi[j] = -f / p;
     }
-    pr[j] = 1.0;
+    const int leaving = basis[r], entering = nonbasic[j];
+    basis[r] = entering;
+    position[entering] = r;
+    nonbasic[j] = leaving;
+    position[leaving] = j;
     rhs_scale = binv_scale = -1.0;
+    return leaving;
+  };
+  // The ratio test on column j: among rows with d_i > threshold, the lexicographic minimum of
+  // (rhs_i, B⁻¹ row i) / d_i. The ratios rhs_i / d_i decide unless they tie, so the lexicographic
+  // comparison runs only among the rows tied with the smallest. −1 when no row qualifies.
+  auto leaving_row = [&](int j, double threshold) {
+    int r = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      const double d = at(i, j);
+      if (!(d > threshold)) continue;
+      ratio[i] = at(i, c_rhs) / d;
+      if (r < 0 || ratio[i] < best) {
+        best = ratio[i];
+        r = i;
+      }
+    }
+    if (r < 0) return r;
+    const int first = r;
+    for (int i = 0; i < n; ++i) {
+      if (i == first) continue;
+      const double d = at(i, j);
+      if (!(d > threshold) || !tied(ratio[i], best, -1, std::min(d, at(first, j)))) continue;
+      if (lex_less(i, r, d, at(r, j))) r = i;
+    }
+    return r;
   };
 
-  // First pivot: z₀ enters at the level that makes every w_i ≥ 0; with the column −e every row
-  // qualifies and the leaving row is the lexicographic minimum of (q_i, e_iᵀ).
+  // First pivot: z₀ enters at the level that makes every w_i ≥ 0. With its column −e every row
+  // qualifies and the leaving row is the lexicographic minimum of (q_i, e_iᵀ): the most negative
+  // q_i, ties broken by B⁻¹ = I.
   int r = 0;
   for (int i = 1; i < n; ++i)
     if (lex_less(i, r, 1.0, 1.0)) r = i;
-  pivot(r, c_z0);
-  int leaving = basis[r];
-  basis[r] = c_z0;
-  w_basic[leaving] = 0;
+  int leaving = pivot(r, n);
   pivots = 1;
 
-  while (leaving != c_z0) {
+  while (leaving != z0) {
     // Complementary pivoting: the complement of the variable that just left enters.
     const int entering = leaving < n ? leaving + n : leaving - n;
     if (pivots >= opt.max_pivots) return LcpStatus::max_pivots;
+    const int j = position[entering];
     double d_max = 0.0;
-    for (int i = 0; i < n; ++i) d_max = std::max(d_max, std::fabs(at(i, entering)));
+    for (int i = 0; i < n; ++i) d_max = std::max(d_max, std::fabs(at(i, j)));
     const double original = entering >= n ? col_max[entering - n] : 1.0;
-    const double threshold = opt.pivot_tolerance * std::max(d_max, original);
-    r = -1;
-    for (int i = 0; i < n; ++i) {
-      const double d = at(i, entering);
-      if (d > threshold && (r < 0 || lex_less(i, r, d, at(r, entering)))) r = i;
-    }
+    r = leaving_row(j, opt.pivot_tolerance * std::max(d_max, original));
     if (r < 0) return LcpStatus::secondary_ray;
-    pivot(r, entering);
-    leaving = basis[r];
-    basis[r] = entering;
-    if (leaving < n) w_basic[leaving] = 0;
-    if (entering < n) w_basic[entering] = 1;
+    leaving = pivot(r, j);
     ++pivots;
     if (!std::isfinite(at(r, c_rhs))) return LcpStatus::failed;
   }
