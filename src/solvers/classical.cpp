@@ -266,6 +266,25 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     return;
   }
   fill_best(pb, cs, law, options, lo, out);
+  // Lemke's pivots accumulate rounding: on an ill-conditioned problem (cond(M) = 1e9 and μ = 300,
+  // say) its answer can miss the law's tolerance where the linear system of the same contact
+  // mode, solved directly, meets it. The enumeration's answer with the same velocities (to 1e-9)
+  // was merged into Lemke's, so where the enumeration applies it gets its own try. Only on this
+  // failure path, and taken only when it converges.
+  if (out.solver.status == SolverStatus::stalled && options.method == SolverMethod::automatic &&
+      lo.method == SolverMethod::lemke && cs.active <= classical::kMaxEnumerated) {
+    LawOutcome<C> le;
+    solve_law(pb, cs, law, true, le, SolverMethod::mode_enumeration);
+    if (le.solutions.size == 0) return;
+    ImpactResultT<N, C> alt;
+    fill_best(pb, cs, law, options, le, alt);
+    if (alt.solver.status != SolverStatus::converged) return;
+    alt.solver.fallbacks = out.solver.fallbacks + 1;
+    alt.solver.message =
+        "Lemke's answer missed the tolerance by rounding; the enumeration of contact modes meets "
+        "it (unique says whether it is the only solution)";
+    out = std::move(alt);
+  }
 }
 
 std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const ImpactLaw& law,
