@@ -421,6 +421,14 @@ inline std::vector<NormalCandidate> normal_candidates(const PowerLaw& law, quad 
   std::vector<NormalCandidate> out;
   if (alpha == 0) return out;  // not handled (see the file comment)
   const quad a = alpha / 2;
+  // P_N of a free root: −f_N(z), or (z − b)/a (the same at the root) when z is within the last
+  // bracket width of 0. With p near 1, f_N climbs from 0 to most of k below quad's smallest
+  // numbers (p = 1 + 2.7e-6: f_N = 0.6 k at |z| = 1e-82000), so a root there is found only as
+  // the bracket [−2^-16300, 2^-16300], where −f_N(z) is anything in (−k, k) but (z − b)/a is P_N
+  // to the last bit.
+  auto free_P = [&](quad z) {
+    return fabsq(z) <= ldexpq(1, -16000) ? (z - b) / a : -f_normal(law, z);
+  };
   auto g = [&](quad z) {
     return ValueSlope{z + a * f_normal(law, z) - b, 1 + a * df_normal(law, z)};
   };
@@ -434,10 +442,10 @@ inline std::vector<NormalCandidate> normal_candidates(const PowerLaw& law, quad 
     // Root above lower: bracket [max(lower, min(b, 0)), max(b, 0)].
     const quad lo = fmaxq(lower, fminq(b, quad(0))), hi = fmaxq(b, quad(0));
     const quad z = find_root(g, lo, hi, g(lo).value, g(hi).value);
-    out.push_back({z, -f_normal(law, z), 0, false});
+    out.push_back({z, free_P(z), 0, false});
     return out;
   }
-  for (quad z : roots_of_normal(law, a, b, lower)) out.push_back({z, -f_normal(law, z), 0, false});
+  for (quad z : roots_of_normal(law, a, b, lower)) out.push_back({z, free_P(z), 0, false});
   const quad P = (lower - b) / a, R = P + f_normal(law, lower);
   if (R >= 0) out.push_back({lower, P, R, true});
   return out;

@@ -317,6 +317,21 @@ TEST(ReferenceSelfTest, CoulombStickWithSingularDelassusIsFound) {
   EXPECT_LT(d(stick->residual), 1e-22);
 }
 
+TEST(ReferenceSelfTest, RootBelowQuadRangeGivesItsPercussion) {
+  // p = 1 + 1e-5: the normal root of a point mass m = 1 hit at v = −1 with k = 4 solves
+  // z + (G/2) k|z|^(p−1) sign(z) = D_NA, |z|^(p−1) = 1/2, i.e. |z| = 2^-100000 ≈ 1e-30103: below
+  // quad's smallest number (stress fremond_coulomb #65030 of seed 23 met it with p = 1 + 2.7e-6,
+  // where the reference missed the solution the library found). In exact arithmetic
+  // D_NE = 1 − 2|z| and P_N = m (D_NE − D_NA) = 2 − 2|z|: 1 and 2 to every digit quad has. Before,
+  // the root came out as the bracket [−2^-16300, 0] and P_N = k |z|^(p−1) = 3.57 from it.
+  const auto sols = ref::fremond_one_contact(point_mass(1, 0, -1), {q(4), 1 + q(1e-5)},
+                                             ref::TangentialLaw::none());
+  ASSERT_EQ(sols.size(), 1u);
+  EXPECT_LT(d(rel(sols[0].P_N[0], q(2))), 1e-32);
+  EXPECT_LT(d(rel(sols[0].D_NE[0], q(1))), 1e-32);
+  EXPECT_LT(d(sols[0].residual), 1e-32);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Internal consistency over the ranges the cross-checks use.
 
