@@ -7,7 +7,8 @@
 // for one contact, the all-closed guess u = −G⁻¹q for several (eq. 6 when it holds), then
 // lexicographic Lemke on the phase's LCP. With friction on up to 3 contacts the enumeration of
 // contact modes lists every solution when asked (options.check_uniqueness, solve_impact_all), and
-// settles existence when Lemke's method ends on a ray. Where G is singular the percussions that
+// settles existence when Lemke's method ends on a ray, or re-solves the law when Lemke's answer
+// misses the tolerance by rounding. Where G is singular the percussions that
 // give the same velocities form a polyhedron; the minimum-norm one is returned and `unique` says
 // so.
 #include "fremond/solvers/detail/classical.hpp"

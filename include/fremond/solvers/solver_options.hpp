@@ -10,7 +10,8 @@ struct SolverOptions {
   /// Method: `automatic` picks the cheapest exact method the law and its potentials allow
   /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt). A method that
   /// does not apply gives status `unsupported`. The classical laws take closed_form, lemke and
-  /// mode_enumeration (which `automatic` chooses among per phase); naming one forces it.
+  /// mode_enumeration (which `automatic` chooses among per phase, and falls back to where Lemke's
+  /// answer misses the tolerance by rounding, on up to 3 contacts); naming one forces it.
   SolverMethod method = SolverMethod::automatic;
   /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
   /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none.
