@@ -468,9 +468,9 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
         // Every mode was tried in double precision, but a mode's scalar normal root can lie
         // below the smallest double (p within 0.01 of 1: |z| ~ (a D/k)^(1/(p-1)) = 1e-1000) and
         // be missed, while z = 0 to rounding is an answer double precision can hold. Before
-        // "no solution" is said, semismooth Newton gets one try: whatever it converges to passes
-        // the law's residual test. (fremond_coulomb #60 of stress seed 7: the quad reference
-        // finds two solutions; the enumeration none.)
+        // "no solution" is said, semismooth Newton and then the splitting get one try each:
+        // whatever they converge to passes the law's residual test. (fremond_coulomb #60 of stress
+        // seed 7: the quad reference finds two solutions; the enumeration none.)
         if (automatic) {
           Rows<N, C> PN = P;
           solve_decoupled(rows, PN);
@@ -485,6 +485,21 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
                 "its range), semismooth Newton converged";
             finish(found, SolverMethod::semismooth_newton);
             out.solver.fallbacks = 1;
+            out.unique = false;
+            return;
+          }
+          // Then the splitting from P = 0, which reaches such a solution where Newton stalls
+          // (fremond_coulomb #88780 of seed 1: p = 1 + 7.9e-6, μ = 56; two solutions).
+          Rows<N, C> PS = Rows<N, C>::Zero(cs.rows());
+          const auto split = proximal_iterations(rows, PS, opt);
+          if (split.status == SolverStatus::converged) {
+            P = PS;
+            MethodOutcome found = split;
+            found.message =
+                "one contact with Coulomb: no mode resolved in double precision (a root below "
+                "its range), the proximal splitting converged";
+            finish(found, SolverMethod::proximal);
+            out.solver.fallbacks = 2;
             out.unique = false;
             return;
           }

@@ -763,6 +763,37 @@ TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   EXPECT_EQ(all[0].D_NE(0), r.D_NE(0));
 }
 
+// The same kind with μ = 56 and p = 1 + 7.9e-6 (fremond_coulomb #88780 of stress seed 1, found once
+// the quad reference could resolve roots below its own range): semismooth Newton stalls there, and
+// "no solution" was said although the reference finds two. The splitting from P = 0 reaches one;
+// it now gets its try after Newton's.
+TEST(RegressionFremond, RootBelowDoubleRangeIsReachedByTheSplittingWhereNewtonStalls) {
+  ImpactProblem pb;
+  pb.M.setConstant(1, 1, 0.010102341962160373);
+  pb.W_N.setConstant(1, 1, 0.61542191091166965);
+  pb.W_T.setConstant(1, 1, -0.0074880963827064217);
+  pb.qdot_A.setConstant(1, -20.196097082343275);
+  const double k = 140.51723480458523, p = 1.0000079433528712, mu = 56.118201871620464;
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
+  const SolverOptions opt;
+  const auto r = solve_impact(pb, law, opt);
+  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible);
+  EXPECT_FALSE(r.unique);
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+
+  namespace ref = fremond_reference;
+  const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                             {k, p}, ref::TangentialLaw::coulomb(mu));
+  ASSERT_EQ(sols.size(), 2u);
+  const double v = std::max(std::fabs(r.D_NA(0)), std::fabs(r.D_TA(0)));
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& s : sols)
+    best = std::min(best, std::max(std::fabs(r.D_NE(0) - ref::to_double(s.D_NE[0])),
+                                   std::fabs(r.D_TE(0) - ref::to_double(s.D_TE[0]))));
+  EXPECT_LE(best, 1e-12 * v);
+}
+
 // Three contacts, cond(M) > 1e9, mu = 1e8, normal laws with p = 33.4, 2 and 1.0000067
 // (fremond_coulomb #56347 of the stress seed): percussions of 1e18 over a G known to ε·κ(M) leave z
 // known to ±1e12 m/s beside a velocity scale of 4e7. φ = k|z|^33.4/33.4 overflows within that
