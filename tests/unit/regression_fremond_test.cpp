@@ -15,6 +15,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
@@ -24,6 +25,21 @@
 
 namespace fremond {
 namespace {
+
+/// Coulomb on z_T = (D_TA + D_TE)/2 with the bound μ_i|P_N,i| (SPEC §2; P_N may take either sign),
+/// by hand from a result's velocities: inside the cone z_T = 0, on its edge P_T opposes z_T.
+template <class Result>
+void expect_coulomb_on_mean_velocity(const Result& r, const std::vector<double>& mu) {
+  const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
+  for (int i = 0; i < static_cast<int>(r.P_N.size()); ++i) {
+    const double zT = 0.5 * (r.D_TA(i) + r.D_TE(i));
+    const double bound = mu[mu.size() == 1 ? 0 : i] * std::fabs(r.P_N(i));
+    EXPECT_LE(std::fabs(r.P_T(i)), bound * (1 + 1e-9)) << "contact " << i;
+    if (std::fabs(zT) > 1e-9 * v) {
+      EXPECT_NEAR(r.P_T(i), zT > 0 ? -bound : bound, 1e-9 * bound) << "contact " << i;
+    }
+  }
+}
 
 // Runs `body` in a child process and reports whether it returned within `seconds`: a solve that
 // never returns must fail the test, not hang the suite. The child's gtest failures are reported
@@ -819,40 +835,56 @@ TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflo
   EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
 }
 
-// The paper's bar lying flat on both ends (G singular), Frémond + Coulomb with μ = 0.45, p = 17
-// (fremond_coulomb #60727 of seed 23). Semismooth Newton stalls; the splitting, started from its
-// last iterate, did not converge either, and NLopt returned `stalled`, while the splitting forced
-// from P = 0 converges: the law is quasi-variational and where the iteration ends depends on
-// where it starts. Automatic now restarts the splitting from zero before NLopt (seed 23: 429 of
-// 100,000 problems, none the worse). Checked here by the law's own conditions, contact by contact.
+// The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8
+// (fremond_coulomb #62070 of seed 23). Semismooth Newton stalls from either start; the splitting,
+// started from its last iterate, did not converge either, and NLopt returned `stalled`, while
+// the splitting forced from P = 0 converges: the law is quasi-variational and where the iteration
+// ends depends on where it starts. Automatic now restarts the splitting from zero before NLopt
+// (fallbacks: Newton, the first splitting). Checked by the law's own conditions, contact by
+// contact.
 TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
   const auto file = io::parse_problem_file(R"({
-    "M": [[11.435468238819254, 0, 0], [0, 11.435468238819254, 0], [0, 0, 0.95295568656827123]],
-    "W_N": [[0, 0], [1, 1], [-0.010631844565290731, 0.010631844565290731]],
-    "W_T": [[1, 1], [0, 0], [0.49988695110108594, -0.49988695110108594]],
-    "qdot_A": [-12768.091206068344, -35328.809982020488, -137118.83762815516],
+    "M": [[1.2587692343452668, 0, 0], [0, 1.2587692343452668, 0], [0, 0, 0.1048974361954389]],
+    "W_N": [[0, 0], [1, 1], [-1.793661927069458e-07, 1.793661927069458e-07]],
+    "W_T": [[1, 1], [0, 0], [0.4999999999999678, -0.4999999999999678]],
+    "qdot_A": [-0.0011603439148930477, -0.00078634587715143735, 0.0010121433551256926],
     "law": {"type": "fremond",
-            "normal": {"potential": "power", "k": 3771.4484389166232, "p": 17.031445832860701},
-            "tangential": {"potential": "coulomb", "mu": 0.44879996310784936}}})",
+            "normal": {"potential": "power", "k": 3520.430962080166, "p": 3.8037227374348888},
+            "tangential": {"potential": "coulomb", "mu": 0.1052513990738896}}})",
                                            PotentialRegistry::with_builtins());
   const SolverOptions opt;
   const auto r = solve_impact(file.problem, file.law, opt);
   ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
   EXPECT_EQ(r.solver.method, SolverMethod::proximal);
+  EXPECT_EQ(r.solver.fallbacks, 2);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
   EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
-  // Coulomb on z_T = (D_TA + D_TE)/2 with the bound μ|P_N| (SPEC §2; P_N may take either sign),
-  // by hand from the velocities: inside the cone z_T = 0, on its edge P_T opposes z_T.
-  const double mu = 0.44879996310784936;
-  const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
-  for (int i = 0; i < 2; ++i) {
-    const double zT = 0.5 * (r.D_TA(i) + r.D_TE(i)), bound = mu * std::fabs(r.P_N(i));
-    EXPECT_LE(std::fabs(r.P_T(i)), bound * (1 + 1e-9)) << i;
-    if (std::fabs(zT) > 1e-9 * v) {
-      EXPECT_NEAR(r.P_T(i), zT > 0 ? -bound : bound, 1e-9 * bound) << i;
-    }
-  }
+  expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
+}
+
+// The bar upright on both ends (θ → π/2), Frémond + Coulomb with μ = (0.157, 0.123), k = 4e4 and
+// p = 1 + 1.7e-4 (fremond_coulomb #25729 of seed 23). Semismooth Newton from the decoupled guess
+// ends at a stationary point of ‖R‖² that is no solution, the splitting and NLopt stall; Newton
+// from P = 0 converges. Automatic now tries it before the splitting.
+TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[83.891280671005802, 0, 0], [0, 83.891280671005802, 0], [0, 0, 6.9909400559171502]],
+    "W_N": [[0, 0], [1, 1], [-9.8476833163081442e-08, 9.8476833163081442e-08]],
+    "W_T": [[1, 1], [0, 0], [0.49999999999999029, -0.49999999999999029]],
+    "qdot_A": [1.0858070078702822e-10, -7.074186052478133e-10, -2.6381947841045229e-10],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": 41792.471806480309, "p": 1.0001661240626072},
+            "tangential": {"potential": "coulomb", "mu": [0.15724677037244, 0.12273461088009807]}}})",
+                                           PotentialRegistry::with_builtins());
+  const SolverOptions opt;
+  const auto r = solve_impact(file.problem, file.law, opt);
+  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  expect_coulomb_on_mean_velocity(r, {0.15724677037244, 0.12273461088009807});
 }
 
 }  // namespace
