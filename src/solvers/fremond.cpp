@@ -472,37 +472,34 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
         // whatever they converge to passes the law's residual test. (fremond_coulomb #60 of stress
         // seed 7: the quad reference finds two solutions; the enumeration none.)
         if (automatic) {
+          auto take = [&](const Rows<N, C>& found, MethodOutcome o_found, SolverMethod m,
+                          const char* message, int fallbacks) {
+            P = found;
+            o_found.message = message;
+            finish(o_found, m);
+            out.solver.fallbacks = fallbacks;
+            out.unique = false;
+          };
           Rows<N, C> PN = P;
           solve_decoupled(rows, PN);
           if (!PN.allFinite()) PN.setZero();
           const auto newton = semismooth_newton(rows, PN, opt);
           if (newton.status == SolverStatus::converged) {
-            P = PN;
-            final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
-            MethodOutcome found = newton;
-            found.message =
-                "one contact with Coulomb: no mode resolved in double precision (a root below "
-                "its range), semismooth Newton converged";
-            finish(found, SolverMethod::semismooth_newton);
-            out.solver.fallbacks = 1;
-            out.unique = false;
-            return;
+            final_row_sweep(rows, PN, opt.tolerance * cs.v_scale);
+            return take(PN, newton, SolverMethod::semismooth_newton,
+                        "one contact with Coulomb: no mode resolved in double precision (a root "
+                        "below its range), semismooth Newton converged",
+                        1);
           }
           // Then the splitting from P = 0, which reaches such a solution where Newton stalls
           // (fremond_coulomb #88780 of seed 1: p = 1 + 7.9e-6, μ = 56; two solutions).
           Rows<N, C> PS = Rows<N, C>::Zero(cs.rows());
           const auto split = proximal_iterations(rows, PS, opt);
-          if (split.status == SolverStatus::converged) {
-            P = PS;
-            MethodOutcome found = split;
-            found.message =
-                "one contact with Coulomb: no mode resolved in double precision (a root below "
-                "its range), the proximal splitting converged";
-            finish(found, SolverMethod::proximal);
-            out.solver.fallbacks = 2;
-            out.unique = false;
-            return;
-          }
+          if (split.status == SolverStatus::converged)
+            return take(PS, split, SolverMethod::proximal,
+                        "one contact with Coulomb: no mode resolved in double precision (a root "
+                        "below its range), the proximal splitting converged",
+                        2);
         }
         o.status = SolverStatus::no_solution;
         o.message = "Frémond + Coulomb has no solution for these data (mu|G_NT| > G_NN)";
