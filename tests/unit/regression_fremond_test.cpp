@@ -41,6 +41,18 @@ void expect_coulomb_on_mean_velocity(const Result& r, const std::vector<double>&
   }
 }
 
+/// Solves a problem file with the default options and checks what every regression here expects of
+/// its answer: converged, admissible (SPEC §4), and the stress invariants hold.
+ImpactResult solve_and_check(const io::ProblemFile& file) {
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(file.problem, file.law, opt);
+  EXPECT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  return r;
+}
+
 /// One contact, Frémond + Coulomb (k, p, μ) where the quad reference finds two solutions and the
 /// enumeration, its roots below double precision's range, none: solve_impact must converge to an
 /// admissible answer that passes the stress invariants, not claimed unique, and equal to one of the
@@ -654,12 +666,8 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
             "normal": {"potential": "power", "k": 591772.56244563102, "p": 4.6516317712858655},
             "tangential": {"potential": "coulomb", "mu": 100000000}}})",
                                            PotentialRegistry::with_builtins());
-  const SolverOptions opt;
-  const auto r = solve_impact(file.problem, file.law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
-  EXPECT_TRUE(r.admissibility.admissible)
-      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  const ImpactResult r = solve_and_check(file);
+  ASSERT_TRUE(r.ok());
   // Nothing the percussions do is visible in the velocities: they stay at q̇_A to 1e-14.
   EXPECT_LT((r.qdot_E - file.problem.qdot_A).cwiseAbs().maxCoeff(), 1e-13);
 
@@ -674,6 +682,7 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   bar.W_T << 1.0, 0.0, 0.5 * sn;
   bar.qdot_A = Eigen::Vector3d(2.0, -std::sqrt(2 * 9.81 * (1 - 0.5 * sn)), 0.0);
   const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 0.01);
+  const SolverOptions opt;
   const auto ok = solve_impact(bar, coulomb, opt);
   ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << ok.solver.message;
   ASSERT_NEAR(std::fabs(ok.P_T(0)), 0.01 * std::fabs(ok.P_N(0)), 1e-14 * std::fabs(ok.P_N(0)))
@@ -821,12 +830,8 @@ TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflo
                        "p": [33.436994726657858, 2, 1.0000066679059119]},
             "tangential": {"potential": "coulomb", "mu": 100000000}}})",
                                            PotentialRegistry::with_builtins());
-  const SolverOptions opt;
-  const auto r = solve_impact(file.problem, file.law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
-  EXPECT_TRUE(r.admissibility.admissible)
-      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  const ImpactResult r = solve_and_check(file);
+  ASSERT_TRUE(r.ok());
 }
 
 // The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8
@@ -846,14 +851,10 @@ TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
             "normal": {"potential": "power", "k": 3520.430962080166, "p": 3.8037227374348888},
             "tangential": {"potential": "coulomb", "mu": 0.1052513990738896}}})",
                                            PotentialRegistry::with_builtins());
-  const SolverOptions opt;
-  const auto r = solve_impact(file.problem, file.law, opt);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  const ImpactResult r = solve_and_check(file);
+  ASSERT_TRUE(r.ok());
   EXPECT_EQ(r.solver.method, SolverMethod::proximal);
   EXPECT_EQ(r.solver.fallbacks, 2);
-  EXPECT_TRUE(r.admissibility.admissible)
-      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
   expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
 }
 
@@ -871,13 +872,9 @@ TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
             "normal": {"potential": "power", "k": 41792.471806480309, "p": 1.0001661240626072},
             "tangential": {"potential": "coulomb", "mu": [0.15724677037244, 0.12273461088009807]}}})",
                                            PotentialRegistry::with_builtins());
-  const SolverOptions opt;
-  const auto r = solve_impact(file.problem, file.law, opt);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  const ImpactResult r = solve_and_check(file);
+  ASSERT_TRUE(r.ok());
   EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
-  EXPECT_TRUE(r.admissibility.admissible)
-      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
   expect_coulomb_on_mean_velocity(r, {0.15724677037244, 0.12273461088009807});
 }
 
