@@ -616,9 +616,9 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     auto o = proximal_iterations(rows, P, opt);
     // With Coulomb the law is quasi-variational: where the splitting ends depends on where it
     // starts. Newton's last iterate or the decoupled guess can lead it nowhere where P = 0, the
-    // start of the method when forced, reaches a solution (the flat bar with μ = 0.45: stress
-    // fremond_coulomb #60727 of seed 23). Only on this failure path; else NLopt goes on from the
-    // first run's end, as before.
+    // start of the method when forced, reaches a solution (the bar upright on both ends with
+    // μ = 0.105: stress fremond_coulomb #62070 of seed 23). Only on this failure path; else NLopt
+    // goes on from the first run's end, as before.
     if (automatic && o.status != SolverStatus::converged && !from_zero &&
         law.tangential == TangentialLaw::coulomb) {
       const Rows<N, C> first_end = P;
