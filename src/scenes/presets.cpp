@@ -15,7 +15,11 @@ constexpr detail::EnumNames<PaperLaw, 5> kPaperLaws{
      {PaperLaw::fremond_coulomb, "fremond_coulomb"},
      {PaperLaw::fremond_viscous, "fremond_viscous"}}};
 
-Scene on_ground(PlanarBody body, double gravity, const PlanarState& initial, ImpactLaw law) {
+// `dimensions` names what the inertia was computed from, for the one error they can cause.
+Scene on_ground(PlanarBody body, double gravity, const PlanarState& initial, ImpactLaw law,
+                const char* dimensions) {
+  detail::require_usable_mass_matrix("body", body.mass, body.inertia,
+                                     std::string(dimensions) + " give ");
   Scene s;
   s.body = std::move(body);
   s.obstacles = {HalfPlane{}};
@@ -40,7 +44,8 @@ Scene bar_scene(const BarParameters& bar, ImpactLaw law) {
   body.mass = bar.mass;
   body.inertia = bar.mass * l * l / 3.0;
   body.points = {ContactPoint{{-l, 0.0}, 0.0}, ContactPoint{{l, 0.0}, 0.0}};
-  return on_ground(std::move(body), bar.gravity, bar.initial, std::move(law));
+  return on_ground(std::move(body), bar.gravity, bar.initial, std::move(law),
+                   "the bar's mass and half_length");
 }
 
 Scene ball_scene(const BallParameters& ball, ImpactLaw law) {
@@ -48,7 +53,8 @@ Scene ball_scene(const BallParameters& ball, ImpactLaw law) {
   body.mass = ball.mass;
   body.inertia = 0.4 * ball.mass * ball.radius * ball.radius;
   body.points = {ContactPoint{{0.0, 0.0}, ball.radius}};
-  return on_ground(std::move(body), ball.gravity, ball.initial, std::move(law));
+  return on_ground(std::move(body), ball.gravity, ball.initial, std::move(law),
+                   "the ball's mass and radius");
 }
 
 Scene block_scene(const BlockParameters& block, ImpactLaw law) {
@@ -58,7 +64,8 @@ Scene block_scene(const BlockParameters& block, ImpactLaw law) {
   body.inertia = block.mass * (block.width * block.width + block.height * block.height) / 12.0;
   body.points = {ContactPoint{{-w, -h}, 0.0}, ContactPoint{{w, -h}, 0.0}, ContactPoint{{w, h}, 0.0},
                  ContactPoint{{-w, h}, 0.0}};
-  return on_ground(std::move(body), block.gravity, block.initial, std::move(law));
+  return on_ground(std::move(body), block.gravity, block.initial, std::move(law),
+                   "the block's mass, width and height");
 }
 
 ImpactLaw paper_law(PaperLaw law, double k_N) {

@@ -5,11 +5,14 @@
 #include <string>
 
 #include "fremond/core/error.hpp"
+#include "fremond/core/types.hpp"
+#include "fremond/laws/impact_problem.hpp"
 #include "fremond/potentials/detail/validate.hpp"
 #include "fremond/scenes/kinematics.hpp"
 
 namespace fremond {
 
+using detail::format_number;
 using detail::require_finite;
 using detail::require_finite_above;
 using detail::require_finite_at_least;
@@ -28,9 +31,25 @@ void require_finite_vector(const std::string& name, const Eigen::Ref<const Eigen
 }
 }  // namespace
 
+void detail::require_usable_mass_matrix(const std::string& name, double mass, double inertia,
+                                        const std::string& reason) {
+  // The very test of validate(ImpactProblem), on the M every impact of this body will have.
+  const MatT<kSmallDofs, kSmallDofs> M = Eigen::Vector3d(mass, mass, inertia).asDiagonal();
+  try {
+    detail::require_positive_definite(M, CholeskyT<kSmallDofs>(M));
+  } catch (const InvalidArgument&) {
+    throw InvalidArgument(name, reason + "mass " + format_number(mass) + " and inertia " +
+                                    format_number(inertia) +
+                                    ", too far apart for double precision: M = diag(m, m, J) "
+                                    "is not positive definite to rounding (J/m must lie within "
+                                    "1e-24 and 1e24); express the body in other units");
+  }
+}
+
 void Scene::validate() {
   require_finite_above("body.mass", body.mass, 0.0);
   require_finite_above("body.inertia", body.inertia, 0.0);
+  detail::require_usable_mass_matrix("body.inertia", body.mass, body.inertia, "");
   if (body.points.empty()) throw InvalidArgument("body.points", "needs at least one point");
   for (std::size_t i = 0; i < body.points.size(); ++i) {
     require_finite_vector(at("body.points", i, "r"), body.points[i].r);
@@ -51,6 +70,22 @@ void Scene::validate() {
   require_finite_at_least("gravity", gravity, 0.0);
   require_finite_vector("initial.q", initial.q);
   require_finite_vector("initial.qdot", initial.qdot);
+  // Finite data can still overflow what every impact computes (SPEC §5's energy, the contact
+  // velocities D = W^T q̇): refuse here what the first impact would refuse.
+  if (!std::isfinite(energy(*this, initial)))
+    throw InvalidArgument("initial",
+                          "the energy 1/2 qdot^T M qdot + m g y overflows double "
+                          "precision (max |qdot| = " +
+                              format_number(initial.qdot.cwiseAbs().maxCoeff()) + ", y = " +
+                              format_number(initial.q.y()) + "); express the scene in other units");
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactFrame f = contact_frame(*this, k, initial.q);
+    if (!std::isfinite(f.gap) || !std::isfinite(f.W_N.dot(initial.qdot)) ||
+        !std::isfinite(f.W_T.dot(initial.qdot)))
+      throw InvalidArgument("initial", "contact " + std::to_string(k) +
+                                           ": its gap or velocity overflows double precision at "
+                                           "the initial state; express the scene in other units");
+  }
   law.validate(contact_count());
 }
 

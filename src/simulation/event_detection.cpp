@@ -53,10 +53,15 @@ double min_width(double b, double floor) {
 // The single root of a decreasing g on [lo, hi] with g(lo) > 0 ≥ g(hi): Newton from the last
 // point, kept inside the bracket, bisection when it leaves it. Returns the left-most point found
 // with g ≤ 0, within a few units in the last place of the true crossing.
+//
+// Both Newton on a concave gap from the right and bisection from lo = 0 can do no better than
+// halve hi: a root 1e-150 s into a 0.5 s search (g = 1e300 m/s²) takes about 500 halvings. The
+// iteration bound covers the whole exponent range of a double (2⁻¹⁰⁷⁴ of s_max), so that the
+// bound never decides where an event is; the width test ends every ordinary search long before.
 double refine(const GapFunction& f, Point lo, Point hi, long& evaluations) {
   const auto min_width = [](double x) { return 4.0 * ulp(x); };
   Point last = hi;
-  for (int it = 0; it < 200; ++it) {
+  for (int it = 0; it < 1100; ++it) {
     if (hi.s - lo.s <= min_width(hi.s)) break;
     double x = last.gd < 0.0 ? last.s - last.g / last.gd : 0.5 * (lo.s + hi.s);
     if (!(x > lo.s && x < hi.s)) x = lo.s + 0.5 * (hi.s - lo.s);
@@ -135,12 +140,21 @@ EventSearchResult find_first_event(const GapFunction& f, double s_max, bool touc
     }
     if (h <= min_width(b.s, floor)) {
       if (b.g <= 0.0) {
-        out.s = b.s;
+        // At the depth bound (2⁻²⁰⁰ s_max) the crossing can still be far inside [a, b] when the
+        // scene's time scale is that much below s_max (g = 1e200 m/s²): close in on it, not on
+        // b. From a start that touches (g(a) ≤ 0, lifting off), first halve towards a for a
+        // point still in flight, g > 0; the crossing is after it.
+        Point lo = a, hi = b;
+        while (lo.g <= 0.0 && hi.s - a.s > min_width(hi.s, 0.0)) {
+          const Point m = sample(f, a.s + 0.5 * (hi.s - a.s), out.evaluations);
+          (m.g > 0.0 ? lo : hi) = m;
+        }
+        out.s = lo.g <= 0.0 ? b.s : refine(f, lo, hi, out.evaluations);
         return out;
       }
       continue;  // a dip below zero of at most K h²/8, below the rounding of positions
     }
-    // The refinement above is bounded (at most 600 evaluations) and always finishes: a root
+    // The refinement above is bounded (at most about 3,300 evaluations) and always finishes: a root
     // proven is never thrown away for the budget. Only the splitting is cut.
     if (out.evaluations >= max_evaluations) {
       out.exhausted = true;

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "detail/ulp.hpp"
+#include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/scenes/kinematics.hpp"
 #include "fremond/simulation/event_detection.hpp"
@@ -209,11 +210,30 @@ class Run {
     if (n <= kSmallContacts) {
       SmallImpactProblem pb;
       fill(pb, s, idx, n);
-      return record(t, s, idx, n, kind, solve_impact(pb, law, opt_.solver));
+      return solve_and_record(t, s, idx, n, kind, pb, law);
     }
     ImpactProblem pb;
     fill(pb, s, idx, n);
-    return record(t, s, idx, n, kind, solve_impact(pb, law, opt_.solver));
+    return solve_and_record(t, s, idx, n, kind, pb, law);
+  }
+
+  template <class Problem>
+  bool solve_and_record(double t, PlanarState& s, const int* idx, int n, ImpactKind kind,
+                        const Problem& pb, const ImpactLaw& law) {
+    decltype(solve_impact(pb, law, opt_.solver)) r;
+    // Scene::validate refuses what the first impact would refuse, but a state reached later can
+    // still overflow what an impact computes (a fall under g = 1.5e308 m/s² reaches a speed whose
+    // kinetic energy is not a double). That is the run's outcome, not bad input: the run stops
+    // with a status and keeps what it has written.
+    try {
+      r = solve_impact(pb, law, opt_.solver);
+    } catch (const InvalidArgument&) {
+      finish(SimulationStatus::impact_failed,
+             "an impact problem the run reached cannot be posed in double precision (a "
+             "velocity or energy overflows)");
+      return false;
+    }
+    return record(t, s, idx, n, kind, r);
   }
 
   template <class Result>

@@ -9,6 +9,7 @@
 #include "fremond/io/scene_file.hpp"
 #include "fremond/potentials/power.hpp"
 #include "fremond/scenes/presets.hpp"
+#include "fremond/simulation/simulate.hpp"
 
 namespace fremond {
 namespace {
@@ -128,6 +129,54 @@ TEST(SceneFile, RefusesUnknownKeysAndBadValuesNamingTheKey) {
   expect_refused(R"("sample_interval": 0.01)", R"("sample_interval": 0)", "output.sample_interval",
                  "> 0");
   expect_refused(R"("t_end": 3)", R"("t_end": 3, "t_end": 4)", "t_end", "");  // given twice
+}
+
+// What every impact of the scene would refuse (validate(ImpactProblem): M positive definite to
+// rounding, a finite kinetic energy) is refused when the scene is read, not after its output has
+// begun; a preset says its dimensions gave the inertia.
+TEST(SceneFile, RefusesWhatItsFirstImpactWouldRefuse) {
+  expect_refused(R"("half_length": 0.5)", R"("half_length": 1e13)", "body",
+                 "the bar's mass and half_length give mass 1 and inertia");
+  expect_refused(R"("half_length": 0.5)", R"("half_length": 1e-13)", "body", "too far apart");
+  expect_refused(R"("qdot": [2, 0, 0])", R"("qdot": [2e160, 0, 0])", "initial",
+                 "energy 1/2 qdot^T M qdot + m g y overflows");
+  const auto general = [](const std::string& inertia) {
+    return R"({"body": {"mass": 1, "inertia": )" + inertia +
+           R"(, "points": [{"r": [1, 0]}]}, "initial": {"q": [0, 1, 0], "qdot": [0, 0, 0]},
+               "law": {"type": "newton", "e": 0.5}})";
+  };
+  for (const char* bad : {"1e-25", "1e25"}) {
+    try {
+      io::parse_scene_file(general(bad), registry());
+      ADD_FAILURE() << "accepted inertia " << bad;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.name(), "body.inertia") << e.what();
+      EXPECT_NE(std::string(e.what()).find("J/m must lie within 1e-24 and 1e24"), std::string::npos)
+          << e.what();
+    }
+  }
+  // Just inside the bound, the scene is read and its impacts are solved.
+  for (const char* fine : {"1e-23", "1e23"}) {
+    const io::SceneFile f = io::parse_scene_file(general(fine), registry());
+    SimulationOptions o = f.options;
+    o.t_end = 1.0;
+    const SimulationResult r = simulate(f.scene, o);
+    EXPECT_TRUE(r.ok()) << fine << ": " << r.message;
+    EXPECT_GE(r.impacts, 1) << fine;
+  }
+  // The scene the fuzzer found: a block 1e40 m wide (J = 8.3e79 for m = 1).
+  try {
+    io::parse_scene_file(R"({"body": {"shape": "block", "mass": 1, "width": 1e40, "height": 0.2},
+                            "initial": {"q": [0.5, 0.3, 0.2], "qdot": [6, 0, 1]},
+                            "law": {"type": "newton", "e": 0.5}})",
+                         registry());
+    ADD_FAILURE() << "accepted the 1e40 m block";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "body") << e.what();
+    EXPECT_NE(std::string(e.what()).find("the block's mass, width and height give"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SceneFile, RefusesUnreadableFilesNamingThePath) {

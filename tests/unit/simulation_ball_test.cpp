@@ -79,6 +79,38 @@ TEST(SimulationBall, BounceHeightsAndAccumulationTimeMatchTheClosedForms) {
   }
 }
 
+// The same drop under gravities that leave 1e-50 to 1e-154 s between impacts and 0.5 s to run:
+// the first impact at its closed-form time, and the bounces accumulate into rest as at 9.81 m/s².
+// At g = 1.5e308 the speed at the ground (1.6e154 m/s) has a kinetic energy beyond a double: the
+// run says so in its status, at the impact, and throws nothing.
+TEST(SimulationBall, ExtremeGravitiesAreResolvedOrStopWithAStatus) {
+  for (const double g : {1e100, 1e200, 1e300}) {
+    BallParameters ball;
+    ball.gravity = g;
+    const Scene scene = ball_scene(ball, ImpactLaw::newton(0.5));
+    const Closed cf{g, ball.initial.q.y() - ball.radius, 0.5};
+    SimulationOptions opt;
+    opt.t_end = 0.5;
+    Log log;
+    const SimulationResult r = simulate(scene, opt, &log);
+    ASSERT_EQ(r.status, SimulationStatus::completed) << g << ": " << r.message;
+    ASSERT_FALSE(log.impacts.empty());
+    EXPECT_NEAR(log.impacts[0].t, cf.t1(), 1e-15 * cf.t1()) << g;
+    EXPECT_EQ(r.accumulations, 1) << g;
+    EXPECT_NEAR(r.state.q.y(), ball.radius, 1e-12) << g;
+    EXPECT_NEAR(r.energy_final, ball.mass * g * ball.radius, 1e-12 * ball.mass * g) << g;
+  }
+  BallParameters ball;
+  ball.gravity = 1.5e308;
+  SimulationOptions opt;
+  opt.t_end = 0.5;
+  const SimulationResult r = simulate(ball_scene(ball, ImpactLaw::newton(0.5)), opt);
+  EXPECT_EQ(r.status, SimulationStatus::impact_failed);
+  EXPECT_NE(r.message.find("double precision"), std::string::npos) << r.message;
+  const Closed cf{ball.gravity, ball.initial.q.y() - ball.radius, 0.5};
+  EXPECT_NEAR(r.t, cf.t1(), 1e-15 * cf.t1());
+}
+
 TEST(SimulationBall, ASlidingBallWithFrictionStopsSlidingOrKeepsItsSpeedAsTheLawSays) {
   // Thrown sideways at 1 m/s: frictionless it keeps ẋ = 1 through every impact and the
   // accumulation and slides on; with Coulomb friction it ends at rest or rolling, never faster.

@@ -78,6 +78,28 @@ TEST(EventDetection, DroppedBallHitsAtTheClosedFormTime) {
   }
 }
 
+// A time scale far below the search's depth bound (2⁻²⁰⁰ of s_max ≈ 3e-61 s here): under
+// g = 1e200 and 1e300 m/s² a drop of 0.9 m takes 1.3e-100 s and 1.3e-150 s, and a bounce back up at
+// 1 m/s lasts 2/g. Both come at their closed-form times, not at the end of the deepest interval.
+TEST(EventDetection, EventsFarBelowTheDepthBoundOfTheSearchAreRefined) {
+  for (const double g : {1e100, 1e200, 1e300, 1.7e308}) {
+    GapFunction drop;
+    drop.alpha = 0.9;
+    drop.gamma = -0.5 * g;
+    drop.K = g * (1 + 1e-12);
+    const auto r = find_first_event(drop, 0.5, false);
+    ASSERT_TRUE(r.found()) << g;
+    EXPECT_NEAR(r.s, std::sqrt(1.8 / g), 4e-16 * std::sqrt(1.8 / g)) << g;
+
+    GapFunction bounce = drop;  // just left an impact, rising at 1 m/s
+    bounce.alpha = 0.0;
+    bounce.beta = 1.0;
+    const auto b = find_first_event(bounce, 0.5, true);
+    ASSERT_TRUE(b.found()) << g;
+    EXPECT_NEAR(b.s, 2.0 / g, 4e-16 * (2.0 / g)) << g;
+  }
+}
+
 // The first root of g on [0, s_max] by dense sampling and bisection: the independent reference.
 double brute_first_root(const GapFunction& g, double s_max, double ds) {
   double a = 0.0, ga = g.value(0.0);

@@ -7,6 +7,7 @@
 /// k % obstacles, so the paper's bar on the ground has contact 0 at its end r = (−l, 0) (the lower
 /// end at θ = π/4) and contact 1 at r = (+l, 0).
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "fremond/laws/impact_law.hpp"
@@ -59,12 +60,22 @@ struct Scene {
   int point_of(int contact) const { return contact / static_cast<int>(obstacles.size()); }
   int obstacle_of(int contact) const { return contact % static_cast<int>(obstacles.size()); }
 
-  /// Checks every value (mass, inertia > 0; radii ≥ 0; non-zero normals; finite numbers; at least
-  /// one point and one obstacle; at most kMaxSceneContacts contacts; the law for contact_count()
-  /// contacts) and normalises the obstacle normals. Throws InvalidArgument naming the field as the
+  /// Checks every value (mass, inertia > 0 and within a factor 1e24 of each other, so that every
+  /// impact problem's M = diag(m, m, J) passes validate(); radii ≥ 0; non-zero normals; finite
+  /// numbers, the initial energy and contact velocities included; at least one point and one
+  /// obstacle; at most kMaxSceneContacts contacts; the law for contact_count() contacts) and
+  /// normalises the obstacle normals. Throws InvalidArgument naming the field as the
   /// scene file spells it (`body.mass`, `obstacles[1].normal`, `initial.q`, `law.e`, ...).
   void validate();
 };
+
+namespace detail {
+/// Throws InvalidArgument(name, reason + ...) unless M = diag(mass, mass, inertia) passes the
+/// positive-definiteness test every impact problem is put to (laws/impact_problem.hpp): a scene
+/// whose M fails it would be refused at its first impact, after its output had begun.
+void require_usable_mass_matrix(const std::string& name, double mass, double inertia,
+                                const std::string& reason);
+}  // namespace detail
 
 /// The largest number of (point, obstacle) pairs a scene may have (the bounded storage of the
 /// impact log).

@@ -58,7 +58,9 @@ enum class SimulationStatus {
   not_run,         ///< the default.
   completed,       ///< reached options.t_end.
   max_impacts,     ///< stopped after options.max_impacts impacts.
-  impact_failed,   ///< the impact solver did not converge (its report is in the last impact).
+  impact_failed,   ///< the impact solver did not converge (its report is in the last impact), or
+                   ///< a state the run reached overflows what an impact computes (the message
+                   ///< says which value; no impact is logged for it).
   contact_failed,  ///< no persistent-contact mode satisfies the law (Painlevé-type), or more than
                    ///< four contacts closed at once in a Moreau–Jean step.
   event_search_failed,  ///< a free flight's event search spent options.max_gap_evaluations
