@@ -64,7 +64,8 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   out.solver.criterion = StopCriterion::exact;
   out.solver.iterations = lo.pivots;
   out.solver.fallbacks = lo.fallbacks;
-  out.solver.residual = classical_residual(pb, law, out);
+  double beyond_rounding = 0.0;
+  out.solver.residual = classical_residual(pb, law, out, &beyond_rounding);
   if (lo.continuum)
     out.solver.message = "a continuum of solutions (singular contact modes)";
   else if (lo.exhaustive && found > 1)
@@ -79,8 +80,13 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.solver.message = "one solution; uniqueness not checked";
   else
     out.solver.message = "the unique solution";
-  if (out.solver.residual <= options.tolerance) {
+  // Within the tolerance, or within the rounding of the contact velocities' own terms (criterion
+  // `rounding`: a grazing contact of a spinning body, whose D_NA = −6e-4 is summed from terms of
+  // 1.2, cannot be resolved to 1e-13 of D_NA; the paper's bar rocking under Poisson + Coulomb
+  // met one every 20 runs).
+  if (out.solver.residual <= options.tolerance || beyond_rounding <= options.tolerance) {
     out.solver.status = SolverStatus::converged;
+    if (!(out.solver.residual <= options.tolerance)) out.solver.criterion = StopCriterion::rounding;
   } else {
     out.solver.status = SolverStatus::stalled;
     out.solver.message = "exact method, but rounding leaves the law's residual above tolerance";

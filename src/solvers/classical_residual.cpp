@@ -29,7 +29,7 @@ double coulomb(double t, double v, double b, double g) {
 
 template <int N, int C>
 double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                          const ImpactResultT<N, C>& r) {
+                          const ImpactResultT<N, C>& r, double* beyond_rounding) {
   const double inf = std::numeric_limits<double>::infinity();
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
@@ -53,7 +53,13 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   VecT<N> qC(n);
   if (poisson) qC = velocity(r.P_NC, r.P_TC);
 
+  // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
+  // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
+  // ε times that, far above ε|D_NA|.
+  VecT<N> q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
+  if (poisson) q_abs += qC.cwiseAbs();
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
+  VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c);
   for (int i = 0; i < c; ++i) {
     const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
     const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
@@ -64,7 +70,17 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
       const double g = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
       gt = g > 0 ? g : 1.0;
     }
-    auto keep = [&](double x) { worst = std::max(worst, std::isnan(x) ? inf : std::fabs(x)); };
+    // The rounding floor of the contact's terms, as in Frémond's stopping test
+    // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities.
+    double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
+    if (tangential) floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
+    floor *= 16.0 * std::numeric_limits<double>::epsilon();
+    contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
+    auto keep = [&](double x) {
+      const double a = std::isnan(x) ? inf : std::fabs(x);
+      worst = std::max(worst, a);
+      contact_worst(i) = std::max(contact_worst(i), a);
+    };
     if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
       // A zero percussion is exactly right whatever g is (g overflows for |W| near 1e308, and
       // 0·∞ would make the exact answer a NaN residual).
@@ -95,12 +111,19 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     keep(complementarity(dne, pne - e * r.P_NC(i), gn));
     if (tangential) keep(coulomb(pte, dte, mu * pne, gt));
   }
+  if (beyond_rounding) {
+    double beyond = 0.0;
+    for (int i = 0; i < c; ++i)
+      if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale)))
+        beyond = std::max(beyond, contact_worst(i));
+    *beyond_rounding = beyond / v_scale;
+  }
   return worst / v_scale;
 }
 
 #define FREMOND_INSTANTIATE(N, C)                                                   \
   template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&, \
-                                     const ImpactResultT<N, C>&);
+                                     const ImpactResultT<N, C>&, double*);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -19,8 +19,8 @@ enum class SolverStatus {
 
 /// Which method produced the answer.
 enum class SolverMethod {
-  automatic,          ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
-  trivial,            ///< no contact takes part (all D_NA > 0): no percussion.
+  automatic,  ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
+  trivial,    ///< no contact takes part (all D_NA > 0): no percussion.
   closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
   scalar_newton,      ///< one decoupled contact: one scalar root per mode.
   mode_enumeration,   ///< every contact mode tried (small problems; finds all solutions).
@@ -39,9 +39,10 @@ enum class StopCriterion {
   iterations,  ///< the iteration budget.
   nlopt,       ///< NLopt's own criterion (its code is kept in the report).
   rounding,    ///< converged, but the tolerance asked for is below what floating point can
-               ///< resolve: each row above it is within 16ε (|D_A,j| + ½Σ_k|G_jk P_k| + τ_j|P_j|),
-               ///< the rounding of forming it, and within 1e-6 of the velocity scale; the
-               ///< reported residual is then above tolerance.
+             ///< resolve: each row above it is within 16ε (|D_A,j| + ½Σ_k|G_jk P_k| + τ_j|P_j|),
+             ///< the rounding of forming it, and within 1e-6 of the velocity scale (the
+             ///< classical laws: each contact's terms within 16ε (|w| + |W_i|ᵀ(|q̇_A| +
+             ///< |q̇_E|)), classical_residual); the reported residual is then above tolerance.
 };
 
 std::string_view to_string(SolverStatus s);

@@ -21,8 +21,12 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& problem, cons
                                               const SolverOptions& options);
 
 /// The scaled natural-map residual of a classical law at `result` (see laws/residual.hpp).
+/// `beyond_rounding`, if given, receives the same residual without the contacts whose every term
+/// is within its rounding floor, min(16ε (|w| + |W_N,i|ᵀq + |W_T,i|ᵀq), 1e-6 v_scale) with
+/// q = |q̇_A| + |q̇_E| (+ |q̇_C|): the solvers' stopping test, as Frémond's row_rounding_floor.
 template <int MaxDofs, int MaxContacts>
 double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
-                          const ImpactResultT<MaxDofs, MaxContacts>& result);
+                          const ImpactResultT<MaxDofs, MaxContacts>& result,
+                          double* beyond_rounding = nullptr);
 
 }  // namespace fremond::detail
