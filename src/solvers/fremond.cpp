@@ -319,6 +319,67 @@ void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double targe
   if (std::isfinite(rows.residual(Q, z, R)) && rows.converged(Q, R, target)) P = Q;
 }
 
+/// Frémond + Coulomb on two or three contacts: Coulomb's tangential modes enumerated. Each mode
+/// (stick, sliding forwards, backwards per contact) makes the tangential rows smooth, and Newton
+/// on them converges where Newton on Coulomb's law itself stalls at a kink of ‖R‖²: a block
+/// landing flat on both corners, one of them at the edge of its cone (|P_T| = 0.9995 μ P_N).
+/// The modes of `start` (its mean tangential velocities, stick where |z_T| ≤ 1e-8 v_scale) come
+/// first, then the others by the number of contacts changed. A mode's answer is taken when it
+/// passes the stopping test of the law itself. Returns false, P untouched, when no mode does
+/// (ill-posed splits included: two stick rows with the same W_T give Newton one split of many).
+template <int N, int C>
+bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& start, Rows<N, C>& P,
+                             const SolverOptions& opt, MethodOutcome& out) {
+  const auto& cs = *rows.cs;
+  const int a = cs.active;
+  if (!rows.coulomb || a < 2 || a > 3) return false;
+  Rows<N, C> z, R;
+  rows.mean_velocity(start, z);
+  std::array<signed char, 3> guess{}, mode{};
+  for (int k = 0; k < a; ++k) {
+    const double zt = z(a + k);
+    guess[k] = std::fabs(zt) <= 1e-8 * cs.v_scale ? 0 : (zt > 0.0 ? 1 : -1);
+  }
+  constexpr signed char kNext[3] = {1, -1, 0};  // the other two modes of each, in turn
+  const auto other = [&](signed char m, int step) {
+    for (int i = 0; i < step; ++i) m = kNext[m + 1];
+    return m;
+  };
+  FremondRowsT<N, C> fixed = rows;
+  fixed.fixed_modes = mode.data();
+  const double target = opt.tolerance * cs.v_scale;
+  int total = 1;
+  for (int k = 0; k < a; ++k) total *= 3;
+  int sweeps = 0;
+  for (int changed = 0; changed <= a; ++changed)
+    for (int code = 0; code < total; ++code) {
+      // code's base-3 digits: 0 keeps the guess's mode of that contact, 1 and 2 the others.
+      int c = code, n_changed = 0;
+      for (int k = 0; k < a; ++k, c /= 3) {
+        const int digit = c % 3;
+        n_changed += digit != 0;
+        mode[k] = other(guess[k], digit);
+      }
+      if (n_changed != changed) continue;
+      Rows<N, C> Q = start;
+      const MethodOutcome o = semismooth_newton(fixed, Q, opt);
+      sweeps += o.iterations;
+      if (o.status != SolverStatus::converged) continue;
+      const double r = rows.residual(Q, z, R);
+      if (!(std::isfinite(r) && rows.converged(Q, R, target))) continue;
+      P = Q;
+      out.status = SolverStatus::converged;
+      out.criterion = StopCriterion::residual;
+      out.iterations = sweeps;
+      out.residual = r;
+      out.message =
+          "Coulomb's tangential modes enumerated: semismooth Newton on the first mode whose "
+          "answer satisfies the law";
+      return true;
+    }
+  return false;
+}
+
 /// An exact method (one prox per row, mode enumeration) is exact in exact arithmetic; on
 /// ill-conditioned data (cond(M) ~ 1e13 with μ = 1e8) its answer can miss the tolerance. Its
 /// answer P is checked by the shared stopping test and, if it misses, polished by semismooth
@@ -599,6 +660,17 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
         P = PZ;
         final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
         finish(oz, SolverMethod::semismooth_newton);
+        out.solver.fallbacks = tried;
+        return;
+      }
+    }
+    // Coulomb on two or three contacts: its modes enumerated, each smooth for Newton.
+    if (automatic && rows.coulomb) {
+      MethodOutcome om;
+      if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
+        ++tried;
+        final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
+        finish(om, SolverMethod::mode_enumeration);
         out.solver.fallbacks = tried;
         return;
       }

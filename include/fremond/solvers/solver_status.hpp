@@ -23,7 +23,8 @@ enum class SolverMethod {
   trivial,    ///< no contact takes part (all D_NA > 0): no percussion.
   closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
   scalar_newton,      ///< one decoupled contact: one scalar root per mode.
-  mode_enumeration,   ///< every contact mode tried (small problems; finds all solutions).
+  mode_enumeration,   ///< contact modes tried: every one (small problems; finds all solutions),
+                      ///< or, Frémond + Coulomb on 2-3 contacts, until one satisfies the law.
   lemke,              ///< lexicographic Lemke on the law's LCP (classical laws).
   semismooth_newton,  ///< Newton on the prox-based (natural-map) residual, with a line search.
   proximal,           ///< accelerated proximal-gradient iteration in contact space.

@@ -46,6 +46,10 @@ struct FremondRowsT {
                 ///< measures every row's percussion error on the same scale
   bool coulomb = false;
   bool all_prox = true;  ///< every potential has a prox (else those rows use subgradients)
+  /// Coulomb's tangential modes held fixed, one per active contact (the enumeration of modes):
+  /// 0 sticks (z_T = 0, P_T free), +1 slides forwards (P_T = −μ|P_N|), −1 backwards
+  /// (P_T = μ|P_N|). Each mode makes its rows smooth; nullptr: Coulomb's law itself.
+  const signed char* fixed_modes = nullptr;
 
   void init(const CS& space, const ImpactLaw& l) {
     cs = &space;
@@ -98,6 +102,13 @@ struct FremondRowsT {
         return lb;
       }
       return y;
+    }
+    if (coulomb && fixed_modes) {  // prox of the mode's own potential: {0}, or ±b·z linear
+      const int sign = fixed_modes[j - cs->active];
+      if (d) *d = sign == 0 ? 0.0 : 1.0;
+      if (sign == 0) return 0.0;
+      if (dydb) *dydb = -t * sign;
+      return x - sign * t * b;
     }
     if (coulomb) {
       const double th = t * b;  // soft thresholding at τb
