@@ -634,6 +634,27 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       return;
     }
   }
+  // Coulomb's modes on two or three contacts, when asked for by name (automatic reaches them only
+  // where Newton on the law fails, below).
+  if (want == SolverMethod::mode_enumeration && has_prox && rows.coulomb && cs.active >= 2 &&
+      cs.active <= 3) {
+    Rows<N, C> P0 = P;
+    solve_decoupled(rows, P0);
+    if (!P0.allFinite()) P0.setZero();
+    MethodOutcome om;
+    if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
+      final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
+    } else {
+      P = P0;
+      om.status = SolverStatus::stalled;
+      om.criterion = StopCriterion::step;
+      om.message =
+          "Coulomb's tangential modes enumerated: no mode's answer satisfies the law (the "
+          "decoupled guess is returned)";
+    }
+    finish(om, SolverMethod::mode_enumeration);
+    return;
+  }
   if (!automatic && (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
                      want == SolverMethod::mode_enumeration))
     return unsupported("the requested exact method does not apply to this problem");

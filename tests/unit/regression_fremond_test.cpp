@@ -916,6 +916,14 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
   SolverOptions newton;
   newton.method = SolverMethod::semismooth_newton;
   EXPECT_FALSE(solve_impact(pb, law, newton).ok()) << "Newton alone converges: not the case";
+  // The method asked for by name gives the same answer.
+  SolverOptions modes;
+  modes.method = SolverMethod::mode_enumeration;
+  const ImpactResult m = solve_impact(pb, law, modes);
+  ASSERT_TRUE(m.ok()) << m.solver.message;
+  EXPECT_EQ(m.solver.method, SolverMethod::mode_enumeration);
+  EXPECT_NEAR(m.P_T(0), r.P_T(0), 1e-12 * r.P_N(0));
+  EXPECT_NEAR(m.P_N(1), r.P_N(1), 1e-12 * r.P_N(1));
 }
 
 }  // namespace
