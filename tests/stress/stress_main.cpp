@@ -337,7 +337,8 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
       floor = std::max(floor, pb.W_N.col(i).cwiseAbs().dot(spread));
       if (pb.has_tangential()) floor = std::max(floor, pb.W_T.col(i).cwiseAbs().dot(spread));
     }
-    if (v > 0.0) allowed = std::max(allowed, 64 * std::numeric_limits<double>::epsilon() * floor / v);
+    if (v > 0.0)
+      allowed = std::max(allowed, 64 * std::numeric_limits<double>::epsilon() * floor / v);
     if (!(best <= allowed))
       problem = "velocities after impact differ from the reference's by " + fmt(best) +
                 " of the velocity scale (" + std::to_string(sols.size()) +
@@ -348,6 +349,9 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
 }
 
 std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
+  if (law.type == LawType::fremond && law.tangential == TangentialLaw::coulomb)
+    return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt,
+            SolverMethod::mode_enumeration};
   if (law.type == LawType::fremond)
     return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt};
   return {SolverMethod::lemke, SolverMethod::mode_enumeration};
