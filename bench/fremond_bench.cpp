@@ -62,9 +62,11 @@ void check(benchmark::State& state, const FremondCase& c, const SolverOptions& o
   }
   state.counters["err"] = err;
   state.counters["residual"] = residual;
-  state.counters["converged"] = static_cast<double>(converged) / static_cast<double>(c.problems.size());
+  state.counters["converged"] =
+      static_cast<double>(converged) / static_cast<double>(c.problems.size());
   if (!(err <= 1e-9))
-    state.SkipWithError(("an answer marked converged is off the reference by " + std::to_string(err)).c_str());
+    state.SkipWithError(
+        ("an answer marked converged is off the reference by " + std::to_string(err)).c_str());
 }
 
 void BM_Fremond(benchmark::State& state, const FremondCase* c, SolverMethod method) {
@@ -206,16 +208,16 @@ const bool registered = [] {
     // default budget can take minutes (MMA's inner loop, for Coulomb), so the benchmark says so
     // instead (the work-precision CSV has its budget sweep).
     std::vector<SolverMethod> methods{SolverMethod::automatic};
-    for (SolverMethod m : {SolverMethod::closed_form, SolverMethod::scalar_newton,
-                           SolverMethod::mode_enumeration, SolverMethod::semismooth_newton,
-                           SolverMethod::proximal}) {
+    for (SolverMethod m :
+         {SolverMethod::closed_form, SolverMethod::scalar_newton, SolverMethod::mode_enumeration,
+          SolverMethod::semismooth_newton, SolverMethod::proximal}) {
       SolverOptions opt;
       opt.method = m;
       if (solve_impact(c.problems[0], c.law, opt).solver.status != SolverStatus::unsupported)
         methods.push_back(m);
     }
-    bool nlopt_fast = !(c.spec.tangential == FremondLawSpec::Tangential::coulomb &&
-                        c.problems[0].contacts() > 2);
+    bool nlopt_fast =
+        !(c.spec.tangential == FremondLawSpec::Tangential::coulomb && c.problems[0].contacts() > 2);
     for (std::size_t k = 0; k < c.problems.size() && nlopt_fast; ++k) {
       SolverOptions opt;
       opt.method = SolverMethod::nlopt;
@@ -225,12 +227,13 @@ const bool registered = [] {
       const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       nlopt_fast = t < 0.05 && r.solver.native_code != 5;  // 5: NLOPT_MAXEVAL_REACHED
     }
-    if (nlopt_fast) methods.push_back(SolverMethod::nlopt);
+    if (nlopt_fast)
+      methods.push_back(SolverMethod::nlopt);
     else
       benchmark::RegisterBenchmark(("BM_Fremond" + suffix + "/nlopt").c_str(), BM_NloptTooSlow, &c);
     for (SolverMethod m : methods)
-      benchmark::RegisterBenchmark(("BM_Fremond" + suffix + "/" + std::string(to_string(m))).c_str(),
-                                   BM_Fremond, &c, m);
+      benchmark::RegisterBenchmark(
+          ("BM_Fremond" + suffix + "/" + std::string(to_string(m))).c_str(), BM_Fremond, &c, m);
     benchmark::RegisterBenchmark(("BM_FremondLaw" + suffix).c_str(), BM_FremondLaw, &c);
     if (c.problems.size() == 1 && c.problems[0].contacts() == 1 &&
         c.spec.tangential == FremondLawSpec::Tangential::none)

@@ -53,7 +53,9 @@ struct FremondLawSpec {
     }
     return ImpactLaw::fremond(PowerPotential(k_N, p));
   }
-  ref::PowerLaw ref_normal() const { return {static_cast<ref::quad>(k_N), static_cast<ref::quad>(p)}; }
+  ref::PowerLaw ref_normal() const {
+    return {static_cast<ref::quad>(k_N), static_cast<ref::quad>(p)};
+  }
   ref::TangentialLaw ref_tangential() const {
     switch (tangential) {
       case Tangential::dead_zone:
@@ -129,13 +131,15 @@ inline bool shared_decoupled_tangent(const SmallImpactProblem& p) {
 /// Frémond + Coulomb on contacts sharing one tangent t decoupled from the normal rows: P_N from the
 /// normal law alone, then the total tangential percussion S acting along t: z_T = D_TA + g S/2,
 /// g = tᵀM⁻¹t; stick (z_T = 0) when |2 D_TA/g| ≤ μ Σ|P_N,i|, else S = −μ Σ|P_N,i| sign(D_TA).
-inline ReferenceAnswer shared_tangent_coulomb(const SmallImpactProblem& p, const FremondLawSpec& s) {
+inline ReferenceAnswer shared_tangent_coulomb(const SmallImpactProblem& p,
+                                              const FremondLawSpec& s) {
   using ref::quad;
   ReferenceAnswer out;
   const ref::Problem rp = to_reference(p);
   ref::Problem normal_part = rp;
   normal_part.W_T.clear();
-  const ref::Solution sn = ref::fremond_several(normal_part, {s.ref_normal()}, {ref::TangentialLaw::none()});
+  const ref::Solution sn =
+      ref::fremond_several(normal_part, {s.ref_normal()}, {ref::TangentialLaw::none()});
   if (!sn.ok) return out;
   const int n = rp.dofs();
   const ref::QVec& t = rp.W_T[0];
@@ -158,7 +162,8 @@ inline ReferenceAnswer reference_answer(const SmallImpactProblem& p, const Fremo
   ReferenceAnswer out;
   const ref::Problem rp = to_reference(p);
   if (p.contacts() == 1) {
-    for (const ref::Solution& sol : ref::fremond_one_contact(rp, s.ref_normal(), s.ref_tangential()))
+    for (const ref::Solution& sol :
+         ref::fremond_one_contact(rp, s.ref_normal(), s.ref_tangential()))
       out.qdot_E.push_back(sol.qdot_E);
     out.ok = true;  // an empty list: no solution
     return out;
@@ -206,7 +211,8 @@ double relative_error(const SmallImpactProblem& p, const ReferenceAnswer& r, con
 // The problems.
 
 /// The bar's lower end at θ = π/4 (SPEC §5) with the given q̇_A and mass matrix scale of θ.
-inline SmallImpactProblem bar_one_contact(const Eigen::Vector3d& qdot_A, double inertia_scale = 1.0) {
+inline SmallImpactProblem bar_one_contact(const Eigen::Vector3d& qdot_A,
+                                          double inertia_scale = 1.0) {
   SmallImpactProblem p = bar_first_impact(true);
   p.qdot_A = qdot_A;
   p.M(2, 2) *= inertia_scale;
@@ -304,8 +310,10 @@ inline std::vector<FremondCase> fremond_suite(const SuiteOptions& o = {}) {
   const FremondLawSpec coulomb = with_coulomb(kN3, 3.0, kFriction);
   if (o.bar) {
     v.push_back(make_case("bar_first_impact", "fremond_p3", p3, {bar_first_impact(false)}));
-    v.push_back(make_case("bar_first_impact", "fremond_p3_viscous", viscous, {bar_first_impact(true)}));
-    v.push_back(make_case("bar_first_impact", "fremond_p3_coulomb", coulomb, {bar_first_impact(true)}));
+    v.push_back(
+        make_case("bar_first_impact", "fremond_p3_viscous", viscous, {bar_first_impact(true)}));
+    v.push_back(
+        make_case("bar_first_impact", "fremond_p3_coulomb", coulomb, {bar_first_impact(true)}));
   }
   if (o.point_mass) {
     // k_N from a normal restitution of 0.5 at D_NA = −1.
@@ -317,10 +325,13 @@ inline std::vector<FremondCase> fremond_suite(const SuiteOptions& o = {}) {
     }
   }
   if (o.flat_bar) {
-    v.push_back(make_case("flat_bar", "fremond_p2", normal_only(8.0, 2.0), {flat_bar_two_contacts(false)}));
+    v.push_back(
+        make_case("flat_bar", "fremond_p2", normal_only(8.0, 2.0), {flat_bar_two_contacts(false)}));
     v.push_back(make_case("flat_bar", "fremond_p3", p3, {flat_bar_two_contacts(false)}));
-    v.push_back(make_case("flat_bar", "fremond_p3_viscous", viscous, {flat_bar_two_contacts(true)}));
-    v.push_back(make_case("flat_bar", "fremond_p3_coulomb", coulomb, {flat_bar_two_contacts(true)}));
+    v.push_back(
+        make_case("flat_bar", "fremond_p3_viscous", viscous, {flat_bar_two_contacts(true)}));
+    v.push_back(
+        make_case("flat_bar", "fremond_p3_coulomb", coulomb, {flat_bar_two_contacts(true)}));
   }
   if (o.random) {
     std::vector<SmallImpactProblem> frictionless, friction;
@@ -336,22 +347,25 @@ inline std::vector<FremondCase> fremond_suite(const SuiteOptions& o = {}) {
   if (o.hard) {
     const Eigen::Vector3d qA = bar_first_impact(true).qdot_A;  // (2, −3.56, 0)
     // p and q near 1, r = 0 (the dead zone is a kink at 0).
-    v.push_back(make_case("hard_p1.01_q1.01", "fremond_viscous", with_dead_zone(1.0, 1.01, 1.0, 1.01, 0.0),
-                          {bar_one_contact(qA)}, true));
+    v.push_back(make_case("hard_p1.01_q1.01", "fremond_viscous",
+                          with_dead_zone(1.0, 1.01, 1.0, 1.01, 0.0), {bar_one_contact(qA)}, true));
     // A steep normal law: p = 50.
     v.push_back(make_case("hard_p50", "fremond_viscous", with_dead_zone(1e6, 50.0, 1.5, 3.0, 0.2),
                           {bar_one_contact(qA)}, true));
     // Slow: velocities of 1e-10, r above every velocity (the contact sticks in the dead zone).
-    v.push_back(make_case("hard_v1e-10_r_above", "fremond_viscous", with_dead_zone(kN3, 3.0, 1.5, 2.0, 1.0),
+    v.push_back(make_case("hard_v1e-10_r_above", "fremond_viscous",
+                          with_dead_zone(kN3, 3.0, 1.5, 2.0, 1.0),
                           {bar_one_contact(qA * (1e-10 / 3.5613))}, true));
     // Fast: velocities of 1e6 with soft laws (k = 1e-6) and q = 1.5.
-    v.push_back(make_case("hard_v1e6_k1e-6", "fremond_viscous", with_dead_zone(1e-6, 3.0, 1e-6, 1.5, 0.0),
+    v.push_back(make_case("hard_v1e6_k1e-6", "fremond_viscous",
+                          with_dead_zone(1e-6, 3.0, 1e-6, 1.5, 0.0),
                           {bar_one_contact(qA * (1e6 / 3.5613))}, true));
     // Stiff: k = 1e6, p = 1.5, Coulomb.
     v.push_back(make_case("hard_k1e6", "fremond_coulomb", with_coulomb(1e6, 1.5, 0.3),
                           {bar_one_contact(qA)}, true));
     // A mass ratio of 1e6 (the bar's rotational inertia divided by 1e6), spinning.
-    v.push_back(make_case("hard_mass_ratio_1e6", "fremond_viscous", with_dead_zone(kN3, 3.0, 1.5, 2.0, 0.2),
+    v.push_back(make_case("hard_mass_ratio_1e6", "fremond_viscous",
+                          with_dead_zone(kN3, 3.0, 1.5, 2.0, 0.2),
                           {bar_one_contact(Eigen::Vector3d(2.0, -3.5613, 5.0), 1e-6)}, true));
   }
   return v;

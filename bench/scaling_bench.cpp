@@ -39,12 +39,16 @@ struct Law {
 const std::vector<Law>& laws() {
   static const std::vector<Law> all = [] {
     const double k3 = bar_fremond_k_normal(3.0);
-    const FremondLawSpec p3 = normal_only(k3, 3.0), viscous = with_dead_zone(k3, 3.0, 1.5, 2.0, 0.2);
+    const FremondLawSpec p3 = normal_only(k3, 3.0),
+                         viscous = with_dead_zone(k3, 3.0, 1.5, 2.0, 0.2);
     return std::vector<Law>{
         {"fremond_p3", p3.law(), false, p3, true},
         {"fremond_p3_viscous", viscous.law(), true, viscous, true},
-        {"fremond_p3_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), kFriction), true,
-         {}, false},
+        {"fremond_p3_coulomb",
+         ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), kFriction),
+         true,
+         {},
+         false},
         {"newton", ImpactLaw::newton(kRestitution), false, {}, false},
         {"newton_coulomb", ImpactLaw::newton_coulomb(kRestitution, kFriction), true, {}, false}};
   }();
@@ -65,9 +69,8 @@ double reference_error(const Problem& p, const Law& law, const Vec& qdot_E) {
                                  ? Eigen::MatrixXd(p.dofs(), 0)
                                  : Eigen::MatrixXd(p.W_T);
   const Eigen::VectorXd qA = p.qdot_A;
-  const ref::Solution s =
-      ref::fremond_several(ref::problem_from(M, WN, WT, qA), {law.spec.ref_normal()},
-                           {law.spec.ref_tangential()});
+  const ref::Solution s = ref::fremond_several(
+      ref::problem_from(M, WN, WT, qA), {law.spec.ref_normal()}, {law.spec.ref_tangential()});
   if (!s.ok) return std::nan("");
   const int n = p.dofs();
   ref::quad num = 0, den = 0;
@@ -76,7 +79,8 @@ double reference_error(const Problem& p, const Law& law, const Vec& qdot_E) {
       const ref::quad di = static_cast<ref::quad>(qdot_E(i)) - s.qdot_E[i];
       const ref::quad dj = static_cast<ref::quad>(qdot_E(j)) - s.qdot_E[j];
       num += di * static_cast<ref::quad>(M(i, j)) * dj;
-      den += static_cast<ref::quad>(qA(i)) * static_cast<ref::quad>(M(i, j)) * static_cast<ref::quad>(qA(j));
+      den += static_cast<ref::quad>(qA(i)) * static_cast<ref::quad>(M(i, j)) *
+             static_cast<ref::quad>(qA(j));
     }
   return static_cast<double>(sqrtq(num / den));
 }
@@ -106,7 +110,8 @@ void solve_loop(benchmark::State& state, const std::vector<Problem>& problems, c
   if (law.has_reference) state.counters["err"] = err;
   state.counters["contacts"] = problems[0].contacts();
   state.counters["dofs"] = problems[0].dofs();
-  state.counters["converged"] = static_cast<double>(converged) / static_cast<double>(problems.size());
+  state.counters["converged"] =
+      static_cast<double>(converged) / static_cast<double>(problems.size());
   state.counters["residual"] = residual;
   state.SetLabel(label + " method=" + method);
 }
@@ -123,8 +128,10 @@ void BM_Contacts(benchmark::State& state, const Law* law, bool small) {
   const ImpactProblem p = plate_many_contacts(c, law->friction);
   const std::string label = bench_label(plate_name(c), law->name) + " stage=solve_impact" +
                             (small ? " storage=small" : "");
-  if (small) solve_loop(state, std::vector<SmallImpactProblem>{to_small(p)}, *law, label);
-  else solve_loop(state, std::vector<ImpactProblem>{p}, *law, label);
+  if (small)
+    solve_loop(state, std::vector<SmallImpactProblem>{to_small(p)}, *law, label);
+  else
+    solve_loop(state, std::vector<ImpactProblem>{p}, *law, label);
 }
 
 std::vector<ImpactProblem> random_set(int n, bool friction) {
@@ -169,7 +176,8 @@ void BM_Throughput(benchmark::State& state, const Law* law) {
       benchmark::DoNotOptimize(r.qdot_E.data());
     }
   }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(per));
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(per));
   state.counters["failed"] = static_cast<double>(failed);
   state.SetLabel("problem=bar_batch4096 law=" + law->name + " stage=solve_impact");
 }
@@ -192,8 +200,8 @@ void assemble(const ImpactProblem& p, bool friction, Eigen::MatrixXd& G, Eigen::
 /// friction-contact problem (q = ((1 + e) D_NA, D_TA) per contact), NSGS. There is no closed form
 /// here: `err` is the distance of Siconos's q̇_E to ours (‖Δq̇‖_M/‖q̇_A‖_M; q̇_E is unique for these
 /// laws and data even where the percussions are not).
-void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& problems, bool friction,
-                  const std::string& label) {
+void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& problems,
+                  bool friction, const std::string& label) {
   const int c = problems[0].contacts(), n = friction ? 2 * c : c;
   Eigen::MatrixXd G;
   Eigen::VectorXd D, q(n), z(n), w(n);
@@ -201,8 +209,10 @@ void siconos_loop(benchmark::State& state, const std::vector<ImpactProblem>& pro
   siconos::SolveInfo info;
   std::unique_ptr<siconos::Lcp> lcp;
   std::unique_ptr<siconos::FrictionContact2d> fc;
-  if (friction) fc = std::make_unique<siconos::FrictionContact2d>(c, siconos::Fc2dSolver::nsgs, 1e-12);
-  else lcp = std::make_unique<siconos::Lcp>(c, siconos::LcpSolver::lemke);
+  if (friction)
+    fc = std::make_unique<siconos::FrictionContact2d>(c, siconos::Fc2dSolver::nsgs, 1e-12);
+  else
+    lcp = std::make_unique<siconos::Lcp>(c, siconos::LcpSolver::lemke);
   int failed = 0, runs = 0;
   std::size_t k = 0;
   auto solve = [&](const ImpactProblem& p) {
@@ -273,8 +283,9 @@ const bool registered = [] {
   }
 #ifdef FREMOND_HAVE_SICONOS
   for (const bool friction : {false, true}) {
-    benchmark::RegisterBenchmark(friction ? "BM_Siconos_Contacts/newton_coulomb" : "BM_Siconos_Contacts/newton",
-                                 BM_Siconos_Contacts, friction)
+    benchmark::RegisterBenchmark(
+        friction ? "BM_Siconos_Contacts/newton_coulomb" : "BM_Siconos_Contacts/newton",
+        BM_Siconos_Contacts, friction)
         ->RangeMultiplier(2)
         ->Range(1, 32);
     benchmark::RegisterBenchmark(

@@ -1,12 +1,13 @@
-// Work-precision of Frémond's solvers and of the simulation (issue 6, items 2 and 3), written as CSV:
+// Work-precision of Frémond's solvers and of the simulation (issue 6, items 2 and 3), written as
+// CSV:
 //
 //   work_precision [--out DIR] [--quick] [--impacts-only | --simulation-only]
 //
 //  - DIR/work_precision.csv: per method, case and tolerance (NLopt: also per evaluation budget),
 //    the time per solve and the actual error against the quad reference (work_precision.hpp);
 //  - DIR/simulation_work_precision.csv: Moreau-Jean on the paper's bar against the step size, its
-//    energy and trajectory errors relative to the event-driven run of the same law, and its cost per
-//    simulated second; with Siconos, Siconos's Moreau-Jean on the same scene at the same steps.
+//    energy and trajectory errors relative to the event-driven run of the same law, and its cost
+//    per simulated second; with Siconos, Siconos's Moreau-Jean on the same scene at the same steps.
 //
 // --quick runs fewer tolerances and shorter timings (a smoke run, not for the report).
 #include <chrono>
@@ -72,14 +73,14 @@ struct SimRow {
   std::string code, law;
   double step = 0.0;
   long steps = 0, impacts = 0;
-  double cpu_s = 0.0;                       ///< CPU time of one run
+  double cpu_s = 0.0;  ///< CPU time of one run
   double ns_per_step = std::nan("");
   double ns_per_simulated_second = 0.0;
-  double energy_error = std::nan("");       ///< max |E − E_ref| on the grid / E(0)
-  double energy_final_error = std::nan(""); ///< |E(T) − E_ref(T)| / E(0)
-  double trajectory_error = std::nan("");   ///< max over the grid of |q − q_ref|∞ (θ times l), m
+  double energy_error = std::nan("");        ///< max |E − E_ref| on the grid / E(0)
+  double energy_final_error = std::nan("");  ///< |E(T) − E_ref(T)| / E(0)
+  double trajectory_error = std::nan("");  ///< max over the grid of |q − q_ref|∞ (θ times l), m
   double early_trajectory_error = std::nan("");  ///< the same up to t_early
-  double final_state_error = std::nan("");  ///< |q(T) − q_ref(T)|∞ (θ times l), m
+  double final_state_error = std::nan("");       ///< |q(T) − q_ref(T)|∞ (θ times l), m
   std::string status;
 };
 
@@ -90,9 +91,9 @@ void write_sim_csv(const std::string& path, const std::vector<SimRow>& rows) {
   f << std::setprecision(6);
   for (const SimRow& r : rows)
     f << r.code << "," << r.law << "," << r.step << "," << r.steps << "," << r.impacts << ","
-      << r.cpu_s << "," << r.ns_per_step << "," << r.ns_per_simulated_second << "," << r.energy_error
-      << "," << r.energy_final_error << "," << r.trajectory_error << "," << r.early_trajectory_error
-      << "," << r.final_state_error << "," << r.status << "\n";
+      << r.cpu_s << "," << r.ns_per_step << "," << r.ns_per_simulated_second << ","
+      << r.energy_error << "," << r.energy_final_error << "," << r.trajectory_error << ","
+      << r.early_trajectory_error << "," << r.final_state_error << "," << r.status << "\n";
 }
 
 double q_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -202,8 +203,8 @@ void simulation_sweep(PaperLaw law, const std::vector<double>& steps, double t_e
       r.ns_per_simulated_second = 1e9 * best / t_end;
       r.energy_final_error = std::fabs(run.energy_final - er.energy_final) / E0;
       if (run.q_final.size() == 3)
-        r.final_state_error = q_distance(
-            Eigen::Vector3d(run.q_final[0], run.q_final[1], run.q_final[2]), er.state.q);
+        r.final_state_error =
+            q_distance(Eigen::Vector3d(run.q_final[0], run.q_final[1], run.q_final[2]), er.state.q);
       r.status = "completed";
       rows.push_back(r);
     }
@@ -227,7 +228,8 @@ int main(int argc, char** argv) {
     } else if (a == "--simulation-only") {
       impacts = false;
     } else {
-      std::cerr << "usage: work_precision [--out DIR] [--quick] [--impacts-only | --simulation-only]\n";
+      std::cerr
+          << "usage: work_precision [--out DIR] [--quick] [--impacts-only | --simulation-only]\n";
       return 2;
     }
   }
@@ -247,7 +249,8 @@ int main(int argc, char** argv) {
         quick ? std::vector<double>{1e-2, 1e-3}
               : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
     const double min_s = quick ? 0.0 : 0.2;
-    for (PaperLaw law : {PaperLaw::newton_coulomb, PaperLaw::fremond_coulomb, PaperLaw::fremond_viscous}) {
+    for (PaperLaw law :
+         {PaperLaw::newton_coulomb, PaperLaw::fremond_coulomb, PaperLaw::fremond_viscous}) {
       std::cerr << "simulation work-precision: " << to_string(law) << "\n";
       simulation_sweep(law, steps, 3.0, 0.5, min_s, rows);
     }

@@ -37,19 +37,21 @@ struct Point {
   double tolerance = 0.0;  ///< the requested tolerance (NLopt: nlopt_tolerance)
   int budget = 0;          ///< NLopt's evaluation budget; 0 elsewhere (the default budgets)
   double ns_per_solve = 0.0;
-  double rel_error = 0.0;  ///< the largest over the case's problems (NaN: no reference)
-  double residual = 0.0;   ///< the largest law residual the solver reported
-  std::string status;      ///< the worst status over the case's problems
-  std::string answered_by; ///< the methods that produced the answers, e.g. "semismooth_newton*15|proximal*1"
-  double iterations = 0;   ///< mean over the problems
-  bool budget_hit = false; ///< NLopt stopped on its evaluation budget on some problem
-  int problems = 0;        ///< problems of the case solved (fewer when a solve was too slow)
-  double cond_G = 0.0;     ///< the largest κ(G) over the case's problems (non-zero eigenvalues)
+  double rel_error = 0.0;   ///< the largest over the case's problems (NaN: no reference)
+  double residual = 0.0;    ///< the largest law residual the solver reported
+  std::string status;       ///< the worst status over the case's problems
+  std::string answered_by;  ///< the methods that produced the answers, e.g.
+                            ///< "semismooth_newton*15|proximal*1"
+  double iterations = 0;    ///< mean over the problems
+  bool budget_hit = false;  ///< NLopt stopped on its evaluation budget on some problem
+  int problems = 0;         ///< problems of the case solved (fewer when a solve was too slow)
+  double cond_G = 0.0;      ///< the largest κ(G) over the case's problems (non-zero eigenvalues)
   double max_solve_seconds = 0.0;  ///< the slowest single solve (untimed pass)
 };
 
 struct Options {
-  std::vector<double> tolerances{1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14, 1e-15, 1e-16};
+  std::vector<double> tolerances{1e-2,  1e-3,  1e-4,  1e-6,  1e-8, 1e-10,
+                                 1e-12, 1e-13, 1e-14, 1e-15, 1e-16};
   std::vector<double> nlopt_tolerances{1e-4, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12};
   std::vector<int> nlopt_budgets{5, 10, 20, 50, 100, 200, 500, 1000, 5000};
   bool nlopt = true;
@@ -127,11 +129,12 @@ inline bool measure(const FremondCase& c, const SolverOptions& opt, Point& pt,
   for (std::size_t k = 0; k < c.problems.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     const SmallImpactResult r = solve_impact(c.problems[k], c.law, opt);
-    pt.max_solve_seconds = std::max(
-        pt.max_solve_seconds,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    pt.max_solve_seconds =
+        std::max(pt.max_solve_seconds,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (r.solver.status == SolverStatus::unsupported) return false;
-    if (r.solver.method == SolverMethod::nlopt && r.solver.native_code == 5 /* NLOPT_MAXEVAL_REACHED */)
+    if (r.solver.method == SolverMethod::nlopt &&
+        r.solver.native_code == 5 /* NLOPT_MAXEVAL_REACHED */)
       pt.budget_hit = true;
     if (status_rank(r.solver.status) > status_rank(worst)) worst = r.solver.status;
     by[static_cast<int>(r.solver.method)]++;
@@ -225,7 +228,7 @@ inline std::vector<Point> run(const std::vector<FremondCase>& cases, const Optio
     pt.budget = budget;
     if (!measure(c, opt, pt, o.max_solve_seconds)) return false;
     pt.ns_per_solve = pt.max_solve_seconds > o.max_solve_seconds ? 1e9 * pt.max_solve_seconds
-                                                                  : time_case(c, opt, o);
+                                                                 : time_case(c, opt, o);
     last = pt;
     if (progress)
       *progress << c.problem << " " << c.law_name << " " << pt.method << " tol=" << tol
@@ -238,11 +241,11 @@ inline std::vector<Point> run(const std::vector<FremondCase>& cases, const Optio
   for (const FremondCase& c : cases) {
     cond = condition_of_G(c);
     const double t0 = SolverOptions{}.tolerance;
-    for (SolverMethod m : {SolverMethod::closed_form, SolverMethod::scalar_newton,
-                           SolverMethod::mode_enumeration})
+    for (SolverMethod m :
+         {SolverMethod::closed_form, SolverMethod::scalar_newton, SolverMethod::mode_enumeration})
       add(c, m, options_for(m, t0), t0, 0);
-    for (SolverMethod m : {SolverMethod::automatic, SolverMethod::semismooth_newton,
-                           SolverMethod::proximal})
+    for (SolverMethod m :
+         {SolverMethod::automatic, SolverMethod::semismooth_newton, SolverMethod::proximal})
       for (double tol : o.tolerances)
         if (!add(c, m, options_for(m, tol), tol, 0)) break;
     if (!o.nlopt) continue;
@@ -300,8 +303,7 @@ inline void write_csv(std::ostream& os, const std::vector<Point>& points) {
          << p.tolerance << "," << p.budget << "," << p.ns_per_solve << ",";
     line << std::setprecision(4) << p.rel_error << "," << p.residual << ",";
     line << p.status << "," << p.answered_by << "," << std::setprecision(6) << p.iterations << ","
-         << (p.budget_hit ? 1 : 0) << "," << p.problems << "," << std::setprecision(3)
-         << p.cond_G;
+         << (p.budget_hit ? 1 : 0) << "," << p.problems << "," << std::setprecision(3) << p.cond_G;
     os << line.str() << "\n";
   }
 }

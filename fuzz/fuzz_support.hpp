@@ -56,7 +56,8 @@ template <int N, int C>
 void check(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const SolverOptions& options,
            const ImpactResultT<N, C>& r, const char* where) {
   const std::string broken = robust::check_result(pb, law, options, r);
-  if (broken.empty() || robust::match_known(known_issues(), robust::law_family(law), broken)) return;
+  if (broken.empty() || robust::match_known(known_issues(), robust::law_family(law), broken))
+    return;
   fail(std::string(where) + ": " + broken + "\n  law: " + law.describe());
 }
 

@@ -2,8 +2,8 @@
 // way, so the fuzzer spends its time in the solvers).
 //
 // Decoding (FuzzedDataProvider): sizes n ≤ 6, c ≤ 4; M = L Lᵀ with diagonal scales over 12 decades;
-// contact directions with exact degeneracies on request (a zero column, a repeated column, W_T equal
-// to W_N, a direction along a coordinate); velocities from 1e-12 to 1e8; every law with its
+// contact directions with exact degeneracies on request (a zero column, a repeated column, W_T
+// equal to W_N, a direction along a coordinate); velocities from 1e-12 to 1e8; every law with its
 // parameters over their valid ranges and the edge values (e = 0, 1; μ = 0, huge; p, q near 1);
 // built-in and composite potentials, and a user potential with value and subgradient only (the
 // NLopt path); a method, forced or automatic. One input in eight takes raw doubles instead (NaN,
@@ -16,10 +16,10 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 
 #include "fuzz_support.hpp"
 #include "stress/problem_json.hpp"
@@ -46,25 +46,36 @@ class Decoder {
 
   double restitution() {
     switch (integer(0, 3)) {
-      case 0: return 0.0;
-      case 1: return 1.0;
-      default: return in(0.0, 1.0);
+      case 0:
+        return 0.0;
+      case 1:
+        return 1.0;
+      default:
+        return in(0.0, 1.0);
     }
   }
   double friction() {
     switch (integer(0, 5)) {
-      case 0: return 0.0;
-      case 1: return 1e6;   // μ → ∞
-      case 2: return 1e15;
-      default: return decades(-3.0, 3.0);
+      case 0:
+        return 0.0;
+      case 1:
+        return 1e6;  // μ → ∞
+      case 2:
+        return 1e15;
+      default:
+        return decades(-3.0, 3.0);
     }
   }
   double exponent() {  // p, q > 1
     switch (integer(0, 4)) {
-      case 0: return 2.0;
-      case 1: return 1.0 + 1e-6;
-      case 2: return 1.0 + in(1e-3, 0.1);
-      default: return 1.0 + in(1e-2, 9.0);
+      case 0:
+        return 2.0;
+      case 1:
+        return 1.0 + 1e-6;
+      case 2:
+        return 1.0 + in(1e-3, 0.1);
+      default:
+        return 1.0 + in(1e-2, 9.0);
     }
   }
   double stiffness() { return integer(0, 9) == 0 ? 0.0 : decades(-6.0, 6.0); }
@@ -82,13 +93,16 @@ class Decoder {
         const PowerPotential a(stiffness(), exponent()), b(stiffness(), exponent());
         return a + b;
       }
-      case 1: return decades(-3.0, 3.0) * PowerPotential(stiffness(), exponent());
-      default: return std::make_unique<PowerPotential>(stiffness(), exponent());
+      case 1:
+        return decades(-3.0, 3.0) * PowerPotential(stiffness(), exponent());
+      default:
+        return std::make_unique<PowerPotential>(stiffness(), exponent());
     }
   }
   PotentialPtr tangential_potential() {
     switch (integer(0, 5)) {
-      case 0: return std::make_unique<AbsoluteValuePotential>(decades(-3.0, 3.0));
+      case 0:
+        return std::make_unique<AbsoluteValuePotential>(decades(-3.0, 3.0));
       case 1: {  // a user's potential with value and subgradient only: the NLopt fallback
         const double k = decades(-3.0, 3.0);
         CallablePotentialParts parts;
@@ -98,8 +112,8 @@ class Decoder {
         return std::make_unique<CallablePotential>(std::move(parts));
       }
       default:
-        return std::make_unique<DeadZonePowerPotential>(stiffness(), exponent(),
-                                                        integer(0, 2) == 0 ? 0.0 : decades(-6.0, 2.0));
+        return std::make_unique<DeadZonePowerPotential>(
+            stiffness(), exponent(), integer(0, 2) == 0 ? 0.0 : decades(-6.0, 2.0));
     }
   }
   PerContactPotential potentials(int c, PotentialPtr (Decoder::*make)()) {
@@ -111,15 +125,18 @@ class Decoder {
 
   ImpactLaw law(int c) {
     switch (integer(0, 6)) {
-      case 0: return ImpactLaw::newton(per_contact(c, &Decoder::restitution));
-      case 1: return ImpactLaw::poisson(per_contact(c, &Decoder::restitution));
+      case 0:
+        return ImpactLaw::newton(per_contact(c, &Decoder::restitution));
+      case 1:
+        return ImpactLaw::poisson(per_contact(c, &Decoder::restitution));
       case 2:
         return ImpactLaw::newton_coulomb(per_contact(c, &Decoder::restitution),
                                          per_contact(c, &Decoder::friction));
       case 3:
         return ImpactLaw::poisson_coulomb(per_contact(c, &Decoder::restitution),
                                           per_contact(c, &Decoder::friction));
-      case 4: return ImpactLaw::fremond(potentials(c, &Decoder::normal_potential));
+      case 4:
+        return ImpactLaw::fremond(potentials(c, &Decoder::normal_potential));
       case 5:
         return ImpactLaw::fremond(potentials(c, &Decoder::normal_potential),
                                   potentials(c, &Decoder::tangential_potential));
@@ -145,10 +162,25 @@ class Decoder {
     pb.M = M;
     auto direction = [&](Eigen::MatrixXd& W, int j, const Eigen::MatrixXd* other) {
       switch (integer(0, 7)) {
-        case 0: W.col(j).setZero(); break;                                 // a contact that cannot move
-        case 1: if (j > 0) { W.col(j) = W.col(j - 1); break; } [[fallthrough]];  // a repeated row
-        case 2: if (other) { W.col(j) = other->col(j); break; } [[fallthrough]];  // W_T = W_N
-        case 3: W.col(j).setZero(); W(integer(0, n - 1), j) = in(-2.0, 2.0); break;
+        case 0:
+          W.col(j).setZero();
+          break;  // a contact that cannot move
+        case 1:
+          if (j > 0) {
+            W.col(j) = W.col(j - 1);
+            break;
+          }
+          [[fallthrough]];  // a repeated row
+        case 2:
+          if (other) {
+            W.col(j) = other->col(j);
+            break;
+          }
+          [[fallthrough]];  // W_T = W_N
+        case 3:
+          W.col(j).setZero();
+          W(integer(0, n - 1), j) = in(-2.0, 2.0);
+          break;
         default:
           for (int i = 0; i < n; ++i) W(i, j) = in(-1.0, 1.0);
       }
@@ -181,9 +213,10 @@ class Decoder {
     SolverOptions o;
     if (flag()) {
       static constexpr SolverMethod methods[] = {
-          SolverMethod::trivial,          SolverMethod::closed_form, SolverMethod::scalar_newton,
-          SolverMethod::mode_enumeration, SolverMethod::lemke,       SolverMethod::semismooth_newton,
-          SolverMethod::proximal,         SolverMethod::nlopt};
+          SolverMethod::trivial,       SolverMethod::closed_form,
+          SolverMethod::scalar_newton, SolverMethod::mode_enumeration,
+          SolverMethod::lemke,         SolverMethod::semismooth_newton,
+          SolverMethod::proximal,      SolverMethod::nlopt};
       o.method = methods[integer(0, 7)];
     }
     o.check_uniqueness = flag();

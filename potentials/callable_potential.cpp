@@ -8,7 +8,8 @@ namespace fremond {
 
 CallablePotential::CallablePotential(CallablePotentialParts parts) : parts_(std::move(parts)) {
   if (parts_.name.empty()) throw InvalidArgument("name", "a potential needs a non-empty name");
-  if (!parts_.value) throw InvalidArgument(parts_.name + ".value", "the value callable is required");
+  if (!parts_.value)
+    throw InvalidArgument(parts_.name + ".value", "the value callable is required");
   if (!parts_.subgradient)
     throw InvalidArgument(parts_.name + ".subgradient", "the subgradient callable is required");
 }

@@ -109,7 +109,8 @@ ConformanceReport check_potential(const Potential& f, const ConformanceOptions& 
         if (caps.conjugate && std::isinf(f.conjugate(s))) {
           // s = (x − y)/τ carries the rounding of x − y; step it back by that much, so that a
           // conjugate that is an indicator (|s| ≤ b) is not judged on the last bits.
-          const double round = 16 * std::numeric_limits<double>::epsilon() * (std::fabs(x) + std::fabs(y)) / tau;
+          const double round =
+              16 * std::numeric_limits<double>::epsilon() * (std::fabs(x) + std::fabs(y)) / tau;
           s -= std::copysign(std::min(round, std::fabs(s)), s);
         }
         const double scale = 1.0 + std::fabs(x);
@@ -132,17 +133,18 @@ ConformanceReport check_potential(const Potential& f, const ConformanceOptions& 
           const double fd = (f.prox(x + h, tau) - f.prox(x - h, tau)) / (2 * h);
           // At kinks of the prox the one-sided slopes differ; allow either of them.
           const double fr = (f.prox(x + h, tau) - y) / h, fl = (y - f.prox(x - h, tau)) / h;
-          const bool near = std::fabs(fd - d) <= 1e-3 || std::fabs(fr - d) <= 1e-3 ||
-                            std::fabs(fl - d) <= 1e-3;
+          const bool near =
+              std::fabs(fd - d) <= 1e-3 || std::fabs(fr - d) <= 1e-3 || std::fabs(fl - d) <= 1e-3;
           check(near, "prox derivative " + fmt(d) + " disagrees with the finite difference " +
                           fmt(fd) + " at x=" + fmt(x) + ", tau=" + fmt(tau));
         }
         if (caps.conjugate) {
           const double gap = f.fenchel_young_gap(y, s);
           const double gscale = 1.0 + std::fabs(s * y) + std::fabs(f.value(y));
-          rep.max_fenchel_young_gap_at_prox = std::max(rep.max_fenchel_young_gap_at_prox, gap / gscale);
-          check(std::fabs(gap) <= 1e-8 * gscale, "Fenchel-Young gap " + fmt(gap) +
-                                                     " at the prox point of x=" + fmt(x));
+          rep.max_fenchel_young_gap_at_prox =
+              std::max(rep.max_fenchel_young_gap_at_prox, gap / gscale);
+          check(std::fabs(gap) <= 1e-8 * gscale,
+                "Fenchel-Young gap " + fmt(gap) + " at the prox point of x=" + fmt(x));
           const double u = conjugate_prox_by_search(f, x / tau, tau, s);
           const double err = std::fabs(u - s) * tau / scale;
           rep.max_moreau_error = std::max(rep.max_moreau_error, err);
@@ -159,8 +161,9 @@ ConformanceReport check_potential(const Potential& f, const ConformanceOptions& 
     for (std::size_t i = 0; i + 1 < pts.size(); i += 2) {
       const double z = pts[i], s = pts[i + 1];
       const double gap = f.fenchel_young_gap(z, s);
-      check(gap >= -tol * (1.0 + std::fabs(s * z)),
-            "Fenchel-Young inequality fails: gap " + fmt(gap) + " at z=" + fmt(z) + ", s=" + fmt(s));
+      check(
+          gap >= -tol * (1.0 + std::fabs(s * z)),
+          "Fenchel-Young inequality fails: gap " + fmt(gap) + " at z=" + fmt(z) + ", s=" + fmt(s));
     }
   }
   return rep;

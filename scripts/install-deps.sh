@@ -9,6 +9,7 @@ packages=(
   pybind11-dev python3-dev python3-pybind11 python3-numpy python3-matplotlib python3-pil
   python3-nbclient python3-nbformat python3-ipykernel python3-pytest
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer and clang's sanitizer runtimes
+  clang-format           # scripts/check-format.sh (the ctest test "format")
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -25,13 +25,13 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/scene_file.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "output.hpp"
 
 namespace fremond::cli {
 

@@ -10,36 +10,37 @@ namespace fremond {
 namespace {
 using detail::EnumNames;
 constexpr EnumNames<LawType, 5> kLawTypes{{{LawType::newton, "newton"},
-                                          {LawType::poisson, "poisson"},
-                                          {LawType::newton_coulomb, "newton_coulomb"},
-                                          {LawType::poisson_coulomb, "poisson_coulomb"},
-                                          {LawType::fremond, "fremond"}}};
+                                           {LawType::poisson, "poisson"},
+                                           {LawType::newton_coulomb, "newton_coulomb"},
+                                           {LawType::poisson_coulomb, "poisson_coulomb"},
+                                           {LawType::fremond, "fremond"}}};
 constexpr EnumNames<TangentialLaw, 3> kTangential{{{TangentialLaw::none, "none"},
-                                                  {TangentialLaw::potential, "potential"},
-                                                  {TangentialLaw::coulomb, "coulomb"}}};
+                                                   {TangentialLaw::potential, "potential"},
+                                                   {TangentialLaw::coulomb, "coulomb"}}};
 constexpr EnumNames<SolverStatus, 7> kStatus{{{SolverStatus::not_run, "not_run"},
-                                             {SolverStatus::converged, "converged"},
-                                             {SolverStatus::max_iterations, "max_iterations"},
-                                             {SolverStatus::stalled, "stalled"},
-                                             {SolverStatus::no_solution, "no_solution"},
-                                             {SolverStatus::failed, "failed"},
-                                             {SolverStatus::unsupported, "unsupported"}}};
-constexpr EnumNames<SolverMethod, 9> kMethods{{{SolverMethod::automatic, "automatic"},
-                                              {SolverMethod::trivial, "trivial"},
-                                              {SolverMethod::closed_form, "closed_form"},
-                                              {SolverMethod::scalar_newton, "scalar_newton"},
-                                              {SolverMethod::mode_enumeration, "mode_enumeration"},
-                                              {SolverMethod::lemke, "lemke"},
-                                              {SolverMethod::semismooth_newton, "semismooth_newton"},
-                                              {SolverMethod::proximal, "proximal"},
-                                              {SolverMethod::nlopt, "nlopt"}}};
+                                              {SolverStatus::converged, "converged"},
+                                              {SolverStatus::max_iterations, "max_iterations"},
+                                              {SolverStatus::stalled, "stalled"},
+                                              {SolverStatus::no_solution, "no_solution"},
+                                              {SolverStatus::failed, "failed"},
+                                              {SolverStatus::unsupported, "unsupported"}}};
+constexpr EnumNames<SolverMethod, 9> kMethods{
+    {{SolverMethod::automatic, "automatic"},
+     {SolverMethod::trivial, "trivial"},
+     {SolverMethod::closed_form, "closed_form"},
+     {SolverMethod::scalar_newton, "scalar_newton"},
+     {SolverMethod::mode_enumeration, "mode_enumeration"},
+     {SolverMethod::lemke, "lemke"},
+     {SolverMethod::semismooth_newton, "semismooth_newton"},
+     {SolverMethod::proximal, "proximal"},
+     {SolverMethod::nlopt, "nlopt"}}};
 constexpr EnumNames<StopCriterion, 7> kCriteria{{{StopCriterion::none, "none"},
-                                                {StopCriterion::exact, "exact"},
-                                                {StopCriterion::residual, "residual"},
-                                                {StopCriterion::step, "step"},
-                                                {StopCriterion::iterations, "iterations"},
-                                                {StopCriterion::nlopt, "nlopt"},
-                                                {StopCriterion::rounding, "rounding"}}};
+                                                 {StopCriterion::exact, "exact"},
+                                                 {StopCriterion::residual, "residual"},
+                                                 {StopCriterion::step, "step"},
+                                                 {StopCriterion::iterations, "iterations"},
+                                                 {StopCriterion::nlopt, "nlopt"},
+                                                 {StopCriterion::rounding, "rounding"}}};
 constexpr EnumNames<Inequality, 8> kInequalities{
     {{Inequality::none, "none"},
      {Inequality::total_15, "total_15"},
@@ -51,27 +52,39 @@ constexpr EnumNames<Inequality, 8> kInequalities{
      {Inequality::non_penetration, "non_penetration"}}};
 }  // namespace
 
-std::string_view to_string(LawType t) { return detail::enum_to_string(kLawTypes, t); }
+std::string_view to_string(LawType t) {
+  return detail::enum_to_string(kLawTypes, t);
+}
 LawType law_type_from_string(std::string_view s) {
   return detail::enum_from_string(kLawTypes, s, "law.type");
 }
-std::string_view to_string(TangentialLaw t) { return detail::enum_to_string(kTangential, t); }
+std::string_view to_string(TangentialLaw t) {
+  return detail::enum_to_string(kTangential, t);
+}
 TangentialLaw tangential_law_from_string(std::string_view s) {
   return detail::enum_from_string(kTangential, s, "tangential law");
 }
-std::string_view to_string(SolverStatus s) { return detail::enum_to_string(kStatus, s); }
+std::string_view to_string(SolverStatus s) {
+  return detail::enum_to_string(kStatus, s);
+}
 SolverStatus solver_status_from_string(std::string_view s) {
   return detail::enum_from_string(kStatus, s, "solver status");
 }
-std::string_view to_string(SolverMethod m) { return detail::enum_to_string(kMethods, m); }
+std::string_view to_string(SolverMethod m) {
+  return detail::enum_to_string(kMethods, m);
+}
 SolverMethod solver_method_from_string(std::string_view s) {
   return detail::enum_from_string(kMethods, s, "method");
 }
-std::string_view to_string(StopCriterion c) { return detail::enum_to_string(kCriteria, c); }
+std::string_view to_string(StopCriterion c) {
+  return detail::enum_to_string(kCriteria, c);
+}
 StopCriterion stop_criterion_from_string(std::string_view s) {
   return detail::enum_from_string(kCriteria, s, "stop criterion");
 }
-std::string_view to_string(Inequality i) { return detail::enum_to_string(kInequalities, i); }
+std::string_view to_string(Inequality i) {
+  return detail::enum_to_string(kInequalities, i);
+}
 Inequality inequality_from_string(std::string_view s) {
   return detail::enum_from_string(kInequalities, s, "inequality");
 }

@@ -113,10 +113,12 @@ void ImpactLaw::validate(int contacts) const {
     check_count("law.mu", mu.values.size(), contacts);
     for (std::size_t i = 0; i < mu.values.size(); ++i)
       detail::require_finite_at_least(
-          mu.values.size() == 1 ? "law.mu" : "law.mu[" + std::to_string(i) + "]", mu.values[i], 0.0);
+          mu.values.size() == 1 ? "law.mu" : "law.mu[" + std::to_string(i) + "]", mu.values[i],
+          0.0);
   }
   if (type == LawType::fremond) {
-    if (normal.empty()) throw InvalidArgument("law.normal", "Frémond's law needs a normal potential");
+    if (normal.empty())
+      throw InvalidArgument("law.normal", "Frémond's law needs a normal potential");
     check_count("law.normal", normal.potentials.size(), contacts);
     for (const auto& p : normal.potentials)
       if (!p) throw InvalidArgument("law.normal", "a potential is missing (null)");
@@ -151,7 +153,8 @@ std::string ImpactLaw::describe() const {
       return out + "(e=" + list(e) + ", mu=" + list(mu) + ")";
     case LawType::fremond:
       out += "(normal=" + pots(normal);
-      if (tangential == TangentialLaw::potential) out += ", tangential=" + pots(tangential_potential);
+      if (tangential == TangentialLaw::potential)
+        out += ", tangential=" + pots(tangential_potential);
       if (tangential == TangentialLaw::coulomb) out += ", tangential=coulomb(mu=" + list(mu) + ")";
       return out + ")";
   }

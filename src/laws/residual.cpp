@@ -4,9 +4,9 @@
 #include <string>
 #include <utility>
 
+#include "../solvers/detail/fremond.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/solvers/detail/classical.hpp"
-#include "../solvers/detail/fremond.hpp"
 
 namespace fremond {
 

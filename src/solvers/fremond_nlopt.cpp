@@ -123,10 +123,11 @@ void constraints(unsigned m, double* result, unsigned nx, const double* x, doubl
 // SLSQP stops where the objective no longer resolves the step, about √ε relative in u. A Newton
 // polish of the KKT system, with the active set SLSQP found and the Hessian from differences of the
 // subgradients, takes u to the last digits:
-//   F(u, λ) = [2Mu + W s(z) − Σ λ_i ∇c_i ; c_A(u)] = 0,   s_j = φ_j'(z_j) (b sign z_T when sliding),
+//   F(u, λ) = [2Mu + W s(z) − Σ λ_i ∇c_i ; c_A(u)] = 0,   s_j = φ_j'(z_j) (b sign z_T when
+//   sliding),
 // with c_i = D_NE,i = D_NA,i + 2 W_N,iᵀu for the contacts whose reaction acts (λ_i ≥ 0) and
-// c_i = z_T,i for the contacts that stick under Coulomb (λ_i free). Kept only if its multipliers have
-// the right sign and it keeps every other contact open; the caller keeps it only if the law's
+// c_i = z_T,i for the contacts that stick under Coulomb (λ_i free). Kept only if its multipliers
+// have the right sign and it keeps every other contact open; the caller keeps it only if the law's
 // residual improves.
 bool polish(NloptData& d, VectorX& u, double v_scale) {
   const int n = d.n, a = d.a, r = d.rows;
@@ -143,8 +144,10 @@ bool polish(NloptData& d, VectorX& u, double v_scale) {
   if (d.coulomb)
     for (int k = 0; k < a; ++k) {
       const int j = a + k;
-      if (std::fabs(z0(j)) <= 1e-6 * v_scale && d.b(k) > 0.0) act.push_back({j, 1.0, false});
-      else slide_sign[j] = z0(j) > 0.0 ? 1.0 : -1.0;
+      if (std::fabs(z0(j)) <= 1e-6 * v_scale && d.b(k) > 0.0)
+        act.push_back({j, 1.0, false});
+      else
+        slide_sign[j] = z0(j) > 0.0 ? 1.0 : -1.0;
     }
   const int m = static_cast<int>(act.size());
   auto smooth = [&](int j) -> const Potential* {
@@ -227,8 +230,8 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   const VectorX DA = cs.D_A;
   std::vector<int> contact(a);
   for (int k = 0; k < a; ++k) contact[k] = cs.index(k);
-  NloptData d{&Iy, &Wy, &DA, rows.law, n, a, r, rows.coulomb, cs.tangential, VectorX::Zero(a),
-              &contact};
+  NloptData d{&Iy, &Wy,          &DA,           rows.law,         n,       a,
+              r,   rows.coulomb, cs.tangential, VectorX::Zero(a), &contact};
   const int nx = n + (rows.coulomb ? a : 0);
   const int m = a + (rows.coulomb ? 2 * a : 0);
   // Whether q̇_E = q̇_A + M⁻¹WP is determined by P in double precision. Far from the answer
@@ -238,8 +241,8 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   auto resolved = [&](const VectorX& Pc) {
     if (Pc.size() != r || !Pc.allFinite()) return false;
     const VectorX dq = cs.MinvW * Pc;
-    const double rounding = std::numeric_limits<double>::epsilon() *
-                            (cs.MinvW.cwiseAbs() * Pc.cwiseAbs()).maxCoeff();
+    const double rounding =
+        std::numeric_limits<double>::epsilon() * (cs.MinvW.cwiseAbs() * Pc.cwiseAbs()).maxCoeff();
     const double size = pb.qdot_A.cwiseAbs().maxCoeff() + dq.cwiseAbs().maxCoeff();
     return dq.allFinite() && rounding <= 1e-11 * size;
   };
@@ -277,8 +280,8 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
       if (at_bound || (!normal && rows.coulomb)) {
         free_rows.push_back(j);
       } else {
-        const Potential& pot = normal ? rows.law->normal[contact[j]]
-                                      : rows.law->tangential_potential[contact[j - a]];
+        const Potential& pot =
+            normal ? rows.law->normal[contact[j]] : rows.law->tangential_potential[contact[j - a]];
         known(j) = -pot.subgradient(z(j));
       }
     }
@@ -300,8 +303,7 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   double best = std::numeric_limits<double>::infinity();
   nlopt_result code = NLOPT_FAILURE;
   for (int outer = 0; outer < (rows.coulomb ? 100 : 1); ++outer) {
-    const double seconds_left =
-        std::chrono::duration<double>(deadline - Clock::now()).count();
+    const double seconds_left = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (seconds_left <= 0.0) {
       out_of_time = true;
       break;
@@ -323,8 +325,8 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     nlopt_set_maxeval(solver, std::max(1, opt.max_nlopt_evaluations - evaluations));
     nlopt_set_maxtime(solver, seconds_left);
     if (rows.coulomb) {
-      const VectorX zt = DA.tail(a) + Wy.rightCols(a).transpose() *
-                                           Eigen::Map<const VectorX>(x.data(), n);
+      const VectorX zt =
+          DA.tail(a) + Wy.rightCols(a).transpose() * Eigen::Map<const VectorX>(x.data(), n);
       for (int k = 0; k < a; ++k) x[n + k] = std::fabs(zt(k));
     }
     const std::vector<double> x_start = x;
@@ -375,8 +377,10 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     // No finite (and resolved) iterate at all: the given percussion if it is one, else none
     // (q̇_E = q̇_A). Either way q̇_E follows from P (q̇_E = q̇_A + M⁻¹WP, the stress invariant)
     // and nothing non-finite leaves the library.
-    if (given_usable) P = P_given;
-    else P.setZero(r);
+    if (given_usable)
+      P = P_given;
+    else
+      P.setZero(r);
     o.residual = rows.residual(P, zr, R);
     if (!std::isfinite(o.residual)) o.residual = std::numeric_limits<double>::max();
     o.status = SolverStatus::failed;
@@ -392,32 +396,36 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     o.message = "NLopt (SLSQP) converged to the NLopt tolerance";
   } else if (breakdown) {
     o.status = SolverStatus::failed;
-    o.message = "NLopt: a value or gradient of the objective was not finite (overflow far from the "
-                "answer); stopped, the best finite iterate is returned";
+    o.message =
+        "NLopt: a value or gradient of the objective was not finite (overflow far from the "
+        "answer); stopped, the best finite iterate is returned";
   } else if (out_of_time) {
     o.status = SolverStatus::max_iterations;
     o.message = "NLopt: time limit reached above tolerance; the best finite iterate is returned";
   } else if (out_of_budget) {
     o.status = SolverStatus::max_iterations;
-    o.message = "NLopt: evaluation budget exhausted above tolerance; the best finite iterate is "
-                "returned";
+    o.message =
+        "NLopt: evaluation budget exhausted above tolerance; the best finite iterate is "
+        "returned";
   } else if (!settled) {
     // Coulomb's bound b = μ|P_N| cycles (e.g. between stick with P_N = 0 and slip with P_N > 0
     // where the law may have no solution): the rounds are bounded, the answer says so.
     o.status = SolverStatus::stalled;
-    o.message = "NLopt: the fixed point on Coulomb's bound b = mu|P_N| did not settle; the best "
-                "finite iterate is returned";
+    o.message =
+        "NLopt: the fixed point on Coulomb's bound b = mu|P_N| did not settle; the best "
+        "finite iterate is returned";
   } else {
     o.status = SolverStatus::stalled;
-    o.message = "NLopt stopped with the residual above tolerance; the best finite iterate is "
-                "returned";
+    o.message =
+        "NLopt stopped with the residual above tolerance; the best finite iterate is "
+        "returned";
   }
   return o;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                                  \
-  template MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>&,                        \
-                                              const FremondRowsT<N, C>&,                          \
+#define FREMOND_INSTANTIATE(N, C)                                          \
+  template MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>&, \
+                                              const FremondRowsT<N, C>&,   \
                                               FremondRowsT<N, C>::Rows&, const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

@@ -13,7 +13,8 @@ int main() {
   const auto law = fremond::ImpactLaw::fremond(fremond::PowerPotential(k, 2.0));
   const auto r = fremond::solve_impact(pb, law);
   const double eps = (k - 2 * m) / (k + 2 * m);
-  const bool ok = r.ok() && std::fabs(r.qdot_E(0) - 2.0 * eps) < 1e-12 && r.admissibility.admissible;
+  const bool ok =
+      r.ok() && std::fabs(r.qdot_E(0) - 2.0 * eps) < 1e-12 && r.admissibility.admissible;
   std::printf("qdot_E = %.17g (expected %.17g) %s\n", r.qdot_E(0), 2.0 * eps, ok ? "ok" : "WRONG");
   return ok ? 0 : 1;
 }

@@ -22,9 +22,12 @@ namespace fremond::robust {
 inline std::string law_family(const ImpactLaw& law) {
   if (law.type != LawType::fremond) return std::string(to_string(law.type));
   switch (law.tangential) {
-    case TangentialLaw::none: return "fremond";
-    case TangentialLaw::potential: return "fremond_viscous";
-    case TangentialLaw::coulomb: return "fremond_coulomb";
+    case TangentialLaw::none:
+      return "fremond";
+    case TangentialLaw::potential:
+      return "fremond_viscous";
+    case TangentialLaw::coulomb:
+      return "fremond_coulomb";
   }
   return "fremond";
 }

@@ -65,16 +65,20 @@ inline std::string json_potentials(const PerContactPotential& ps) {
            ", \"p\": " +
            list([](const Potential& p) { return static_cast<const PowerPotential&>(p).p(); }) + "}";
   if (all_deadzone)
-    return R"({"potential": "deadzone_power", "k": )" +
-           list([](const Potential& p) { return static_cast<const DeadZonePowerPotential&>(p).k(); }) +
-           ", \"q\": " +
-           list([](const Potential& p) { return static_cast<const DeadZonePowerPotential&>(p).q(); }) +
-           ", \"r\": " +
-           list([](const Potential& p) { return static_cast<const DeadZonePowerPotential&>(p).r(); }) +
+    return R"({"potential": "deadzone_power", "k": )" + list([](const Potential& p) {
+             return static_cast<const DeadZonePowerPotential&>(p).k();
+           }) +
+           ", \"q\": " + list([](const Potential& p) {
+             return static_cast<const DeadZonePowerPotential&>(p).q();
+           }) +
+           ", \"r\": " + list([](const Potential& p) {
+             return static_cast<const DeadZonePowerPotential&>(p).r();
+           }) +
            "}";
   if (all_abs)
-    return R"({"potential": "absolute_value", "b": )" +
-           list([](const Potential& p) { return static_cast<const AbsoluteValuePotential&>(p).bound(); }) +
+    return R"({"potential": "absolute_value", "b": )" + list([](const Potential& p) {
+             return static_cast<const AbsoluteValuePotential&>(p).bound();
+           }) +
            "}";
   return "{\"potential\": \"" + std::string(p0->name()) + "\", \"described_as\": \"" +
          p0->describe() + "\"}";
@@ -91,13 +95,15 @@ inline std::string law_to_json(const ImpactLaw& law) {
       return s + ", \"e\": " + json_per_contact(law.e) + "}";
     case LawType::newton_coulomb:
     case LawType::poisson_coulomb:
-      return s + ", \"e\": " + json_per_contact(law.e) + ", \"mu\": " + json_per_contact(law.mu) + "}";
+      return s + ", \"e\": " + json_per_contact(law.e) + ", \"mu\": " + json_per_contact(law.mu) +
+             "}";
     case LawType::fremond:
       s += ", \"normal\": " + json_potentials(law.normal);
       if (law.tangential == TangentialLaw::potential)
         s += ", \"tangential\": " + json_potentials(law.tangential_potential);
       if (law.tangential == TangentialLaw::coulomb)
-        s += ", \"tangential\": {\"potential\": \"coulomb\", \"mu\": " + json_per_contact(law.mu) + "}";
+        s += ", \"tangential\": {\"potential\": \"coulomb\", \"mu\": " + json_per_contact(law.mu) +
+             "}";
       return s + "}";
   }
   return s + "}";

@@ -20,7 +20,9 @@ class Draw {
  public:
   explicit Draw(std::mt19937_64& rng) : rng_(rng) {}
 
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   bool chance(double p) { return uniform(0.0, 1.0) < p; }
   double decades(double lo, double hi) { return std::pow(10.0, uniform(lo, hi)); }
@@ -122,7 +124,8 @@ class Draw {
     pb.qdot_A.resize(n);
     for (int i = 0; i < n; ++i) pb.qdot_A(i) = v * uniform(-1.0, 1.0);
     approach(pb, 0);
-    if (c > 1 && chance(0.1)) {  // a contact exactly touching: D_NA = 0 (as nearly as rounding allows)
+    if (c > 1 &&
+        chance(0.1)) {  // a contact exactly touching: D_NA = 0 (as nearly as rounding allows)
       const Eigen::VectorXd w = pb.W_N.col(c - 1);
       if (w.squaredNorm() > 0) pb.qdot_A -= (w.dot(pb.qdot_A) / w.squaredNorm()) * w;
       approach(pb, 0);
@@ -171,7 +174,8 @@ class Draw {
       if (tangential) pb.W_T.col(i) << 1.0, 0.0, -s * l * std::sin(theta);
     }
     const double v = decades(-12.0, 8.0);
-    pb.qdot_A = Eigen::Vector3d(v * uniform(-2.0, 2.0), -v * uniform(0.0, 1.0), v * uniform(-3.0, 3.0));
+    pb.qdot_A =
+        Eigen::Vector3d(v * uniform(-2.0, 2.0), -v * uniform(0.0, 1.0), v * uniform(-3.0, 3.0));
     approach(pb, 0);
     return pb;
   }
@@ -202,19 +206,21 @@ class Draw {
     if (name == "poisson_coulomb")
       return ImpactLaw::poisson_coulomb(per_contact(c, [&] { return restitution(); }),
                                         per_contact(c, [&] { return friction(); }));
-    auto normal = potentials(c, [&] { return std::make_unique<PowerPotential>(stiffness(), exponent()); });
+    auto normal =
+        potentials(c, [&] { return std::make_unique<PowerPotential>(stiffness(), exponent()); });
     if (name == "fremond") return ImpactLaw::fremond(std::move(normal));
     if (name == "fremond_viscous")
-      return ImpactLaw::fremond(std::move(normal), potentials(c, [&]() -> PotentialPtr {
-                                  const double u = uniform(0.0, 1.0);
-                                  if (u < 0.1) return std::make_unique<AbsoluteValuePotential>(v * decades(-3.0, 3.0));
-                                  if (u < 0.15)
-                                    return DeadZonePowerPotential(stiffness(), exponent(), dead_zone(v)) +
-                                           AbsoluteValuePotential(v * decades(-3.0, 1.0));
-                                  return std::make_unique<DeadZonePowerPotential>(stiffness(), exponent(),
-                                                                                  dead_zone(v));
-                                }));
-    return ImpactLaw::fremond_coulomb(std::move(normal), per_contact(c, [&] { return friction(); }));
+      return ImpactLaw::fremond(
+          std::move(normal), potentials(c, [&]() -> PotentialPtr {
+            const double u = uniform(0.0, 1.0);
+            if (u < 0.1) return std::make_unique<AbsoluteValuePotential>(v * decades(-3.0, 3.0));
+            if (u < 0.15)
+              return DeadZonePowerPotential(stiffness(), exponent(), dead_zone(v)) +
+                     AbsoluteValuePotential(v * decades(-3.0, 1.0));
+            return std::make_unique<DeadZonePowerPotential>(stiffness(), exponent(), dead_zone(v));
+          }));
+    return ImpactLaw::fremond_coulomb(std::move(normal),
+                                      per_contact(c, [&] { return friction(); }));
   }
 
  private:
@@ -243,7 +249,8 @@ inline StressCase draw_case(std::mt19937_64& rng, const std::string& name) {
   else
     sc.problem = d.point(tangential, sc.shape);
   double v = 0.0;
-  for (int i = 0; i < sc.problem.qdot_A.size(); ++i) v = std::max(v, std::fabs(sc.problem.qdot_A(i)));
+  for (int i = 0; i < sc.problem.qdot_A.size(); ++i)
+    v = std::max(v, std::fabs(sc.problem.qdot_A(i)));
   sc.law = d.law(name, sc.problem.contacts(), v > 0 ? v : 1.0);
   return sc;
 }

@@ -72,7 +72,10 @@ long double point_mass_reference(long double m, long double k, long double p, lo
   for (int i = 0; i < 20000 && hi - lo > 0.0L; ++i) {
     const long double mid = 0.5L * (lo + hi);
     if (mid <= lo || mid >= hi) break;
-    if (2.0L * m * (D - mid) - k * std::pow(mid, p - 1.0L) > 0.0L) lo = mid; else hi = mid;
+    if (2.0L * m * (D - mid) - k * std::pow(mid, p - 1.0L) > 0.0L)
+      lo = mid;
+    else
+      hi = mid;
   }
   const long double t = 0.5L * (lo + hi);
   return t >= 0.5L * D ? 0.0L : D - 2.0L * t;
@@ -163,7 +166,8 @@ TEST(FremondBar, FlatBarTwoContactsSingularG) {
       ImpactLaw::fremond_coulomb(PowerPotential(10.0, 3.0), 5.0),
   };
   for (const auto& law : laws) {
-    for (auto m : {SolverMethod::automatic, SolverMethod::semismooth_newton, SolverMethod::proximal}) {
+    for (auto m :
+         {SolverMethod::automatic, SolverMethod::semismooth_newton, SolverMethod::proximal}) {
       const auto r = solve_impact(pb, law, with_method(m));
       ASSERT_TRUE(r.ok()) << law.describe() << " " << to_string(m) << ": " << r.solver.message;
       EXPECT_NEAR(r.qdot_E(2), 0.0, 1e-12) << law.describe();
@@ -172,8 +176,8 @@ TEST(FremondBar, FlatBarTwoContactsSingularG) {
       EXPECT_NEAR(r.P_N(0), r.P_N(1), 1e-10 * std::fabs(r.P_N(0)));
       // The centre obeys the point-mass law with mass m/2 per end: z = mean of ẏ.
       const double zN = 0.5 * (pb.qdot_A(1) + r.qdot_E(1));
-      EXPECT_NEAR(r.P_N(0) + r.P_N_reaction(0) * 0.0, -10.0 * zN * std::fabs(zN) + r.P_N_reaction(0),
-                  1e-10);
+      EXPECT_NEAR(r.P_N(0) + r.P_N_reaction(0) * 0.0,
+                  -10.0 * zN * std::fabs(zN) + r.P_N_reaction(0), 1e-10);
     }
   }
 }
@@ -185,8 +189,7 @@ TEST(FremondBar, PainleveCaseReportsEverySolution) {
   int cases_with_several = 0, cases_without = 0;
   for (double mu : {1.0, 1.7, 2.0, 4.0, 20.0}) {
     for (double vx : {-5.0, -2.0, 0.5, 2.0, 5.0}) {
-      const ImpactProblem pb =
-          bar_problem(std::numbers::pi / 4, Eigen::Vector3d(vx, -1.0, 0.3));
+      const ImpactProblem pb = bar_problem(std::numbers::pi / 4, Eigen::Vector3d(vx, -1.0, 0.3));
       const auto law = ImpactLaw::fremond_coulomb(PowerPotential(5.0, 3.0), mu);
       const auto all = solve_impact_all(pb, law);
       const auto one = solve_impact(pb, law);
@@ -224,9 +227,9 @@ TEST(FremondRandom, AdmissibleAndConvergedOnThousandsOfProblems) {
     const double p = 1.1 + 4.0 * u(rng), k = std::pow(10.0, 4 * u(rng) - 2);
     ImpactLaw law = ImpactLaw::fremond(PowerPotential(k, p));
     if (kind == 1)
-      law = ImpactLaw::fremond(PowerPotential(k, p),
-                               DeadZonePowerPotential(std::pow(10.0, 2 * u(rng) - 1), 1.1 + 2 * u(rng),
-                                                      0.5 * u(rng)));
+      law = ImpactLaw::fremond(
+          PowerPotential(k, p),
+          DeadZonePowerPotential(std::pow(10.0, 2 * u(rng) - 1), 1.1 + 2 * u(rng), 0.5 * u(rng)));
     if (kind == 2) law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), 0.3 * u(rng));
     const auto r = solve_impact(pb, law);
     if (kind == 2 && !r.ok()) continue;  // Coulomb may have no solution with several contacts

@@ -78,13 +78,15 @@ std::string check_result(const SmallImpactProblem& p, const ReferenceAnswer& ref
   const double e = relative_error(p, ref, r.qdot_E);
   char buf[256];
   if (!(e <= allowed)) {
-    std::snprintf(buf, sizeof buf, "converged (%s, residual %.3g) but off the reference by %.3g > %.3g",
+    std::snprintf(buf, sizeof buf,
+                  "converged (%s, residual %.3g) but off the reference by %.3g > %.3g",
                   std::string(to_string(r.solver.method)).c_str(), r.solver.residual, e, allowed);
     return buf;
   }
   if (!r.admissibility.admissible) {
     std::snprintf(buf, sizeof buf, "converged but not admissible (%s, violation %.3g)",
-                  std::string(to_string(r.admissibility.failed)).c_str(), r.admissibility.violation);
+                  std::string(to_string(r.admissibility.failed)).c_str(),
+                  r.admissibility.violation);
     return buf;
   }
   return "";
@@ -93,21 +95,22 @@ std::string check_result(const SmallImpactProblem& p, const ReferenceAnswer& ref
 std::string describe(const SmallImpactProblem& p, const FremondLawSpec& s) {
   std::ostringstream os;
   os.precision(17);
-  os << "law " << s.law().describe() << "\n  M = [" << Eigen::MatrixXd(p.M).format(
-                                                            Eigen::IOFormat(17, 0, ", ", "; "))
-     << "]\n  W_N = [" << Eigen::MatrixXd(p.W_N).format(Eigen::IOFormat(17, 0, ", ", "; "))
-     << "]\n  W_T = [" << Eigen::MatrixXd(p.W_T).format(Eigen::IOFormat(17, 0, ", ", "; "))
-     << "]\n  qdot_A = [" << Eigen::VectorXd(p.qdot_A).transpose().format(
-                                 Eigen::IOFormat(17, 0, ", ", ", "))
-     << "]";
+  os << "law " << s.law().describe() << "\n  M = ["
+     << Eigen::MatrixXd(p.M).format(Eigen::IOFormat(17, 0, ", ", "; ")) << "]\n  W_N = ["
+     << Eigen::MatrixXd(p.W_N).format(Eigen::IOFormat(17, 0, ", ", "; ")) << "]\n  W_T = ["
+     << Eigen::MatrixXd(p.W_T).format(Eigen::IOFormat(17, 0, ", ", "; ")) << "]\n  qdot_A = ["
+     << Eigen::VectorXd(p.qdot_A).transpose().format(Eigen::IOFormat(17, 0, ", ", ", ")) << "]";
   return os.str();
 }
 
 const std::vector<SolverMethod>& all_methods() {
-  static const std::vector<SolverMethod> m{
-      SolverMethod::automatic,        SolverMethod::closed_form,       SolverMethod::scalar_newton,
-      SolverMethod::mode_enumeration, SolverMethod::semismooth_newton, SolverMethod::proximal,
-      SolverMethod::nlopt};
+  static const std::vector<SolverMethod> m{SolverMethod::automatic,
+                                           SolverMethod::closed_form,
+                                           SolverMethod::scalar_newton,
+                                           SolverMethod::mode_enumeration,
+                                           SolverMethod::semismooth_newton,
+                                           SolverMethod::proximal,
+                                           SolverMethod::nlopt};
   return m;
 }
 
@@ -128,7 +131,8 @@ void run_case(const SmallImpactProblem& p, const FremondLawSpec& spec, bool nlop
         spec.tangential == FremondLawSpec::Tangential::coulomb ? 300 : 20000;
     const auto t0 = std::chrono::steady_clock::now();
     const SmallImpactResult r = solve_impact(p, law, opt);
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Tally& t = tally[std::string(to_string(m))];
     t.seconds += secs;
     if (secs > 0.2)
@@ -184,7 +188,8 @@ SmallImpactProblem one_contact_problem(int kind, double speed, double mass_ratio
     p.W_N = bar_end_normal(-1.0, th);
     p.W_T = bar_end_tangent(-1.0, th);
     p.M(2, 2) /= mass_ratio;
-    p.qdot_A = Eigen::Vector3d(rng.uniform(-1, 1), -1.0, rng.uniform(-1, 1) * std::sqrt(mass_ratio));
+    p.qdot_A =
+        Eigen::Vector3d(rng.uniform(-1, 1), -1.0, rng.uniform(-1, 1) * std::sqrt(mass_ratio));
   } else if (kind == 2) {  // a point mass of mass 1/mass_ratio
     p = point_mass(1.0 / mass_ratio, true);
     p.qdot_A = Eigen::Vector2d(rng.uniform(-2, 2), -1.0);
@@ -248,8 +253,7 @@ TEST(FremondAgainstReference, OneContactHardGrid) {
         }
       }
   print_tally("one contact", tally);
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("  %d cases in %.2f s\n", index * 3, secs);
 }
 
@@ -330,12 +334,13 @@ TEST(FremondAgainstReference, SeveralContacts) {
     }
     double vmax = 0.0;
     for (int j = 0; j < pb.contacts(); ++j)
-      vmax = std::max({vmax, std::fabs(pb.W_N.col(j).dot(pb.qdot_A)),
-                       std::fabs(pb.W_T.col(j).dot(pb.qdot_A))});
+      vmax = std::max(
+          {vmax, std::fabs(pb.W_N.col(j).dot(pb.qdot_A)), std::fabs(pb.W_T.col(j).dot(pb.qdot_A))});
     pb.qdot_A *= speed / vmax;
     const double r = i % 4 == 0 ? 0.0 : (i % 4 == 1 ? 10.0 * speed : 0.3 * speed);
     const std::vector<FremondLawSpec> laws{
-        normal_only(k, p), with_dead_zone(k, p, std::vector<double>{1e-6, 1.0, 1e6}[i % 3], qs[i % 4], r)};
+        normal_only(k, p),
+        with_dead_zone(k, p, std::vector<double>{1e-6, 1.0, 1e6}[i % 3], qs[i % 4], r)};
     for (const FremondLawSpec& s : laws) {
       SmallImpactProblem q = pb;
       if (s.tangential == FremondLawSpec::Tangential::none) {

@@ -2,9 +2,9 @@
 // method except NLopt, and the classical laws, on the benchmark problems (bench/problems.hpp).
 //
 // The test replaces the global operator new and the C allocation functions of this executable (the
-// library's calls resolve to them too) by counting wrappers around glibc's allocator; counting is on
-// only around solve_impact, in this thread. A failure names the case and prints the call stack of
-// the first allocation. Skipped under AddressSanitizer, which owns the allocator.
+// library's calls resolve to them too) by counting wrappers around glibc's allocator; counting is
+// on only around solve_impact, in this thread. A failure names the case and prints the call stack
+// of the first allocation. Skipped under AddressSanitizer, which owns the allocator.
 #include <execinfo.h>
 #include <gtest/gtest.h>
 

@@ -81,7 +81,8 @@ TEST(PerfReport, WorkPrecisionCsvIsWellFormedAndMethodsReachTheirTolerance) {
   wp::Options o = wp::tiny_options();
   const std::vector<wp::Point> points = wp::run(cases, o);
 
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "fremond_perf_report_test";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "fremond_perf_report_test";
   std::filesystem::create_directories(dir);
   const std::filesystem::path csv = dir / "work_precision.csv";
   {
@@ -96,8 +97,9 @@ TEST(PerfReport, WorkPrecisionCsvIsWellFormedAndMethodsReachTheirTolerance) {
   EXPECT_EQ(line, wp::csv_header());
   const std::set<std::string> statuses{"converged", "max_iterations", "stalled", "no_solution",
                                        "failed"};
-  const std::set<std::string> methods{"automatic", "closed_form", "scalar_newton",
-                                      "mode_enumeration", "semismooth_newton", "proximal", "nlopt"};
+  const std::set<std::string> methods{
+      "automatic",         "closed_form", "scalar_newton", "mode_enumeration",
+      "semismooth_newton", "proximal",    "nlopt"};
   std::map<std::string, const FremondCase*> by_name;
   for (const FremondCase& c : cases) by_name[c.problem + " " + c.law_name] = &c;
   std::map<std::string, double> floors;
@@ -114,7 +116,8 @@ TEST(PerfReport, WorkPrecisionCsvIsWellFormedAndMethodsReachTheirTolerance) {
     EXPECT_TRUE(cell[3] == "0" || cell[3] == "1") << line;
     double tol, budget, ns, err, res, iters, hit, nprob;
     ASSERT_TRUE(parse_double(cell[4], tol) && tol > 0 && tol <= 1e-2) << line;
-    ASSERT_TRUE(parse_double(cell[5], budget) && budget >= 0 && budget == std::floor(budget)) << line;
+    ASSERT_TRUE(parse_double(cell[5], budget) && budget >= 0 && budget == std::floor(budget))
+        << line;
     ASSERT_TRUE(parse_double(cell[6], ns) && std::isfinite(ns) && ns > 0) << line;
     ASSERT_TRUE(parse_double(cell[7], err)) << line;
     ASSERT_TRUE(parse_double(cell[8], res) && res >= 0) << line;
@@ -135,8 +138,8 @@ TEST(PerfReport, WorkPrecisionCsvIsWellFormedAndMethodsReachTheirTolerance) {
     if (!floors.count(name)) floors[name] = conditioning_floor(c);
     const double C = method == "proximal" ? 100.0 : 10.0;
     const double bound = C * std::max({tol, floors[name], 1e-15});
-    EXPECT_LE(err, bound) << method << " on " << name << " at tolerance " << tol
-                          << " (budget " << budget << "): error " << err;
+    EXPECT_LE(err, bound) << method << " on " << name << " at tolerance " << tol << " (budget "
+                          << budget << "): error " << err;
   }
   EXPECT_EQ(rows, static_cast<int>(points.size()));
   std::printf("  %d work-precision points over %zu cases\n", rows, cases.size());

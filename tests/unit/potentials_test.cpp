@@ -53,7 +53,8 @@ TEST(Conformance, CatchesAWrongProx) {
   parts.value = [](double z) { return z * z; };
   parts.subgradient = [](double z) { return 2 * z; };
   parts.subdifferential = [](double z) { return Interval::point(2 * z); };
-  parts.prox = [](double x, double tau, double* d) {  // wrong: the prox of z², not of 2z²/2... off by 2
+  parts.prox = [](double x, double tau,
+                  double* d) {  // wrong: the prox of z², not of 2z²/2... off by 2
     if (d) *d = 1.0 / (1.0 + tau);
     return x / (1.0 + tau);
   };

@@ -1,5 +1,5 @@
-// Regressions of the simulation found by the seeded fuzzing. A test named DISABLED_ would be an open
-// library issue (see tests/stress/known_issues.txt), to enable when fixed.
+// Regressions of the simulation found by the seeded fuzzing. A test named DISABLED_ would be an
+// open library issue (see tests/stress/known_issues.txt), to enable when fixed.
 #include <gtest/gtest.h>
 
 #include "fremond/fremond.hpp"

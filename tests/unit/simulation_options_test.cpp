@@ -18,10 +18,9 @@ TEST(SimulationOptions, EveryEnumRoundTripsThroughItsName) {
     EXPECT_EQ(integrator_from_string(to_string(v)), v);
   for (auto v : {Phase::event_driven, Phase::moreau_jean})
     EXPECT_EQ(phase_from_string(to_string(v)), v);
-  for (auto v :
-       {SimulationStatus::not_run, SimulationStatus::completed, SimulationStatus::max_impacts,
-        SimulationStatus::impact_failed, SimulationStatus::contact_failed,
-        SimulationStatus::event_search_failed})
+  for (auto v : {SimulationStatus::not_run, SimulationStatus::completed,
+                 SimulationStatus::max_impacts, SimulationStatus::impact_failed,
+                 SimulationStatus::contact_failed, SimulationStatus::event_search_failed})
     EXPECT_EQ(simulation_status_from_string(to_string(v)), v);
   for (auto v : {ImpactKind::event, ImpactKind::time_step, ImpactKind::accumulation})
     EXPECT_EQ(impact_kind_from_string(to_string(v)), v);

@@ -95,13 +95,13 @@ TEST(TutorialCustomPotential, SymmetricCaseEqualsTheBuiltinDeadZone) {
 // object you pass: nothing global changes.
 TEST(TutorialCustomPotential, FromAProblemFileByName) {
   PotentialRegistry registry = PotentialRegistry::with_builtins();
-  registry.add("asymmetric_deadzone",
-               {{"k", "a", "b"},
-                {},
-                [](const PotentialParameters& p) {
-                  return std::make_unique<AsymmetricDeadZone>(p.at("k"), p.at("a"), p.at("b"));
-                },
-                "(k/2)(max(0,y-a)^2 + max(0,-b-y)^2)"});
+  registry.add("asymmetric_deadzone", {{"k", "a", "b"},
+                                       {},
+                                       [](const PotentialParameters& p) {
+                                         return std::make_unique<AsymmetricDeadZone>(
+                                             p.at("k"), p.at("a"), p.at("b"));
+                                       },
+                                       "(k/2)(max(0,y-a)^2 + max(0,-b-y)^2)"});
   const char* text = R"({
     "M": [[1, 0], [0, 1]], "W_N": [[0], [1]], "W_T": [[1], [0]], "qdot_A": [0.3, -2.0],
     "law": {"type": "fremond", "normal": {"potential": "power", "k": 8, "p": 2},

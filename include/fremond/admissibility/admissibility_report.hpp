@@ -32,13 +32,13 @@ struct AdmissibilityReportT {
   double dissipation = 0.0;       ///< (19) I_d·z = −P_d·z (Frémond; equals `total` otherwise).
   double complementarity = 0.0;   ///< (16) max violation of the reaction's complementarity, scaled.
   double penetration = 0.0;       ///< max(0, −D_NE,i), scaled by the velocity scale.
-  double fenchel_young_gap = 0.0; ///< max scaled FY gap over potentials with a known conjugate.
-  double tolerance = 0.0;         ///< absolute energy tolerance used: admissibility_tolerance·T_A, or the
-                                  ///< rounding of the energies P·z when that is larger.
-  bool admissible = false;        ///< no inequality violated beyond the tolerance.
+  double fenchel_young_gap = 0.0;  ///< max scaled FY gap over potentials with a known conjugate.
+  double tolerance = 0.0;  ///< absolute energy tolerance used: admissibility_tolerance·T_A, or the
+                           ///< rounding of the energies P·z when that is larger.
+  bool admissible = false;               ///< no inequality violated beyond the tolerance.
   Inequality failed = Inequality::none;  ///< the first violated inequality.
-  int failed_contact = -1;        ///< the contact of a per-contact failure, else −1.
-  double violation = 0.0;         ///< by how much it fails (energy units, or scaled for gaps).
+  int failed_contact = -1;               ///< the contact of a per-contact failure, else −1.
+  double violation = 0.0;  ///< by how much it fails (energy units, or scaled for gaps).
 };
 
 }  // namespace fremond

@@ -1,5 +1,6 @@
 #pragma once
-/// @file The one exception type of the library: bad input, naming the offending value and the reason.
+/// @file The one exception type of the library: bad input, naming the offending value and the
+/// reason.
 #include <cstdio>
 #include <stdexcept>
 #include <string>

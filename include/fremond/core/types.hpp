@@ -1,9 +1,9 @@
 #pragma once
 /// @file Basic scalar, vector and matrix types.
 ///
-/// Every problem type is a template on two *maximum* sizes (degrees of freedom, contacts). A maximum
-/// of `Eigen::Dynamic` stores on the heap; a finite maximum stores on the stack, so a solve of a small
-/// problem (a planar body with up to four contacts) performs no heap allocation.
+/// Every problem type is a template on two *maximum* sizes (degrees of freedom, contacts). A
+/// maximum of `Eigen::Dynamic` stores on the heap; a finite maximum stores on the stack, so a solve
+/// of a small problem (a planar body with up to four contacts) performs no heap allocation.
 #include <Eigen/Core>
 
 namespace fremond {
@@ -17,7 +17,9 @@ inline constexpr int kSmallDofs = 6;
 inline constexpr int kSmallContacts = 4;
 
 namespace detail {
-constexpr int times2(int m) { return m == Dynamic ? Dynamic : 2 * m; }
+constexpr int times2(int m) {
+  return m == Dynamic ? Dynamic : 2 * m;
+}
 }  // namespace detail
 
 /// A column vector of dynamic size bounded by Max (heap when Max is Dynamic).

@@ -62,7 +62,7 @@ struct ImpactLaw {
   LawType type = LawType::newton;
   PerContact e{0.0};   ///< restitution in [0, 1] (Newton, Poisson).
   PerContact mu{0.0};  ///< friction coefficient ≥ 0 (the Coulomb laws, Frémond + Coulomb).
-  PerContactPotential normal;      ///< Frémond: φ_N (the reaction is added by the law).
+  PerContactPotential normal;  ///< Frémond: φ_N (the reaction is added by the law).
   TangentialLaw tangential = TangentialLaw::none;  ///< Frémond's tangential law.
   PerContactPotential tangential_potential;        ///< Frémond with TangentialLaw::potential.
 

@@ -1,5 +1,6 @@
 #pragma once
-/// @file One residual per law, shared by every solver and by the tests (scaled by the velocity scale).
+/// @file One residual per law, shared by every solver and by the tests (scaled by the velocity
+/// scale).
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"

@@ -6,8 +6,8 @@
 
 namespace fremond {
 
-/// The parts of a user's potential. `value` and `subgradient` are required; each further part a user
-/// gives lets the driver use a faster exact method:
+/// The parts of a user's potential. `value` and `subgradient` are required; each further part a
+/// user gives lets the driver use a faster exact method:
 ///  - `subdifferential` (the whole interval): prox by bisection, hence semismooth Newton;
 ///  - `prox` (with its derivative): semismooth Newton directly;
 ///  - `conjugate`: the Fenchel–Young certificate.

@@ -1,6 +1,6 @@
 #pragma once
-/// @file A public checker for a user's potential: the invariants every pseudo-potential must satisfy
-/// before it is trusted inside an impact law (Ceres's manifold checker, for potentials).
+/// @file A public checker for a user's potential: the invariants every pseudo-potential must
+/// satisfy before it is trusted inside an impact law (Ceres's manifold checker, for potentials).
 #include <string>
 #include <vector>
 
@@ -26,8 +26,8 @@ struct ConformanceReport {
   std::vector<std::string> failures;
   int checks = 0;
   double max_fenchel_young_gap_at_prox = 0.0;  ///< should be ~0
-  double max_moreau_error = 0.0;               ///< |prox_{φ*/τ}(x/τ) − (x − prox_{τφ}(x))/τ|, scaled
-  double max_prox_optimality = 0.0;            ///< dist((x − y)/τ, ∂φ(y)), scaled
+  double max_moreau_error = 0.0;  ///< |prox_{φ*/τ}(x/τ) − (x − prox_{τφ}(x))/τ|, scaled
+  double max_prox_optimality = 0.0;  ///< dist((x − y)/τ, ∂φ(y)), scaled
   std::string summary() const;
 };
 
@@ -36,6 +36,7 @@ struct ConformanceReport {
 /// and consistent with finite differences; and, where the conjugate is known, Fenchel–Young ≥ 0
 /// everywhere, = 0 at prox points, and the Moreau identity x = prox_{τφ}(x) + τ prox_{φ*/τ}(x/τ)
 /// (the conjugate's prox found by a derivative-free search, independent of the potential's prox).
-ConformanceReport check_potential(const Potential& potential, const ConformanceOptions& options = {});
+ConformanceReport check_potential(const Potential& potential,
+                                  const ConformanceOptions& options = {});
 
 }  // namespace fremond

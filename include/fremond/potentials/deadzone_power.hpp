@@ -1,5 +1,6 @@
 #pragma once
-/// @file φ_T(y) = (k/q) max(0, |y| − r)^q, the viscous tangential law with a dead zone (paper eq. 25).
+/// @file φ_T(y) = (k/q) max(0, |y| − r)^q, the viscous tangential law with a dead zone (paper eq.
+/// 25).
 #include "fremond/potentials/potential.hpp"
 
 namespace fremond {

@@ -1,13 +1,13 @@
 #pragma once
 /// @file The interface of a pseudo-potential of dissipation (paper §5.2; SPEC §3).
 ///
-/// A pseudo-potential is a convex, lower semicontinuous function φ: R → R ∪ {+∞}, non-negative and zero
-/// at the origin, of one contact's *mean* velocity z (SPEC §1). The impact law is the inclusion
-/// −P ∈ ∂φ(z). Solvers use, in this order of preference, the proximal map
+/// A pseudo-potential is a convex, lower semicontinuous function φ: R → R ∪ {+∞}, non-negative and
+/// zero at the origin, of one contact's *mean* velocity z (SPEC §1). The impact law is the
+/// inclusion −P ∈ ∂φ(z). Solvers use, in this order of preference, the proximal map
 ///     prox_{τφ}(x) = argmin_y  φ(y) + (y − x)²/(2τ)
-/// with its derivative (semismooth Newton), then the subdifferential, then value and one subgradient
-/// (the NLopt fallback). The conjugate φ*(s) = sup_z s z − φ(z), where known, certifies an answer through
-/// the Fenchel–Young gap φ(z) + φ*(s) − s z ≥ 0, zero exactly when s ∈ ∂φ(z).
+/// with its derivative (semismooth Newton), then the subdifferential, then value and one
+/// subgradient (the NLopt fallback). The conjugate φ*(s) = sup_z s z − φ(z), where known, certifies
+/// an answer through the Fenchel–Young gap φ(z) + φ*(s) − s z ≥ 0, zero exactly when s ∈ ∂φ(z).
 ///
 /// Non-virtual interface: the public members check their arguments and call the protected `do_*`
 /// hooks, which a user's potential overrides. Copying is through `clone()` only (no slicing).
@@ -19,8 +19,8 @@
 
 namespace fremond {
 
-/// A closed interval [lo, hi] of the extended real line; empty when lo > hi (the subdifferential of a
-/// function outside its domain).
+/// A closed interval [lo, hi] of the extended real line; empty when lo > hi (the subdifferential of
+/// a function outside its domain).
 struct Interval {
   double lo = 0.0;
   double hi = 0.0;
@@ -45,11 +45,11 @@ struct Interval {
 
 /// What a potential can do, so a driver can pick the cheapest exact method it allows.
 struct PotentialCapabilities {
-  bool prox = false;            ///< prox_{τφ} is available (exact or to machine precision).
-  bool prox_derivative = false; ///< an element of the generalized derivative of the prox is given.
-  bool subdifferential = false; ///< the whole interval ∂φ(z), not only one subgradient.
-  bool conjugate = false;       ///< φ* is known in closed form.
-  bool quadratic = false;       ///< φ is piecewise quadratic (affine prox on pieces): closed form.
+  bool prox = false;             ///< prox_{τφ} is available (exact or to machine precision).
+  bool prox_derivative = false;  ///< an element of the generalized derivative of the prox is given.
+  bool subdifferential = false;  ///< the whole interval ∂φ(z), not only one subgradient.
+  bool conjugate = false;        ///< φ* is known in closed form.
+  bool quadratic = false;  ///< φ is piecewise quadratic (affine prox on pieces): closed form.
 };
 
 /// A convex pseudo-potential of one scalar contact velocity.
@@ -74,14 +74,15 @@ class Potential {
   Interval subdifferential(double z) const;
   /// One element of ∂φ(z) (the one of least magnitude where the interval is known).
   double subgradient(double z) const { return do_subgradient(z); }
-  /// prox_{τφ}(x) for τ > 0; `dprox`, when not null, receives an element of the Clarke derivative of
-  /// the map x ↦ prox_{τφ}(x), a number in [0, 1]. At x = ±∞ the answer is the limit of the prox:
-  /// the end of dom φ on that side (±∞ for a potential finite on the whole line).
-  /// Throws InvalidArgument when τ ≤ 0 or not finite, when x is NaN, or when the potential has no prox.
+  /// prox_{τφ}(x) for τ > 0; `dprox`, when not null, receives an element of the Clarke derivative
+  /// of the map x ↦ prox_{τφ}(x), a number in [0, 1]. At x = ±∞ the answer is the limit of the
+  /// prox: the end of dom φ on that side (±∞ for a potential finite on the whole line). Throws
+  /// InvalidArgument when τ ≤ 0 or not finite, when x is NaN, or when the potential has no prox.
   double prox(double x, double tau, double* dprox = nullptr) const;
   /// φ*(s); +∞ outside its domain. Throws InvalidArgument when the conjugate is not known.
   double conjugate(double s) const;
-  /// Fenchel–Young gap φ(z) + φ*(s) − s z (≥ 0; 0 iff s ∈ ∂φ(z)); NaN when the conjugate is unknown.
+  /// Fenchel–Young gap φ(z) + φ*(s) − s z (≥ 0; 0 iff s ∈ ∂φ(z)); NaN when the conjugate is
+  /// unknown.
   double fenchel_young_gap(double z, double s) const;
 
   /// One line describing the parameters, e.g. "power(k=85.36, p=3)".

@@ -4,9 +4,9 @@
 
 namespace fremond {
 
-/// k|z|^p/p with k ≥ 0, p > 1. ∂φ(z) = k z|z|^{p−2}; φ*(s) = |s|^{p'}/(p' k^{p'−1}), 1/p + 1/p' = 1.
-/// For p = 2 the impact of one point mass m is Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24 in
-/// SPEC's scaling).
+/// k|z|^p/p with k ≥ 0, p > 1. ∂φ(z) = k z|z|^{p−2}; φ*(s) = |s|^{p'}/(p' k^{p'−1}), 1/p + 1/p'
+/// = 1. For p = 2 the impact of one point mass m is Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24
+/// in SPEC's scaling).
 class PowerPotential final : public Potential {
  public:
   /// Throws InvalidArgument unless k ≥ 0 and p > 1, both finite.

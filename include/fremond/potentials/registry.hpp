@@ -1,5 +1,6 @@
 #pragma once
-/// @file A registry of named potential kinds: how the problem file and the bindings make potentials.
+/// @file A registry of named potential kinds: how the problem file and the bindings make
+/// potentials.
 ///
 /// No global state: a registry is an ordinary object, passed to whatever reads problem files.
 /// `PotentialRegistry::with_builtins()` holds power, deadzone_power, absolute_value,
@@ -22,7 +23,8 @@ struct PotentialKind {
   std::vector<std::string> required;
   /// Parameters that may be given, with their defaults.
   PotentialParameters optional;
-  /// Makes the potential from a complete parameter set; may throw InvalidArgument naming a parameter.
+  /// Makes the potential from a complete parameter set; may throw InvalidArgument naming a
+  /// parameter.
   std::function<PotentialPtr(const PotentialParameters&)> make;
   /// One line for `--help`-style listings.
   std::string description;

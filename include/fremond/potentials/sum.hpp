@@ -5,8 +5,8 @@
 namespace fremond {
 
 /// f + g. ∂(f + g) = ∂f + ∂g (one of them finite everywhere, which every built-in potential but the
-/// indicators is). The prox is computed by bisection on the monotone inclusion (exact to the last bit);
-/// the conjugate (an infimal convolution) is not known in general.
+/// indicators is). The prox is computed by bisection on the monotone inclusion (exact to the last
+/// bit); the conjugate (an infimal convolution) is not known in general.
 class SumPotential final : public Potential {
  public:
   SumPotential(const Potential& f, const Potential& g);

@@ -25,15 +25,16 @@ template <int MaxDofs, int MaxContacts>
 struct ImpactResultT {
   using Vec = VecT<MaxDofs>;
   using CVec = VecT<MaxContacts>;
-  Vec qdot_E;                       ///< velocity after the impact.
-  CVec P_N, P_T;                    ///< percussions on the body (P_N ≥ 0 pushes apart).
-  CVec D_NA, D_TA, D_NE, D_TE;      ///< contact velocities before and after.
-  CVec P_N_reaction;                ///< Frémond: the reaction part of P_N (−I_reac ≥ 0); else 0.
+  Vec qdot_E;                   ///< velocity after the impact.
+  CVec P_N, P_T;                ///< percussions on the body (P_N ≥ 0 pushes apart).
+  CVec D_NA, D_TA, D_NE, D_TE;  ///< contact velocities before and after.
+  CVec P_N_reaction;            ///< Frémond: the reaction part of P_N (−I_reac ≥ 0); else 0.
   /// Poisson's phases (has_phases): compression percussions and the velocities at its end.
   bool has_phases = false;
   CVec P_NC, P_TC, D_NC, D_TC;
-  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, MaxContacts, 1> takes_part;  ///< 1 if D_NA ≤ 0
-  double energy_change = 0.0;       ///< T_E − T_A.
+  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, MaxContacts, 1>
+      takes_part;              ///< 1 if D_NA ≤ 0
+  double energy_change = 0.0;  ///< T_E − T_A.
   /// False when the law has several solutions for these data (this is one of them).
   bool unique = true;
   /// Number of distinct solutions found when uniqueness was checked (0: not checked).

@@ -12,12 +12,12 @@ namespace fremond {
 
 /// Solves one impact. Throws InvalidArgument for an invalid problem, law or options; a solver that
 /// does not converge says so in result.solver.status (never an exception). For small problems
-/// (SmallImpactProblem) the solve allocates nothing on the heap, except for potentials whose prox is
-/// computed through the NLopt fallback.
+/// (SmallImpactProblem) the solve allocates nothing on the heap, except for potentials whose prox
+/// is computed through the NLopt fallback.
 template <int MaxDofs, int MaxContacts>
-ImpactResultT<MaxDofs, MaxContacts> solve_impact(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
-                                                 const ImpactLaw& law,
-                                                 const SolverOptions& options = {});
+ImpactResultT<MaxDofs, MaxContacts> solve_impact(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const SolverOptions& options = {});
 
 /// Every solution found: for laws with friction on up to 3 contacts (and Frémond + Coulomb on one
 /// contact, exactly) by enumerating contact modes; otherwise the single answer of solve_impact.

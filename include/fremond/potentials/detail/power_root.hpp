@@ -7,13 +7,13 @@ namespace fremond::detail {
 
 /// Root t ≥ 0 of t + a·t^m = b for b ≥ 0, a ≥ 0, m > 0, with dt/db in `*dtdb` when not null.
 ///
-/// This is prox_{τφ} of φ(y) = k|y|^p/p on y ≥ 0 (a = τk, m = p − 1, b = |x|). Closed forms for m = 1
-/// and m = 2 (p = 2, 3). Otherwise Newton in u = ln t: g(u) = e^u + a e^{mu} − b is increasing and
-/// convex, so Newton started to the right of the root (at an upper bound) decreases monotonically to
-/// it, with no overshoot and no bracketing; the start is within a factor 2^{1/m} of the root, so a few
-/// steps suffice for every m. Overflow is impossible: every iterate satisfies a t^m ≤ b.
-/// The derivative uses a t^m = b − t: dt/db = 1/(1 + a m t^{m−1}) = t/(t + m(b − t)).
-/// b = +∞ gives the limit t = +∞ (the root grows without bound with b), with dt/db its limit: the
+/// This is prox_{τφ} of φ(y) = k|y|^p/p on y ≥ 0 (a = τk, m = p − 1, b = |x|). Closed forms for m =
+/// 1 and m = 2 (p = 2, 3). Otherwise Newton in u = ln t: g(u) = e^u + a e^{mu} − b is increasing
+/// and convex, so Newton started to the right of the root (at an upper bound) decreases
+/// monotonically to it, with no overshoot and no bracketing; the start is within a factor 2^{1/m}
+/// of the root, so a few steps suffice for every m. Overflow is impossible: every iterate satisfies
+/// a t^m ≤ b. The derivative uses a t^m = b − t: dt/db = 1/(1 + a m t^{m−1}) = t/(t + m(b − t)). b
+/// = +∞ gives the limit t = +∞ (the root grows without bound with b), with dt/db its limit: the
 /// closed forms and the Newton steps would form ∞ − ∞ there.
 inline double power_root(double a, double m, double b, double* dtdb = nullptr) {
   if (std::isinf(b) && b > 0.0) {

@@ -16,7 +16,8 @@ inline std::string format_number(double v) {
 }
 
 inline void require_finite(const std::string& name, double v) {
-  if (!std::isfinite(v)) throw InvalidArgument(name, "must be a finite number, got " + format_number(v));
+  if (!std::isfinite(v))
+    throw InvalidArgument(name, "must be a finite number, got " + format_number(v));
 }
 inline void require_finite_at_least(const std::string& name, double v, double lo) {
   require_finite(name, v);
