@@ -12,9 +12,15 @@ namespace fremond::detail {
 
 namespace {
 
+// g·x with 0 exactly where x is: g = W_iᵀM⁻¹W_i overflows for |W| near 1e308, and 0·∞ would
+// make an exact zero a NaN residual.
+double scaled(double g, double x) {
+  return x == 0.0 ? 0.0 : g * x;
+}
+
 // min(w, g·x): zero exactly when 0 ≤ x ⊥ w ≥ 0 (g converts a percussion to a velocity).
 double complementarity(double w, double x, double g) {
-  return std::min(w, g * x);
+  return std::min(w, scaled(g, x));
 }
 
 // Coulomb's natural map on (t, v) with bound b: g·(t − clamp(t − v/g, −b, b)); zero exactly when
@@ -22,7 +28,7 @@ double complementarity(double w, double x, double g) {
 // normal residual reports the negative percussion).
 double coulomb(double t, double v, double b, double g) {
   b = std::max(0.0, b);
-  return g * (t - std::clamp(t - v / g, -b, b));
+  return scaled(g, t - std::clamp(t - v / g, -b, b));
 }
 
 }  // namespace
@@ -82,14 +88,12 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
       contact_worst(i) = std::max(contact_worst(i), a);
     };
     if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
-      // A zero percussion is exactly right whatever g is (g overflows for |W| near 1e308, and
-      // 0·∞ would make the exact answer a NaN residual).
-      auto off = [](double g, double p) { return p == 0.0 ? 0.0 : g * p; };
-      keep(off(gn, r.P_N(i)));
-      keep(off(gt, r.P_T(i)));
+      // A zero percussion is exactly right whatever g is.
+      keep(scaled(gn, r.P_N(i)));
+      keep(scaled(gt, r.P_T(i)));
       if (poisson) {
-        keep(off(gn, r.P_NC(i)));
-        keep(off(gt, r.P_TC(i)));
+        keep(scaled(gn, r.P_NC(i)));
+        keep(scaled(gt, r.P_TC(i)));
       }
       continue;
     }

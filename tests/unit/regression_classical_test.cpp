@@ -228,6 +228,30 @@ TEST(RegressionClassical, GrazingContactOfASpinningBarConvergesAtTheRoundingOfIt
   EXPECT_NEAR(r.P_T(0), pt, 1e-12 * pt);
 }
 
+// One degree of freedom with |W_T| = 1.1e308 and M = 4.7e299: W_TᵀM⁻¹W_T overflows, and the
+// Coulomb term of the residual, ∞ times an exact zero, was NaN for the state with no percussion
+// (an unsupported method's answer; found by solver_fuzz). A zero percussion term is now zero.
+TEST(RegressionClassical, ResidualOfAZeroTermIsZeroWhereTheCompliancesOverflow) {
+  ImpactProblem pb;
+  pb.M = MatrixX::Constant(1, 1, 4.7234007267767205e+299);
+  pb.W_N = MatrixX(1, 2);
+  pb.W_N << -0.252057159883321, 0.0;
+  pb.W_T = MatrixX(1, 2);
+  pb.W_T << -1.1200470895789639e+308, 0.0;
+  pb.qdot_A = VectorX::Constant(1, 3.6105595629324298e-06);
+  const ImpactLaw law = ImpactLaw::poisson(0.0);
+  for (const SolverMethod m : {SolverMethod::scalar_newton, SolverMethod::automatic}) {
+    SolverOptions opt;
+    opt.method = m;
+    const ImpactResult r = solve_impact(pb, law, opt);
+    EXPECT_TRUE(std::isfinite(r.solver.residual)) << to_string(m) << ": " << r.solver.message;
+    EXPECT_EQ(robust::check_result(pb, law, opt, r), "") << to_string(m);
+  }
+  SolverOptions forced;
+  forced.method = SolverMethod::scalar_newton;
+  EXPECT_EQ(solve_impact(pb, law, forced).solver.status, SolverStatus::unsupported);
+}
+
 TEST(RegressionPotentials, GenericProxIsAccurateToTheRoundingOfItsArgument) {
   const PowerPotential a(3.0, 2.0), b(0.5, 2.0);
   const SumPotential sum(a, b);
