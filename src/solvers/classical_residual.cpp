@@ -62,8 +62,12 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
   // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
   // ε times that, far above ε|D_NA|.
-  VecT<N> q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
-  if (poisson) q_abs += qC.cwiseAbs();
+  // Only where asked for: the stopping test asks only when the residual misses the tolerance.
+  VecT<N> q_abs(n);
+  if (beyond_rounding) {
+    q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
+    if (poisson) q_abs += qC.cwiseAbs();
+  }
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
   VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c);
   for (int i = 0; i < c; ++i) {
@@ -78,10 +82,12 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     }
     // The rounding floor of the contact's terms, as in Frémond's stopping test
     // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities.
-    double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
-    if (tangential) floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
-    floor *= 16.0 * std::numeric_limits<double>::epsilon();
-    contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
+    if (beyond_rounding) {
+      double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
+      if (tangential) floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
+      floor *= 16.0 * std::numeric_limits<double>::epsilon();
+      contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
+    }
     auto keep = [&](double x) {
       const double a = std::isnan(x) ? inf : std::fabs(x);
       worst = std::max(worst, a);
