@@ -85,6 +85,14 @@ MethodOutcome solve_decoupled(const FremondRowsT<N, C>& rows, Rows<N, C>& P) {
   return o;  // the residual is check_exact's (or, for a guess, nobody's)
 }
 
+/// The start of Newton: the decoupled rows' answer from `P`, zero where it is not finite.
+template <int N, int C>
+Rows<N, C> decoupled_guess(const FremondRowsT<N, C>& rows, Rows<N, C> P) {
+  solve_decoupled(rows, P);
+  if (!P.allFinite()) P.setZero();
+  return P;
+}
+
 // ---------------------------------------------------------------------------------------------
 // One contact with Coulomb friction: every mode (stick, slide ±, with P_N of either sign) reduces
 // to one scalar normal problem  z = D̃ + g P/2,  −P ∈ ∂ψ(z),  ψ = φ_N + I_{[D_NA/2, ∞)}.
@@ -548,9 +556,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
             out.solver.fallbacks = fallbacks;
             out.unique = false;
           };
-          Rows<N, C> PN = P;
-          solve_decoupled(rows, PN);
-          if (!PN.allFinite()) PN.setZero();
+          Rows<N, C> PN = decoupled_guess(rows, P);
           const auto newton = semismooth_newton(rows, PN, opt);
           if (newton.status == SolverStatus::converged) {
             final_row_sweep(rows, PN, opt.tolerance * cs.v_scale);
@@ -638,9 +644,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   // where Newton on the law fails, below).
   if (want == SolverMethod::mode_enumeration && has_prox && rows.coulomb && cs.active >= 2 &&
       cs.active <= 3) {
-    Rows<N, C> P0 = P;
-    solve_decoupled(rows, P0);
-    if (!P0.allFinite()) P0.setZero();
+    const Rows<N, C> P0 = decoupled_guess(rows, P);
     MethodOutcome om;
     if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
       final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
@@ -664,9 +668,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   // 2. Semismooth Newton from the decoupled guess, 3. proximal iterations, 4. NLopt.
   int tried = 0;
   if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
-    Rows<N, C> P0 = P;
-    solve_decoupled(rows, P0);  // a guess: each row as if alone
-    if (!P0.allFinite()) P0.setZero();
+    const Rows<N, C> P0 = decoupled_guess(rows, P);  // each row as if alone
     P = P0;
     const auto o = semismooth_newton(rows, P, opt);
     if (o.status == SolverStatus::converged) final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
