@@ -454,23 +454,18 @@ TEST(ClassicalMethods, EachLcpMethodCanBeForcedAndTheyAgree) {
       EXPECT_EQ(r.solver.method, m) << name;
       expect_same_velocities(r, automatic, name + " one contact " + std::string(to_string(m)));
     }
-    // The flat bar, both ends down: Lemke and the enumeration agree. The enumeration accepts a
-    // mode within 1e-9 of the velocity scale; on Poisson + Coulomb its vertex of the singular
-    // expansion is that far off, which it reports as stalled, never as converged.
+    // The flat bar, both ends down: Lemke and the enumeration agree. On Poisson + Coulomb the
+    // expansion's stick-stick mode is singular and the enumeration projects onto its
+    // inequalities: exactly, so its answer meets the law's tolerance too (relaxed by the mode's
+    // tolerance, 1e-9 of the velocities, it once stopped that far outside the cone: stalled).
     const ImpactProblem two = flat_bar(Eigen::Vector3d(0.3, -1.0, 0.2), law.has_friction());
     const ImpactResult lemke = forced(two, law, SolverMethod::lemke);
     const ImpactResult modes = forced(two, law, SolverMethod::mode_enumeration);
     ASSERT_TRUE(lemke.ok()) << name << ": " << lemke.solver.message;
     EXPECT_EQ(lemke.solver.method, SolverMethod::lemke) << name;
     EXPECT_EQ(modes.solver.method, SolverMethod::mode_enumeration) << name;
-    if (law.type == LawType::poisson_coulomb) {
-      EXPECT_EQ(modes.solver.status, SolverStatus::stalled) << name;
-      EXPECT_LE((modes.D_NE - lemke.D_NE).cwiseAbs().maxCoeff(), 1e-8) << name;
-      EXPECT_LE((modes.D_TE - lemke.D_TE).cwiseAbs().maxCoeff(), 1e-8) << name;
-    } else {
-      ASSERT_TRUE(modes.ok()) << name << ": " << modes.solver.message;
-      expect_same_velocities(lemke, modes, name + " flat bar");
-    }
+    ASSERT_TRUE(modes.ok()) << name << ": " << modes.solver.message;
+    expect_same_velocities(lemke, modes, name + " flat bar");
     // Newton without friction: G is regular and both ends close, so eq. 6's guess is the closed
     // form. With friction the two tangential rows are one (G singular), and Poisson's expansion
     // starts from D_C = 0 where the all-closed guess is -e P_C < 0: neither has one.

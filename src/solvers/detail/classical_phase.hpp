@@ -396,19 +396,54 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
   MatT<times(MaxC, 3), kMaxRows> B = s.C.topRows(s.m) * N;
   VecT<times(MaxC, 3)> d = s.g.head(s.m) - s.C.topRows(s.m) * u0;
-  for (int j = 0; j < s.m; ++j) d(j) -= row_tol(j);
   VecT<kMaxRows> y;
   const VecT<kMaxRows> y0 = VecT<kMaxRows>::Zero(r - rank);
-  if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
+  // The inequalities exactly first: relaxed by their tolerance from the start, the projection
+  // stops on the relaxed boundary (a wedged corner's neighbour then sat 2e-10 outside Coulomb's
+  // cone where a point of the null space meets it exactly). The relaxed set only when the exact
+  // one is empty (rounding of u0).
+  if (!project_polyhedron<MaxC>(B, d, y0, y)) {
+    for (int j = 0; j < s.m; ++j) d(j) -= row_tol(j);
+    if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
+  }
   u = u0 + N * y;
   moves = (ph.G * N).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, ph.G.cwiseAbs().maxCoeff());
   return true;
 }
 
+/// The phase's own residual at u, in velocity units: the natural map of each complementarity
+/// (min(w_i, G_ii x_i)) and of Coulomb's law (G_kk (t − clamp(t − v/G_kk, −β, β))), as the law's
+/// residual (classical_residual) takes them. Zero exactly at a solution; rounding otherwise.
+template <int MaxC>
+double phase_residual(const Phase<MaxC>& ph, const typename Phase<MaxC>::Rows& u) {
+  const int a = ph.a;
+  const typename Phase<MaxC>::Rows v = ph.velocity(u);
+  auto diag = [&](int j) { return ph.G(j, j) > 0.0 ? ph.G(j, j) : 1.0; };
+  double worst = 0.0;
+  for (int i = 0; i < a; ++i) {
+    worst = std::max(worst, std::fabs(std::min(v(i), u(i) == 0.0 ? 0.0 : diag(i) * u(i))));
+    if (!ph.friction) continue;
+    const int k = a + i;
+    const double g = diag(k), t = u(k), b = std::max(0.0, ph.mu(i) * u(i) + ph.b0(i));
+    worst = std::max(worst, std::fabs(g * (t - std::clamp(t - v(k) / g, -b, b))));
+  }
+  return worst;
+}
+
+/// Whether `candidate` solves the phase clearly more exactly than `kept`: its residual is below
+/// half of `kept`'s, and `kept`'s is beyond rounding (1e-3 of the velocity tolerance), so that
+/// two exact answers keep the first.
+inline bool clearly_more_exact(double candidate, double kept, const Tolerances& tol) {
+  return kept > 1e-3 * tol.v && candidate < 0.5 * kept;
+}
+
 /// Every solution of a phase with friction, by trying every contact mode (up to 6 per contact).
 /// Solutions with the same velocities are one (their percussions differ only where G is singular;
-/// `minimum_norm` then picks one). `continuum` is set when a singular mode may hold a continuum of
-/// velocities.
+/// `minimum_norm` then picks one). Of two modes that give the same velocities the one that solves
+/// the phase more exactly (phase_residual) is kept: two corners of a resting block whose W_T differ
+/// by 3e-11 cannot both stick after a rotating expansion (their tangential velocities differ by
+/// 4e-15), and the singular stick-stick mode, accepted within its tolerance, would hide the exact
+/// stick-slide answer. `continuum` is set when a singular mode may hold a continuum of velocities.
 inline constexpr int kMaxEnumerated = 3;  ///< the most contacts enumerate_modes takes
 
 template <int MaxC>
@@ -438,6 +473,7 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
   }
   ModeSystem<MaxC> sys;
   Rows u;
+  std::array<double, kMaxSolutions> residual{};  // of out[k]
   int normal_closed[kMaxEnum];
   Tangential tang[kMaxEnum];
   while (true) {
@@ -450,11 +486,18 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
     if (solve_mode(ph, sys, tol, u, moves)) {
       continuum = continuum || moves;
       for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
+      const double res = phase_residual(ph, u);
       const Rows v = ph.velocity(u);
-      bool seen = false;
-      for (int k = 0; k < out.size && !seen; ++k)
-        seen = (ph.velocity(out[k]) - v).cwiseAbs().maxCoeff() <= 16 * tol.v;
-      if (!seen) out.push(u);
+      int seen = -1;
+      for (int k = 0; k < out.size && seen < 0; ++k)
+        if ((ph.velocity(out[k]) - v).cwiseAbs().maxCoeff() <= 16 * tol.v) seen = k;
+      if (seen < 0) {
+        if (out.size < kMaxSolutions) residual[out.size] = res;
+        out.push(u);
+      } else if (clearly_more_exact(res, residual[seen], tol)) {
+        out[seen] = u;
+        residual[seen] = res;
+      }
     }
     int i = 0;
     while (i < a && ++pick[i] == count[i]) pick[i++] = 0;
@@ -516,6 +559,8 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
   using RowMat = MatT<kMaxRows, kMaxRows>;
   const int a = ph.a, r = ph.rows();
   if (NG.cols() == 0) return true;
+  const Rows u_in = u;
+  const double residual_in = phase_residual(ph, u);
   const Rows v = ph.velocity(u);
   RowMat E(r, r);  // equalities E δ = 0 beside G δ = 0: at most one per row
   E.setZero();
@@ -569,6 +614,14 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
   if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
   u += N * y;
   for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
+  // The modes above are read from the velocities within tol.v: where G is singular only up to
+  // rounding (two corners whose W_T differ by 3e-11), a contact that slides at 4e-15 is read as
+  // sticking, and the set reached from u is a continuum within the tolerance only. Its
+  // minimum-norm point then misses the law that u meets exactly; u is the answer.
+  if (clearly_more_exact(residual_in, phase_residual(ph, u), tol)) {
+    u = u_in;
+    return true;
+  }
   // Single point? Only if no direction of the null space is feasible at y: project ±e_j onto the
   // cone {δ : B_A δ ≥ 0} of the active rows; a non-zero projection is a feasible direction.
   const int dim = static_cast<int>(N.cols());
