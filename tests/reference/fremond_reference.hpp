@@ -1040,8 +1040,12 @@ inline std::vector<Solution> newton_frictionless(const Problem& p, const QVec& e
     for (int i = 0; i < c; ++i) {
       if (!sol.mode.empty()) sol.mode += " ";
       const bool active = std::find(act.begin(), act.end(), i) != act.end();
-      sol.mode += "c" + std::to_string(i) + ":" +
-                  (!d.part[i] ? "separating" : (active ? "active" : "open"));
+      // Appended piece by piece: "c" + std::to_string(i) trips GCC 12's -Wrestrict (a false
+      // positive of its string inlining) in some of the files that include this one.
+      sol.mode += "c";
+      sol.mode += std::to_string(i);
+      sol.mode += ":";
+      sol.mode += !d.part[i] ? "separating" : (active ? "active" : "open");
     }
     sol.residual = newton_residual(p, e, sol);
     found.push_back(sol);

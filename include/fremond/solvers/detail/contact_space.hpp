@@ -12,6 +12,7 @@
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/detail/accurate_dot.hpp"
+#include "fremond/solvers/detail/refined_solve.hpp"
 #include "fremond/solvers/impact_result.hpp"
 
 namespace fremond::detail {
@@ -57,7 +58,8 @@ struct ContactSpaceT {
 ///
 /// With M = L Lᵀ and Y = L⁻¹ W: G = WᵀM⁻¹W = YᵀY (a Gram matrix: symmetric and positive
 /// semidefinite by construction, also in floating point up to rounding of each entry) and
-/// M⁻¹W = L⁻ᵀ Y.
+/// M⁻¹W = L⁻ᵀ Y. Where M is not diagonal and that solve is off by more than rounding (cond(M)·ε),
+/// M⁻¹W is refined and G recomputed from it.
 template <int MaxDofs, int MaxContacts>
 void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
                          ContactSpaceT<MaxDofs, MaxContacts>& cs) {
@@ -103,6 +105,16 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
       cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
     }
     cs.llt.solve_upper_in_place(cs.MinvW);
+    // An ill-conditioned M: M⁻¹W and G to the working precision (refined_solve.hpp). G is then
+    // WᵀX from twice-precise sums, symmetrised; a diagonal M keeps the Gram form.
+    if (!is_diagonal(pb.M) && refine_solve(pb.M, cs.llt, cs.W, cs.MinvW)) {
+      for (int j = 0; j < r; ++j) {
+        cs.G(j, j) = std::max(0.0, accurate_dot(cs.W.col(j), cs.MinvW.col(j)));
+        for (int k = j + 1; k < r; ++k)
+          cs.G(j, k) = cs.G(k, j) = 0.5 * (accurate_dot(cs.W.col(j), cs.MinvW.col(k)) +
+                                           accurate_dot(cs.W.col(k), cs.MinvW.col(j)));
+      }
+    }
     // G = Wᵀ M⁻¹ W of a contact that takes part must be a number: |W|²/|M| beyond 1e308 leaves no
     // percussion representable (P ~ D_A / G), and a factorisation of a matrix holding ∞ is
     // undefined (Eigen's SVD reads out of bounds). The data are finite, their scale is not.
