@@ -667,6 +667,8 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
 
   // 2. Semismooth Newton from the decoupled guess, 3. proximal iterations, 4. NLopt.
   int tried = 0;
+  MethodOutcome split_end;  // the splitting's outcome, when it ran and failed
+  bool have_split_end = false;
   if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
     const Rows<N, C> P0 = decoupled_guess(rows, P);  // each row as if alone
     P = P0;
@@ -739,8 +741,27 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       return;
     }
     ++tried;
+    split_end = o;
+    have_split_end = true;
   }
+  const Rows<N, C> P_split = P;  // where NLopt starts: the splitting's end, if it ran
   const auto o = nlopt_velocity_space(pb, rows, P, opt);
+  // Every method failed: the answer is the nearest to the law, not the last. NLopt, stopped by
+  // its budget, can end far from where the splitting left off (a singular G of rank 3 with 8 rows
+  // and cond(M) = 1e10: 9e12 of the velocities against the splitting's 1e-6).
+  if (have_split_end && o.status != SolverStatus::converged) {
+    const double r_nlopt = P.allFinite() ? rows.plain_residual(P) : 0.0;
+    const double r_split = rows.plain_residual(P_split);
+    if (!(r_nlopt <= r_split) && std::isfinite(r_split)) {
+      P = P_split;
+      split_end.message =
+          "every method failed; the proximal splitting's end is returned, nearer to the law than "
+          "NLopt's";
+      finish(split_end, SolverMethod::proximal);
+      out.solver.fallbacks = tried + 1;
+      return;
+    }
+  }
   finish(o, SolverMethod::nlopt);
   out.solver.fallbacks = tried;
 }
