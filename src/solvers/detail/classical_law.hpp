@@ -55,9 +55,14 @@ struct Factored {
   bool regular = false;
   RowMat null;  ///< orthonormal basis of null(G), no columns when G is regular
 
-  void compute(const RowMat& G) {
-    llt.compute(G);
+  /// `dofs`: the number of degrees of freedom, a bound on G's rank (G = Wᵀ M⁻¹ W).
+  void compute(const RowMat& G, int dofs) {
     regular = false;
+    if (G.rows() > dofs) {  // singular for sure: skip the factor, whose pivots would be rounding
+      null = null_space<C>(G);
+      return;
+    }
+    llt.compute(G);
     if (llt.info() == Eigen::Success && G.rows() > 0) {
       const auto d = llt.matrixLLT().diagonal();
       regular = d.minCoeff() > 1e-7 * d.maxCoeff();
@@ -323,7 +328,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   }
   const Tolerances tol = tolerances(ph, cs.v_scale);
   Factored<C> fg;
-  fg.compute(ph.G);
+  fg.compute(ph.G, pb.dofs());
   // T_E − T_A = Pᵀ Wᵀq̇_A + ½ PᵀGP (eq. 9 with the obstacle terms w taken out of D_A).
   // By hand loops: Eigen's dynamic-size products on these few rows go through its GEMV kernel.
   Rows Wq(r);

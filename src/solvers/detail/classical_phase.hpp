@@ -506,41 +506,12 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
 }
 
 /// An orthonormal basis of null(G) (= null(W)): the directions along which the percussions of a
-/// phase can change without changing any velocity. Empty when G is regular.
+/// phase can change without changing any velocity. Empty when G is regular. Pivots below 1e-10 of
+/// the largest count as zero (small_null_space.hpp).
 template <int MaxC>
 MatT<times(MaxC, 2), times(MaxC, 2)> null_space(const typename Phase<MaxC>::RowMat& G) {
-  using RowMat = typename Phase<MaxC>::RowMat;
-  const int r = static_cast<int>(G.rows());
-  if (r == 0) return RowMat(0, 0);
-  // A full-pivoting LU gives a basis of the kernel cheaply; Gram-Schmidt makes it orthonormal.
-  RowMat N;
-  if constexpr (MaxC != Dynamic) {
-    // The same elimination by hand loops: Eigen's blocked kernels cost more than the arithmetic.
-    if (small_kernel<times(MaxC, 2)>(G, 1e-10, N) == r) return N;
-    const int dim = static_cast<int>(N.cols());
-    for (int j = 0; j < dim; ++j) {
-      for (int k = 0; k < j; ++k) {
-        double d = 0.0;
-        for (int i = 0; i < r; ++i) d += N(i, k) * N(i, j);
-        for (int i = 0; i < r; ++i) N(i, j) -= d * N(i, k);
-      }
-      double z = 0.0;
-      for (int i = 0; i < r; ++i) z += N(i, j) * N(i, j);
-      if (z > 0.0) {
-        const double norm = std::sqrt(z);
-        for (int i = 0; i < r; ++i) N(i, j) /= norm;
-      }
-    }
-  } else {
-    Eigen::FullPivLU<RowMat> lu(G);
-    lu.setThreshold(1e-10);
-    if (lu.rank() == r) return RowMat(r, 0);
-    N = lu.kernel();
-    for (int j = 0; j < N.cols(); ++j) {
-      for (int k = 0; k < j; ++k) N.col(j) -= N.col(k).dot(N.col(j)) * N.col(k);
-      N.col(j).normalize();
-    }
-  }
+  typename Phase<MaxC>::RowMat N;
+  psd_null_space<times(MaxC, 2)>(G, 1e-10, N);
   return N;
 }
 
