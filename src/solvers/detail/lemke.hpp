@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <vector>
+#include <memory>
 
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
@@ -25,27 +25,30 @@ namespace fremond::detail::lcp {
 /// touch only the entries they use.
 template <int MaxN>
 struct TableauStorage {
-  std::array<double, static_cast<std::size_t>(MaxN) * (MaxN + 2)> values;
-  std::array<int, MaxN> basis;
-  std::array<int, MaxN + 1> nonbasic;
-  std::array<int, 2 * MaxN + 1> position;
-  std::array<double, MaxN> col_max, ratio;
+  std::array<double, static_cast<std::size_t>(MaxN) * (MaxN + 2)> values_;
+  std::array<double, 2 * MaxN> reals_;
+  std::array<int, 5 * MaxN + 2> ints_;
   void resize(int) {}
+  double* values() { return values_.data(); }
+  double* reals() { return reals_.data(); }
+  int* ints() { return ints_.data(); }
 };
+/// Heap-stored: left uninitialised like the stack arrays (every entry read is written first). A
+/// zero-filled vector of the n(n + 2) tableau entries cost as much as a third of the pivots on the
+/// many-contact problems (n = 128 for 32 contacts with friction).
 template <>
 struct TableauStorage<Dynamic> {
-  std::vector<double> values;
-  std::vector<int> basis, nonbasic, position;
-  std::vector<double> col_max, ratio;
+  std::unique_ptr<double[]> values_, reals_;
+  std::unique_ptr<int[]> ints_;
   void resize(int n) {
     const auto m = static_cast<std::size_t>(n);
-    values.resize(m * (m + 2));
-    basis.resize(m);
-    nonbasic.resize(m + 1);
-    position.resize(2 * m + 1);
-    col_max.resize(m);
-    ratio.resize(m);
+    values_.reset(new double[m * (m + 2)]);
+    reals_.reset(new double[2 * m]);
+    ints_.reset(new int[5 * m + 2]);
   }
+  double* values() { return values_.get(); }
+  double* reals() { return reals_.get(); }
+  int* ints() { return ints_.get(); }
 };
 
 /// ‖min(z, Mz + q)‖∞ (unscaled); w receives M z + q. By hand loops: on the small sizes met here
@@ -89,12 +92,13 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
 
   TableauStorage<MaxN> storage;
   storage.resize(n);
-  double* const T = storage.values.data();
-  int* const basis = storage.basis.data();        // row → basic variable
-  int* const nonbasic = storage.nonbasic.data();  // column → non-basic variable
-  int* const position = storage.position.data();  // variable → its row or column
-  double* const col_max = storage.col_max.data();
-  double* const ratio = storage.ratio.data();
+  double* const T = storage.values();
+  int* const basis = storage.ints();         // row → basic variable (n)
+  int* const nonbasic = basis + n;           // column → non-basic variable (n + 1)
+  int* const position = nonbasic + n + 1;    // variable → its row or column (2n + 1)
+  int* const w_free = position + 2 * n + 1;  // the non-basic w's, ascending (n at most)
+  double* const col_max = storage.reals();   // n
+  double* const ratio = col_max + n;         // n
   auto at = [&](int i, int c) -> double& { return T[i * ld + c]; };
   auto is_basic = [&](int v) {
     const int p = position[v];
@@ -125,11 +129,6 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
   }
 
   const double eps = std::numeric_limits<double>::epsilon();
-  // Entry (i, k) of B⁻¹: the column of w_k.
-  auto binv = [&](int i, int k) {
-    const int p = position[k];
-    return is_basic(k) ? (p == i ? 1.0 : 0.0) : at(i, p);
-  };
   // Rounding scales of the right-hand side and of the B⁻¹ block, computed when a comparison first
   // needs them after a pivot (negative: stale). The B⁻¹ scale is only needed when the right-hand
   // sides tie, i.e. on degenerate steps.
@@ -161,20 +160,50 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
     const double rounding = 64 * eps * scale_of(k) / d_min;
     return std::fabs(a - b) <= opt.tie_tolerance * std::max(std::fabs(a), std::fabs(b)) + rounding;
   };
+  // The non-basic w's in ascending order, listed when a comparison first needs them after a pivot
+  // (−1: stale). Of B⁻¹'s columns only theirs are stored; a basic w_k's column is the unit vector
+  // of its row, zero in both rows compared unless one of them is that row.
+  int w_free_count = -1;
+  auto list_w_free = [&] {
+    if (w_free_count >= 0) return;
+    w_free_count = 0;
+    for (int v = 0; v < n; ++v)
+      if (!is_basic(v)) w_free[w_free_count++] = v;
+  };
   // Is row i / d_i lexicographically smaller than row k / d_k, comparing (rhs, B⁻¹ row)? On a tie
   // the next component decides. The B⁻¹ rows are independent, so some component does. The test of
-  // `tied` multiplied through by d_i d_k > 0, without divisions: on degenerate problems (many equal
-  // contacts) the comparisons walk long runs of B⁻¹ entries, most of them zero in both rows.
+  // `tied` multiplied through by d_i d_k > 0, without divisions. On degenerate problems (many equal
+  // contacts) the comparisons are many and long, so they visit only the components that can be
+  // non-zero: the non-basic w's, and the basic w's of rows i and k, merged in ascending order.
   auto lex_less = [&](int i, int k, double di, double dk) {
     const double d_max = std::max(di, dk);
-    for (int c = -1; c < n; ++c) {
-      const double a = c < 0 ? at(i, c_rhs) : binv(i, c);
-      const double b = c < 0 ? at(k, c_rhs) : binv(k, c);
-      if (a == 0.0 && b == 0.0) continue;
+    bool less = false;
+    auto decides = [&](double a, double b, int c) {
+      if (a == 0.0 && b == 0.0) return false;
       const double x = a * dk, y = b * di;
       const double tie =
           opt.tie_tolerance * std::max(std::fabs(x), std::fabs(y)) + 64 * eps * scale_of(c) * d_max;
-      if (std::fabs(x - y) > tie) return x < y;
+      if (std::fabs(x - y) <= tie) return false;
+      less = x < y;
+      return true;
+    };
+    if (decides(at(i, c_rhs), at(k, c_rhs), -1)) return less;
+    list_w_free();
+    const int wi = basis[i] < n ? basis[i] : n, wk = basis[k] < n ? basis[k] : n;
+    int unit = std::min(wi, wk);  // the next basic w to visit, then the other one
+    const int unit_last = std::max(wi, wk);
+    for (int f = 0;;) {
+      const int free_c = f < w_free_count ? w_free[f] : n;
+      if (free_c < unit) {
+        const int p = position[free_c];
+        if (decides(at(i, p), at(k, p), free_c)) return less;
+        ++f;
+      } else if (unit < n) {
+        if (decides(unit == wi ? 1.0 : 0.0, unit == wk ? 1.0 : 0.0, unit)) return less;
+        unit = unit == unit_last ? n : unit_last;
+      } else {
+        break;
+      }
     }
     return i > k;  // unreachable for an invertible basis; keeps the order total
   };
@@ -199,6 +228,7 @@ LcpStatus lemke(const MatT<MaxN, MaxN>& M, const VecT<MaxN>& q, const LemkeOptio
     nonbasic[j] = leaving;
     position[leaving] = j;
     rhs_scale = binv_scale = -1.0;
+    w_free_count = -1;
     return leaving;
   };
   // The ratio test on column j: among rows with d_i > threshold, the lexicographic minimum of
