@@ -10,6 +10,7 @@
 /// most ε|x·y| + γ_n² Σ|x_i y_i| (γ_n = nε/(1 − nε)), so its sign is the sign of the exact dot
 /// product of the stored doubles unless that is below about n² ε² Σ|x_i y_i| (1e-31 relative).
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 
 namespace fremond::detail {
@@ -31,6 +32,76 @@ double accurate_dot(const X& x, const Y& y, double extra = 0.0) {
   // Overflow (|W| near 1e308): the error terms are ∞ − ∞; the plain sum says what overflowed.
   const double r = s + c;
   return std::isfinite(r) ? r : s;
+}
+
+/// The rounding error of the product p = a·b (p + e = a·b exactly, barring underflow). With an
+/// FMA instruction, one fma; without one (the portable build), Dekker's TwoProduct by Veltkamp's
+/// splitting, since std::fma is then a library call per product. The splitting is exact for
+/// |a|, |b| below 2^995 (`two_product_safe`). Without FMA instructions the compiler cannot contract
+/// the splitting's a·C − (a·C − a) into one, which would break it.
+inline double two_product_error(double a, double b, double p) {
+#if defined(__FMA__) || defined(FP_FAST_FMA)
+  return std::fma(a, b, -p);
+#else
+  constexpr double kSplit = 134217729.0;  // 2^27 + 1
+  const double ta = kSplit * a, tb = kSplit * b;
+  const double ah = ta - (ta - a), al = a - ah;
+  const double bh = tb - (tb - b), bl = b - bh;
+  return ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+#endif
+}
+
+/// Whether two_product_error's splitting is exact for every product of entries of magnitude up to
+/// `largest` (its factor 2^27 + 1 must not overflow).
+inline bool two_product_safe(double largest) {
+  return largest < 0x1p995;
+}
+
+/// D = B − M X, each entry exactly as −accurate_dot(M.row(i), X.col(c), −B(i, c)) gives it (the
+/// same terms in the same order, the same error-free transformations; only a product whose error
+/// is subnormal may differ in that error's last bits), but with the rows of a
+/// column summed side by side: each row's sum is a dependency chain, and n of them at once keep
+/// the floating-point units busy and vectorise, where one accurate_dot per entry waits on each
+/// addition. For iterative refinement (refined_solve.hpp), where these residuals are most of the
+/// cost. Entries beyond two_product_safe go through accurate_dot one by one.
+template <class MatM, class MatX, class MatB, class MatD>
+void accurate_residual(const MatM& M, const MatX& X, const MatB& B, MatD& D) {
+  const Eigen::Index n = M.rows(), m = M.cols(), k = X.cols();
+  D.resize(n, k);
+  if (n == 0 || k == 0) return;
+  const double largest = std::max(M.cwiseAbs().maxCoeff(), X.cwiseAbs().maxCoeff());
+  if (!two_product_safe(largest)) {
+    for (Eigen::Index c = 0; c < k; ++c)
+      for (Eigen::Index i = 0; i < n; ++i) D(i, c) = -accurate_dot(M.row(i), X.col(c), -B(i, c));
+    return;
+  }
+  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MatM::MaxRowsAtCompileTime, 1>;
+  Column sum(n), err(n);
+  double* const s = sum.data();
+  double* const e = err.data();
+  for (Eigen::Index c = 0; c < k; ++c) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      s[i] = -B(i, c);
+      e[i] = 0.0;
+    }
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const double x = X(j, c);
+      const double* const col = M.data() + j * M.outerStride();
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double p = col[i] * x;
+        const double ep = two_product_error(col[i], x, p);
+        const double t = s[i] + p;
+        const double z = t - s[i];
+        const double es = (s[i] - (t - z)) + (p - z);
+        s[i] = t;
+        e[i] += ep + es;
+      }
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double r = s[i] + e[i];
+      D(i, c) = -(std::isfinite(r) ? r : s[i]);
+    }
+  }
 }
 
 }  // namespace fremond::detail

@@ -43,9 +43,7 @@ bool refine_solve(const MatM& M, const CholeskyT<MaxN>& llt, const MatB& B, MatX
   double previous = std::numeric_limits<double>::infinity();
   bool changed = false;
   for (int step = 0; step < max_steps; ++step) {
-    for (Eigen::Index c = 0; c < k; ++c)
-      for (Eigen::Index i = 0; i < n; ++i)
-        D(i, c) = -accurate_dot(M.row(i), X.col(c), -B(i, c));  // B − M X, in twice the precision
+    accurate_residual(M, X, B, D);  // B − M X, in twice the precision
     llt.solve_lower_in_place(D);
     llt.solve_upper_in_place(D);
     const double size = X.cwiseAbs().maxCoeff(), correction = D.cwiseAbs().maxCoeff();
