@@ -739,7 +739,9 @@ def update_readme(readme, outdir, report):
     work-precision summary, with the plots copied to docs/perf/."""
     with open(readme, encoding="utf-8") as f:
         text = f.read()
-    m = re.search(r"^## Performance\s*$", text, flags=re.M)
+    # The heading's own line only: `\s*$` would also swallow the blank lines after it, and each
+    # rewrite would then add one.
+    m = re.search(r"^## Performance[ \t]*$", text, flags=re.M)
     if not m:
         print(f"{readme}: no '## Performance' section; left unchanged", file=sys.stderr)
         return
