@@ -72,7 +72,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
       J(j, j) += d * rows.tau(j);
       if (dydb != 0.0) {
         const int k = j - a;  // the normal row of the same contact
-        J(j, k) -= dydb * rows.law->mu[rows.contact(j)] * (P(k) >= 0.0 ? 1.0 : -1.0);
+        J(j, k) -= dydb * rows.bound_slope(j, P);
       }
     }
     // Directions in order: Newton (LU), then Levenberg–Marquardt with a damping that grows tenfold

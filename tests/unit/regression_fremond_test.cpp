@@ -846,9 +846,11 @@ TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflo
 // (fremond_coulomb #62070 of seed 23). Semismooth Newton stalls from either start; the splitting,
 // started from its last iterate, did not converge either, and NLopt returned `stalled`, while
 // the splitting forced from P = 0 converges: the law is quasi-variational and where the iteration
-// ends depends on where it starts. Automatic now restarts the splitting from zero before NLopt
-// (fallbacks: Newton, the first splitting). Checked by the law's own conditions, contact by
-// contact.
+// ends depends on where it starts. Automatic then restarted the splitting from zero before NLopt;
+// since the enumeration of Coulomb's modes also holds each normal row's branch (reaction active or
+// not), it finds the answer before the splitting runs. Both ways are checked: automatic (by the
+// enumeration) and the splitting forced from zero, to the same answer, each by the law's own
+// conditions contact by contact.
 TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
   const auto file = io::parse_problem_file(R"({
     "M": [[1.2587692343452668, 0, 0], [0, 1.2587692343452668, 0], [0, 0, 0.1048974361954389]],
@@ -861,9 +863,15 @@ TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
                                            PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::proximal);
-  EXPECT_EQ(r.solver.fallbacks, 2);
+  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
   expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
+  SolverOptions forced;
+  forced.method = SolverMethod::proximal;
+  const ImpactResult s = solve_impact(file.problem, file.law, forced);
+  ASSERT_TRUE(s.ok()) << s.solver.message;
+  expect_coulomb_on_mean_velocity(s, {0.1052513990738896});
+  const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
+  EXPECT_LE((s.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(), 1e-9 * v);
 }
 
 // The bar upright on both ends (θ → π/2), Frémond + Coulomb with μ = (0.157, 0.123), k = 4e4 and
@@ -977,6 +985,71 @@ TEST(RegressionFremond, EveryMethodFailingReturnsTheAnswerNearestTheLaw) {
     EXPECT_EQ(r.solver.method, SolverMethod::proximal);
   }
   EXPECT_DOUBLE_EQ(r.solver.residual, law_residual(pb, law, r));
+}
+
+// Frémond + Coulomb on two contacts of random bodies with μ ≈ 1.2–1.6, where every method stalled
+// though the law has an answer (found independently by solving each contact mode's smooth
+// equations from random starts, scipy's least_squares, in the numbers below): Newton on a sliding
+// mode stopped at the kink of the reaction's bound (case a: contact 1 slides with its reaction
+// active, D_NE = 0) or of |P_N| at 0 (case b: contact 1 pulls, P_N < 0, and slides). The
+// enumeration now holds the normal branch and the sign of P_N fixed too.
+struct TwoContactCase {
+  const char* json;
+  std::array<double, 4> P;  // P_N0, P_N1, P_T0, P_T1 of the independent solution
+  bool reaction1;           // contact 1's reaction active (D_NE,1 = 0)
+  double k, p;              // the normal law's, as in the file
+};
+
+TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirModes) {
+  const TwoContactCase cases[] = {
+      {R"({"M": [[0.89454061787307704,0.12353883818861629],[0.12353883818861629,0.66926193129968803]],
+           "W_N": [[0.13514964382422012,0.10343002905295173],[0.35444246388020306,0.22887193134179817]],
+           "W_T": [[-0.12799946634758541,-0.17008761446306631],[0.50418105813738245,0.77879616678591557]],
+           "qdot_A": [-0.03992636693183238,-0.89706377380061997],
+           "law": {"type": "fremond", "normal": {"potential": "power", "k": 1.6800602152347377,
+                   "p": 2.6858380569943954}, "tangential": {"potential": "coulomb",
+                   "mu": 1.5900116209312292}}})",
+       {0.075248259805519, 0.384665797800025, 0.119645607545627, 0.611623088676823},
+       true,
+       1.6800602152347377,
+       2.6858380569943954},
+      {R"({"M": [[1.0199949079440893,-0.074173875383324706],[-0.074173875383324706,1.0022131152693703]],
+           "W_N": [[0.21600916069434528,-0.60719521364543194],[0.0091490270775755889,0.65232733453664116]],
+           "W_T": [[0.73344355966180586,-0.34614040763183596],[-0.97320782779504489,-0.93695819465419161]],
+           "qdot_A": [-0.44000471298616328,-0.46232708096663599],
+           "law": {"type": "fremond", "normal": {"potential": "power", "k": 39.607325258481417,
+                   "p": 1.7804379247431372}, "tangential": {"potential": "coulomb",
+                   "mu": 1.1919726367808714}}})",
+       {1.263081467628761, -0.756516120154213, -0.436224416606899, -0.901746514507452},
+       false,
+       39.607325258481417,
+       1.7804379247431372}};
+  for (const TwoContactCase& c : cases) {
+    const auto file = io::parse_problem_file(c.json, PotentialRegistry::with_builtins());
+    const ImpactResult r = solve_and_check(file);
+    EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
+    const double mu = file.law.mu[0];
+    expect_coulomb_on_mean_velocity(r, {mu});
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(r.P_N(i), c.P[i], 1e-9) << "contact " << i;
+      EXPECT_NEAR(r.P_T(i), c.P[2 + i], 1e-9) << "contact " << i;
+    }
+    // The normal law by hand: the power law's percussion where the contact is free, D_NE = 0 and
+    // a reaction that pushes (P_N ≥ −φ'(z_N)) where it is active.
+    const double k = c.k, p = c.p;
+    const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
+    for (int i = 0; i < 2; ++i) {
+      const double zN = 0.5 * (r.D_NA(i) + r.D_NE(i));
+      const double power = -k * zN * std::pow(std::fabs(zN), p - 2.0);
+      if (i == 1 && c.reaction1) {
+        EXPECT_NEAR(r.D_NE(i), 0.0, 1e-12 * v);
+        EXPECT_GT(r.P_N(i), power);
+      } else {
+        EXPECT_GT(r.D_NE(i), 0.0);
+        EXPECT_NEAR(r.P_N(i), power, 1e-10 * std::fabs(power)) << "contact " << i;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -50,6 +50,17 @@ struct FremondRowsT {
   /// 0 sticks (z_T = 0, P_T free), +1 slides forwards (P_T = −μ|P_N|), −1 backwards
   /// (P_T = μ|P_N|). Each mode makes its rows smooth; nullptr: Coulomb's law itself.
   const signed char* fixed_modes = nullptr;
+  /// With fixed_modes: the sign σ = ±1 of each contact's P_N held fixed as well, so that the bound
+  /// μ|P_N| is the linear μσP_N. Newton on a sliding mode otherwise meets the kink of |P_N| at 0
+  /// and can stop there (two contacts, one sliding with a reaction: stalled at P_N = 2e-8 where the
+  /// answer has P_N = 0.38); σ = −1 is the pull of Frémond's two-sided normal law (SPEC §2).
+  /// nullptr: the sign of P_N itself.
+  const signed char* fixed_signs = nullptr;
+  /// With fixed_modes: each contact's normal row held in one branch of its law too, 0 the law's
+  /// own (the power law's prox, then the reaction's bound D_NE ≥ 0), 1 the power law alone (no
+  /// reaction), 2 the reaction active (D_NE = 0, P_N free). Each branch is smooth where the law's
+  /// own row has the kink of the bound, at which Newton can stop short of an answer. nullptr: 0.
+  const signed char* fixed_normal = nullptr;
 
   void init(const CS& space, const ImpactLaw& l) {
     cs = &space;
@@ -95,7 +106,13 @@ struct FremondRowsT {
       return std::numeric_limits<double>::quiet_NaN();
     }
     if (is_normal(j)) {
+      const int branch = fixed_normal ? fixed_normal[j] : 0;
+      if (branch == 2) {
+        if (d) *d = 0.0;
+        return lower_bound(j);
+      }
       const double y = law->normal[contact(j)].prox(x, t, d);
+      if (branch == 1) return y;
       const double lb = lower_bound(j);
       if (y < lb) {
         if (d) *d = 0.0;
@@ -126,7 +143,14 @@ struct FremondRowsT {
   /// The Coulomb bound of tangential row j from the normal percussions P.
   double bound(int j, const Rows& P) const {
     if (!coulomb || is_normal(j)) return 0.0;
-    return law->mu[contact(j)] * std::fabs(P(j - cs->active));
+    const double pn = P(j - cs->active);
+    return law->mu[contact(j)] * (fixed_signs ? fixed_signs[j - cs->active] * pn : std::fabs(pn));
+  }
+
+  /// ∂bound/∂P_N of tangential row j (Newton's Jacobian): μ times the sign of P_N, or σ.
+  double bound_slope(int j, const Rows& P) const {
+    const int k = j - cs->active;
+    return law->mu[contact(j)] * (fixed_signs ? fixed_signs[k] : (P(k) >= 0.0 ? 1.0 : -1.0));
   }
 
   /// z = D_A + G P / 2. A hand loop for the stack-stored sizes (≤ 8 rows), where Eigen's
