@@ -689,6 +689,17 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
 
   // 2. Semismooth Newton from the decoupled guess, 3. proximal iterations, 4. NLopt.
   int tried = 0;
+  // Newton once more from `start` (a fallback's restart): true, with the result written, when it
+  // converges.
+  auto newton_answers = [&](Rows<N, C> start) {
+    const auto on = semismooth_newton(rows, start, opt);
+    if (on.status != SolverStatus::converged) return false;
+    P = start;
+    final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
+    finish(on, SolverMethod::semismooth_newton);
+    out.solver.fallbacks = tried;
+    return true;
+  };
   MethodOutcome split_end;  // the splitting's outcome, when it ran and failed
   bool have_split_end = false;
   if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
@@ -707,17 +718,9 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     // can end at while Newton from zero converges (the bar upright on both ends with μ = 0.16:
     // stress fremond_coulomb #25729 of seed 23; 1,905 of those 100,000 problems, all to
     // converged, 1,590 of them from stalled).
-    if (automatic && law.tangential == TangentialLaw::coulomb && !P0.isZero(0.0)) {
-      Rows<N, C> PZ = Rows<N, C>::Zero(cs.rows());
-      const auto oz = semismooth_newton(rows, PZ, opt);
-      if (oz.status == SolverStatus::converged) {
-        P = PZ;
-        final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
-        finish(oz, SolverMethod::semismooth_newton);
-        out.solver.fallbacks = tried;
-        return;
-      }
-    }
+    if (automatic && law.tangential == TangentialLaw::coulomb && !P0.isZero(0.0) &&
+        newton_answers(Rows<N, C>::Zero(cs.rows())))
+      return;
     // Coulomb on two or three contacts: its modes enumerated, each smooth for Newton.
     if (automatic && rows.coulomb) {
       MethodOutcome om;
@@ -769,17 +772,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     // (no progress in 1,000 sweeps) near answers that Newton from the decoupled guess or from
     // zero does not reach (four contacts, beyond the enumeration: of 5,000 random bodies with
     // n ≤ 6 and μ up to 2, 5.6 % were left stalled, 2.6 % after this).
-    if (automatic && rows.coulomb) {
-      Rows<N, C> Q = P;
-      const auto on = semismooth_newton(rows, Q, opt);
-      if (on.status == SolverStatus::converged) {
-        P = Q;
-        final_row_sweep(rows, P, opt.tolerance * cs.v_scale);
-        finish(on, SolverMethod::semismooth_newton);
-        out.solver.fallbacks = tried;
-        return;
-      }
-    }
+    if (automatic && rows.coulomb && newton_answers(P)) return;
   }
   const Rows<N, C> P_split = P;  // where NLopt starts: the splitting's end, if it ran
   const auto o = nlopt_velocity_space(pb, rows, P, opt);
