@@ -5,10 +5,11 @@
 // Each law is one phase (Newton) or two (Poisson's compression, then expansion) of the form solved
 // in detail/classical_phase.hpp. Per phase the cheapest exact method comes first: the closed form
 // for one contact, the all-closed guess u = −G⁻¹q for several (eq. 6 when it holds), then
-// lexicographic Lemke on the phase's LCP. With friction on up to 3 contacts the enumeration of
-// contact modes lists every solution when asked (options.check_uniqueness, solve_impact_all), and
-// settles existence when Lemke's method ends on a ray, or re-solves the law when Lemke's answer
-// misses the tolerance by rounding. Where G is singular the percussions that
+// lexicographic Lemke on the phase's LCP. With friction the enumeration of contact modes lists
+// every solution when asked (options.check_uniqueness: up to 3 contacts; solve_impact_all: up to
+// 4), and on up to 4 contacts settles existence when Lemke's method ends on a ray (its LCP is
+// copositive, not copositive-plus: a ray proves nothing), or re-solves the law when Lemke's
+// answer misses the tolerance by rounding. Where G is singular the percussions that
 // give the same velocities form a polyhedron; the minimum-norm one is returned and `unique` says
 // so.
 #include "fremond/solvers/detail/classical.hpp"
@@ -162,7 +163,7 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.solver.status = SolverStatus::failed;
     out.solver.message =
         "Lemke's method stopped without a solution (a secondary ray, or its pivot budget), and "
-        "no enumeration of contact modes settled whether one exists (friction on more than 3 "
+        "no enumeration of contact modes settled whether one exists (friction on more than 4 "
         "contacts, or method lemke forced). The state before the impact (no percussion) is "
         "returned, with its residual";
   }
@@ -202,7 +203,7 @@ void fill_unsupported(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>&
           ? "the requested method applies only when no contact takes part"
           : "the requested method does not apply to this problem (closed_form: one contact with "
             "a regular Delassus matrix, or every contact closed and sticking; mode_enumeration: "
-            "up to 3 contacts)";
+            "up to 4 contacts)";
 }
 
 // Nothing but finite numbers leaves the library.
@@ -265,7 +266,8 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   }
   LawOutcome<C> lo;
   if (options.method != SolverMethod::trivial)
-    solve_law(pb, cs, law, options.check_uniqueness, lo, options.method);
+    solve_law(pb, cs, law, options.check_uniqueness ? classical::kMaxEnumeratedAlways : 0, lo,
+              options.method);
   if (options.method == SolverMethod::trivial || lo.unsupported) {
     fill_unsupported(pb, cs, law, options, out);
     return;
@@ -283,7 +285,7 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   if (out.solver.status == SolverStatus::stalled && options.method == SolverMethod::automatic &&
       lo.method == SolverMethod::lemke && cs.active <= classical::kMaxEnumerated) {
     LawOutcome<C> le;
-    solve_law(pb, cs, law, true, le, SolverMethod::mode_enumeration);
+    solve_law(pb, cs, law, classical::kMaxEnumerated, le, SolverMethod::mode_enumeration);
     if (le.solutions.size == 0) return;
     ImpactResultT<N, C> alt;
     fill_best(pb, cs, law, options, le, alt);
@@ -310,7 +312,8 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
     return all;
   }
   LawOutcome<Dynamic> lo;
-  if (options.method != SolverMethod::trivial) solve_law(pb, cs, law, true, lo, options.method);
+  if (options.method != SolverMethod::trivial)
+    solve_law(pb, cs, law, classical::kMaxEnumerated, lo, options.method);
   if (options.method == SolverMethod::trivial || lo.unsupported) {
     fill_unsupported(pb, cs, law, options, all.emplace_back());
     return all;

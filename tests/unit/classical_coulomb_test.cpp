@@ -480,14 +480,23 @@ TEST(ClassicalMethods, EachLcpMethodCanBeForcedAndTheyAgree) {
     }
     EXPECT_EQ(forced(two, law, SolverMethod::trivial).solver.status, SolverStatus::unsupported);
   }
-  // Four contacts: beyond the enumeration (3), within Lemke's reach.
+  // Four contacts: the most the enumeration takes; five: beyond it, within Lemke's reach.
   ImpactProblem four;
   four.M = Eigen::Matrix2d::Identity();
   four.W_N.resize(2, 4);
   four.W_N << 0.0, 0.1, -0.1, 0.2, 1.0, 1.0, 1.0, 1.0;
   four.qdot_A = Eigen::Vector2d(0.0, -1.0);
-  EXPECT_EQ(forced(four, ImpactLaw::newton(0.5), SolverMethod::mode_enumeration).solver.status,
+  ImpactProblem five = four;
+  five.W_N.resize(2, 5);
+  five.W_N << 0.0, 0.1, -0.1, 0.2, 0.3, 1.0, 1.0, 1.0, 1.0, 1.0;
+  EXPECT_EQ(forced(five, ImpactLaw::newton(0.5), SolverMethod::mode_enumeration).solver.status,
             SolverStatus::unsupported);
+  const ImpactResult r5 = forced(five, ImpactLaw::newton(0.5), SolverMethod::lemke);
+  ASSERT_TRUE(r5.ok()) << r5.solver.message;
+  EXPECT_NEAR(r5.qdot_E(1), 0.5, 1e-15);
+  const ImpactResult e4 = forced(four, ImpactLaw::newton(0.5), SolverMethod::mode_enumeration);
+  ASSERT_TRUE(e4.ok()) << e4.solver.message;
+  EXPECT_NEAR(e4.qdot_E(1), 0.5, 1e-15);
   const ImpactResult r4 = forced(four, ImpactLaw::newton(0.5), SolverMethod::lemke);
   ASSERT_TRUE(r4.ok()) << r4.solver.message;
   EXPECT_NEAR(r4.qdot_E(1), 0.5, 1e-15);  // eq. 6 on the common normal: the point mass bounces

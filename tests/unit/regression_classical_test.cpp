@@ -448,5 +448,55 @@ TEST(RegressionPotentials, ProxOfAnInfiniteArgumentIsItsLimit) {
   }
 }
 
+// Newton + Coulomb on four contacts of a random 3-dof body (G of rank 3 with 8 rows, μ = 0.71):
+// Lemke's method ends on a ray, which for this LCP (copositive, not copositive-plus) proves
+// nothing, and with no enumeration beyond three contacts the result was `failed`; 18 % of random
+// four-contact Newton + Coulomb problems with μ ≤ 2 ended so. The enumeration of contact modes now
+// takes four contacts where Lemke finds no answer: this one has an answer, checked here by hand
+// from the velocities the test computes from the percussions.
+TEST(RegressionClassical, FourContactsWhereLemkeEndsOnARayAreSettledByTheEnumeration) {
+  ImpactProblem pb;
+  pb.M.resize(3, 3);
+  pb.M << 0.82767266134739037, 0.29956007423308223, -0.32177541831409046, 0.29956007423308223,
+      0.87194464695793061, -0.30418244500121111, -0.32177541831409046, -0.30418244500121111,
+      0.82375985041552235;
+  pb.W_N.resize(3, 4);
+  pb.W_N << 0.3967576605253782, 0.39674685271575827, 0.26509546354175861, -0.2957840552262927,
+      -0.10362187010162871, 0.1831962490049539, -0.28206241924699516, 0.70484624438769816,
+      0.65870161709501795, -0.046404297197661926, -0.34489989391178244, 0.87243830378788489;
+  pb.W_T.resize(3, 4);
+  pb.W_T << 0.78705486399771063, 0.053307313546955948, 0.93583972728739684, -0.16473534255336553,
+      0.6419421970335093, -0.74159550318054657, -0.35695448849608113, 0.60490314462805261,
+      0.24611086878092903, 0.57253513833953118, 0.50516076160567702, -0.15470486481447954;
+  pb.qdot_A = Eigen::Vector3d(-0.66686643920877908, 0.022565340193597461, -0.53058878372667606);
+  const double e = 0.43830519206439156, mu = 0.70956468489699587;
+  const ImpactLaw law = ImpactLaw::newton_coulomb(e, mu);
+  SolverOptions lemke;
+  lemke.method = SolverMethod::lemke;
+  EXPECT_EQ(solve_impact(pb, law, lemke).solver.status, SolverStatus::failed);
+
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, law, opt);
+  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  // The law by hand (eqs. 5-6 with Coulomb on D_TE, SPEC §2).
+  const Eigen::VectorXd qE = pb.qdot_A + pb.M.ldlt().solve(pb.W_N * r.P_N + pb.W_T * r.P_T);
+  const Eigen::VectorXd dna = pb.W_N.transpose() * pb.qdot_A, dne = pb.W_N.transpose() * qE,
+                        dte = pb.W_T.transpose() * qE;
+  const double v =
+      std::max(dna.cwiseAbs().maxCoeff(), (pb.W_T.transpose() * pb.qdot_A).cwiseAbs().maxCoeff());
+  const double scale = std::max(1.0, r.P_N.cwiseAbs().maxCoeff());
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_GE(r.P_N(i), 0.0) << i;
+    EXPECT_GE(dne(i) + e * dna(i), -1e-12 * v) << i;
+    EXPECT_LE(std::fabs(r.P_N(i) * (dne(i) + e * dna(i))), 1e-12 * v * scale) << i;
+    EXPECT_LE(std::fabs(r.P_T(i)), mu * r.P_N(i) + 1e-12 * scale) << i;
+    if (std::fabs(dte(i)) > 1e-9 * v) {
+      EXPECT_NEAR(r.P_T(i), dte(i) > 0 ? -mu * r.P_N(i) : mu * r.P_N(i), 1e-12 * scale) << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fremond

@@ -19,7 +19,7 @@ ImpactResultT<MaxDofs, MaxContacts> solve_impact(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
     const SolverOptions& options = {});
 
-/// Every solution found: for laws with friction on up to 3 contacts (and Frémond + Coulomb on one
+/// Every solution found: for laws with friction on up to 4 contacts (and Frémond + Coulomb on one
 /// contact, exactly) by enumerating contact modes; otherwise the single answer of solve_impact.
 /// Each result has `unique` and `solutions_found` set. An empty list means no solution exists.
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& problem, const ImpactLaw& law,

@@ -13,7 +13,8 @@ struct SolverOptions {
   /// iterations, named mode_enumeration, only where Newton on the law fails). A method that
   /// does not apply gives status `unsupported`. The classical laws take closed_form, lemke and
   /// mode_enumeration (which `automatic` chooses among per phase, and falls back to where Lemke's
-  /// answer misses the tolerance by rounding, on up to 3 contacts); naming one forces it.
+  /// answer misses the tolerance by rounding or ends on a ray, on up to 4 contacts); naming one
+  /// forces it.
   SolverMethod method = SolverMethod::automatic;
   /// Relative tolerance on the law's residual: converged when ‖R‖∞ ≤ tolerance · v_scale, with
   /// v_scale = max(‖D_A‖∞ over the contacts that take part, tiny). Units: none.
@@ -35,8 +36,9 @@ struct SolverOptions {
   /// Admissibility tolerance, relative to the kinetic energy before the impact: an inequality
   /// X ≥ 0 is taken as violated when X < −admissibility_tolerance · max(T_A, tiny). Range [0, 1).
   double admissibility_tolerance = 1e-9;
-  /// Find every solution a mode enumeration can (small problems with friction) and set `unique`
-  /// from it. Costs a few more solves; off leaves `unique` as the solver's cheap sufficient test.
+  /// Find every solution a mode enumeration can (classical laws with friction on up to 3
+  /// contacts; solve_impact_all goes to 4) and set `unique` from it. Costs a few more solves; off
+  /// leaves `unique` as the solver's cheap sufficient test.
   bool check_uniqueness = true;
 
   /// True when every option is within its range; otherwise false with the reason in *why.

@@ -75,11 +75,13 @@ struct Factored {
   }
 };
 
-/// `force`: automatic takes the cheapest exact method, with the enumeration as fallback and for
-/// `all`; closed_form, lemke or mode_enumeration use that method alone (unsupported where it does
-/// not apply: no closed form, or more contacts than the enumeration takes).
+/// `force`: automatic takes the cheapest exact method, with the enumeration as fallback (where
+/// Lemke finds no answer, up to kMaxEnumerated contacts) and to list every solution (up to
+/// `list_up_to` contacts); closed_form, lemke or mode_enumeration use that method alone
+/// (unsupported where it does not apply: no closed form, or more contacts than the enumeration
+/// takes).
 template <int C>
-void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Factored<C>& fg,
+void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, const Factored<C>& fg,
                  const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out,
                  SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
@@ -139,7 +141,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, bool all, const Fact
       // ray_is_proof).
       if (have) out.u.push(u);
       out.exhaustive = true;
-    } else if (automatic && ph.a <= kMaxEnumerated && (all || !have)) {
+    } else if (automatic && (ph.a <= list_up_to || (!have && ph.a <= kMaxEnumerated))) {
       enumerate = true;
       out.others = SolverMethod::mode_enumeration;
       if (have) {
@@ -301,12 +303,12 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
   return true;
 }
 
-/// Solves the law on the active contacts of `cs`. `all`: list every solution the enumeration can
-/// find (friction on up to 3 contacts); otherwise one, by the cheapest exact method. `force`: see
-/// solve_phase.
+/// Solves the law on the active contacts of `cs`. `list_up_to`: on up to that many contacts (at
+/// most kMaxEnumerated) with friction, list every solution the enumeration finds; otherwise one,
+/// by the cheapest exact method (0: always one). `force`: see solve_phase.
 template <int N, int C>
 void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
-               bool all, LawOutcome<C>& out, SolverMethod force = SolverMethod::automatic) {
+               int list_up_to, LawOutcome<C>& out, SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
   out.reset();
   const int a = cs.active;
@@ -344,7 +346,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   ph.q = cs.D_A.head(r);
   if (!poisson) ph.q.head(a) = ph.q.head(a).cwiseProduct((e.array() + 1.0).matrix());
   PhaseOutcome<C> first;
-  solve_phase(ph, tol, all, fg, zero, first, force);
+  solve_phase(ph, tol, list_up_to, fg, zero, first, force);
   if (first.unsupported) {
     out.unsupported = true;
     out.exhaustive = false;
@@ -384,7 +386,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     add_product(ph.G, shift, ex.q);
     if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
     PhaseOutcome<C> second;
-    solve_phase(ex, tol, all, fg, shift, second, force);
+    solve_phase(ex, tol, list_up_to, fg, shift, second, force);
     if (second.unsupported) {
       out.solutions.clear();
       out.unsupported = true;

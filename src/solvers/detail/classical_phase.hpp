@@ -73,7 +73,8 @@ struct FixedList {
 };
 
 /// How many solutions one phase or one law keeps. Enough for every case met in practice: one
-/// contact has at most 4 per phase; more contacts are only enumerated up to 3.
+/// contact has at most 4 per phase; more contacts are only enumerated up to 4 (an overflow says
+/// the list is not exhaustive).
 inline constexpr int kMaxSolutions = 24;
 
 using small_dense::add_product;
@@ -444,7 +445,11 @@ inline bool clearly_more_exact(double candidate, double kept, const Tolerances& 
 /// by 3e-11 cannot both stick after a rotating expansion (their tangential velocities differ by
 /// 4e-15), and the singular stick-stick mode, accepted within its tolerance, would hide the exact
 /// stick-slide answer. `continuum` is set when a singular mode may hold a continuum of velocities.
-inline constexpr int kMaxEnumerated = 3;  ///< the most contacts enumerate_modes takes
+inline constexpr int kMaxEnumerated = 4;  ///< the most contacts enumerate_modes takes (4⁴ modes)
+/// The most contacts on which automatic lists every solution (to say whether the answer is
+/// unique) even after Lemke found one: 64 modes cost tens of microseconds, 256 a few hundred. On 4
+/// contacts the enumeration runs only where Lemke finds no answer.
+inline constexpr int kMaxEnumeratedAlways = 3;
 
 template <int MaxC>
 void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,

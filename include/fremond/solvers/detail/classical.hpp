@@ -16,7 +16,7 @@ void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                      const ContactSpaceT<MaxDofs, MaxContacts>& cs, const ImpactLaw& law,
                      const SolverOptions& options, ImpactResultT<MaxDofs, MaxContacts>& out);
 
-/// Every solution found by mode enumeration (friction, up to 3 active contacts), else the one.
+/// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
 std::vector<ImpactResult> solve_classical_all(const ImpactProblem& problem, const ImpactLaw& law,
                                               const SolverOptions& options);
 
