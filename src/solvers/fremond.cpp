@@ -327,30 +327,31 @@ void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double targe
   if (std::isfinite(rows.residual(Q, z, R)) && rows.converged(Q, R, target)) P = Q;
 }
 
-/// Frémond + Coulomb on two or three contacts: Coulomb's tangential modes enumerated. Each mode
+/// Frémond + Coulomb on two to four contacts: Coulomb's tangential modes enumerated. Each mode
 /// (stick, sliding forwards, backwards per contact) makes the tangential rows smooth, and Newton
 /// on them converges where Newton on Coulomb's law itself stalls at a kink of ‖R‖²: a block
 /// landing flat on both corners, one sticking, the other sliding at 2e-7 of the velocity scale.
-/// A sliding contact's bound μ|P_N| is made linear too, μσP_N with the sign σ of P_N held fixed
-/// (FremondRowsT::fixed_signs): with |P_N| Newton stopped at P_N ≈ 0 on two contacts where one
-/// slides with an active reaction (random bodies with μ ≈ 1.5: 1 % of two- and three-contact
-/// problems were left `stalled` though they have a solution). The modes and signs of `start`
-/// (its mean tangential velocities, stick where |z_T| ≤ 1e-8 v_scale; the signs of its P_N) come
-/// first, then the other modes by the number of contacts changed, then the flipped signs; Newton
-/// on a mode starts from `start`, then from zero (stress fremond_coulomb seed 23: 67 more of
-/// 30,000 converge). A mode's answer is taken when it passes the stopping test of the law itself
-/// (with |P_N|: an answer whose P_N has the other sign is no answer). Returns false, P untouched,
-/// when no mode does (ill-posed splits included: two stick rows with the same W_T give Newton one
-/// split of many).
+/// The kinks a mode leaves are held fixed too: each normal row's branch (the law's own row
+/// first, then free or with its reaction active, FremondRowsT::fixed_normal) and the sign σ of
+/// P_N in a sliding contact's bound μσP_N (FremondRowsT::fixed_signs). Newton stopped at them
+/// short of answers that exist: random bodies with μ up to 2 left 1 % of two- and three-contact
+/// problems `stalled` (a contact sliding with its reaction active, or pulling with P_N < 0), and
+/// 2.6 % of four-contact ones. The modes and signs of `start` (its mean tangential velocities,
+/// stick where |z_T| ≤ 1e-8 v_scale; the signs of its P_N) come first, then the other modes by the
+/// number of contacts changed, then the flipped signs; Newton on a mode starts from `start`, then
+/// from zero (stress fremond_coulomb seed 23: 67 more of 30,000 converge). A mode's answer is
+/// taken when it passes the stopping test of the law itself (with |P_N|: an answer whose P_N has
+/// the other sign is no answer). Returns false, P untouched, when no mode does (ill-posed splits
+/// included: two stick rows with the same W_T give Newton one split of many).
 template <int N, int C>
 bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& start, Rows<N, C>& P,
                              const SolverOptions& opt, MethodOutcome& out) {
   const auto& cs = *rows.cs;
   const int a = cs.active;
-  if (!rows.coulomb || a < 2 || a > 3) return false;
+  if (!rows.coulomb || a < 2 || a > 4) return false;
   Rows<N, C> z, R;
   rows.mean_velocity(start, z);
-  std::array<signed char, 3> guess{}, mode{}, sign_guess{}, sign{}, normal{};
+  std::array<signed char, 4> guess{}, mode{}, sign_guess{}, sign{}, normal{};
   for (int k = 0; k < a; ++k) {
     const double zt = z(a + k);
     guess[k] = std::fabs(zt) <= 1e-8 * cs.v_scale ? 0 : (zt > 0.0 ? 1 : -1);
@@ -371,10 +372,14 @@ bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& s
   int sweeps = 0;
   // Normal branches: the law's own rows first (code −1), then each contact free or with its
   // reaction active (bit k of the code set: contact k's reaction active).
+  // On four contacts the signs of P_N stay the start's: 81 modes × 17 branches already, and the
+  // flips found no more answers there (random bodies, 5,000 four-contact problems: 1 of 132
+  // stalled left either way, at a fifth of the cost).
+  const int max_flipped = a == 4 ? 0 : a;
   for (int branches = -1; branches < (1 << a); ++branches) {
     for (int k = 0; k < a; ++k)
       normal[k] = static_cast<signed char>(branches < 0 ? 0 : ((branches >> k) & 1 ? 2 : 1));
-    for (int flipped = 0; flipped <= a; ++flipped)
+    for (int flipped = 0; flipped <= max_flipped; ++flipped)
       for (int flips = 0; flips < (1 << a); ++flips) {
         if (__builtin_popcount(static_cast<unsigned>(flips)) != flipped) continue;
         for (int changed = 0; changed <= a; ++changed)
@@ -522,8 +527,12 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
           "percussion is returned";
       if (cs.rows()) out.solver.residual = rows.plain_residual(P) / cs.v_scale;
     }
+    // With Coulomb on several contacts the law is quasi-variational: other velocities may solve
+    // it too (four contacts on a random body: the enumeration and Newton from the splitting's end
+    // found two answers, P_N = (0.079, 0.22, …) and (0.12, 5e-6, …)), and nothing here looks for
+    // them. Unique is then not claimed, as for a classical law whose modes were not enumerated.
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
-      out.unique = percussion_unique(rows, P, z, out);
+      out.unique = !(rows.coulomb && cs.active >= 2) && percussion_unique(rows, P, z, out);
   };
 
   if (cs.active == 0) {
@@ -662,10 +671,10 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       return;
     }
   }
-  // Coulomb's modes on two or three contacts, when asked for by name (automatic reaches them only
+  // Coulomb's modes on two to four contacts, when asked for by name (automatic reaches them only
   // where Newton on the law fails, below).
   if (want == SolverMethod::mode_enumeration && has_prox && rows.coulomb && cs.active >= 2 &&
-      cs.active <= 3) {
+      cs.active <= 4) {
     const Rows<N, C> P0 = decoupled_guess(rows, P);
     MethodOutcome om;
     if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
@@ -721,7 +730,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     if (automatic && law.tangential == TangentialLaw::coulomb && !P0.isZero(0.0) &&
         newton_answers(Rows<N, C>::Zero(cs.rows())))
       return;
-    // Coulomb on two or three contacts: its modes enumerated, each smooth for Newton.
+    // Coulomb on two to four contacts: its modes enumerated, each smooth for Newton.
     if (automatic && rows.coulomb) {
       MethodOutcome om;
       if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {

@@ -1052,5 +1052,39 @@ TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirMo
   }
 }
 
+// Four contacts on a random 3-dof body (μ = 1.84, p = 1.31), contact 2 pulling (P_N < 0): every
+// method stalled (the enumeration stopped at three contacts). The enumeration now takes four,
+// with each normal row's branch held fixed. Checked by the law's own conditions, by hand; `unique`
+// is not claimed (Frémond + Coulomb on several contacts can have other answers).
+TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[0.90486457889432192,0.25182285395303855,0.40815359970455872],
+                [0.25182285395303855,1.0100251316494115,-0.0029116209631458445],
+                [0.40815359970455872,-0.0029116209631458445,1.183413091136639]],
+          "W_N": [[-0.93015274008508464,-0.6556479502930701,-0.99680107727937162,-0.72316579238914813],
+                  [0.072555598450741776,0.25855264397411171,0.34840790718216041,-0.23107873459034112],
+                  [-0.31019798744183524,0.14137007146071578,0.90161582754641678,0.34777184724726951]],
+          "W_T": [[-0.31146168945061437,-0.42892206467612426,0.42625245713217974,-0.70114048738942003],
+                  [0.88334045077539169,-0.20720289442163908,-0.54442941230944464,-0.75764728914420432],
+                  [-0.34369180856201775,0.93431931811415092,-0.31420718414329984,0.48010440341905669]],
+          "qdot_A": [0.89776409931476753,0.078563473193140387,0.88183715037680788],
+          "law": {"type": "fremond", "normal": {"potential": "power", "k": 15.497517199116473,
+                  "p": 1.307937663104956}, "tangential": {"potential": "coulomb",
+                  "mu": 1.8429235008508518}}})",
+      PotentialRegistry::with_builtins());
+  const ImpactResult r = solve_and_check(file);
+  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
+  EXPECT_FALSE(r.unique);
+  expect_coulomb_on_mean_velocity(r, {1.8429235008508518});
+  const double k = 15.497517199116473, p = 1.307937663104956;
+  EXPECT_LT(r.P_N(2), 0.0);      // the pull
+  for (int i = 0; i < 4; ++i) {  // every contact free (D_NE > 0): the power law alone
+    const double zN = 0.5 * (r.D_NA(i) + r.D_NE(i));
+    ASSERT_GT(r.D_NE(i), 0.0) << "contact " << i;
+    const double power = -k * zN * std::pow(std::fabs(zN), p - 2.0);
+    EXPECT_NEAR(r.P_N(i), power, 1e-10 * std::fabs(power)) << "contact " << i;
+  }
+}
+
 }  // namespace
 }  // namespace fremond

@@ -9,7 +9,7 @@ namespace fremond {
 struct SolverOptions {
   /// Method: `automatic` picks the cheapest exact method the law and its potentials allow
   /// (closed form → scalar Newton → semismooth Newton → proximal iterations → NLopt; with Coulomb
-  /// on two or three contacts, semismooth Newton per tangential mode before the proximal
+  /// on two to four contacts, semismooth Newton per tangential mode before the proximal
   /// iterations, named mode_enumeration, only where Newton on the law fails). A method that
   /// does not apply gives status `unsupported`. The classical laws take closed_form, lemke and
   /// mode_enumeration (which `automatic` chooses among per phase, and falls back to where Lemke's

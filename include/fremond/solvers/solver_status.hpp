@@ -24,7 +24,7 @@ enum class SolverMethod {
   closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
   scalar_newton,      ///< one decoupled contact: one scalar root per mode.
   mode_enumeration,   ///< contact modes tried: every one (small problems; finds all solutions),
-                      ///< or, Frémond + Coulomb on 2-3 contacts, until one satisfies the law.
+                      ///< or, Frémond + Coulomb on 2-4 contacts, until one satisfies the law.
   lemke,              ///< lexicographic Lemke on the law's LCP (classical laws).
   semismooth_newton,  ///< Newton on the prox-based (natural-map) residual, with a line search.
   proximal,           ///< accelerated proximal-gradient iteration in contact space.
