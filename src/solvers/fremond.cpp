@@ -3,6 +3,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -381,7 +382,7 @@ bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& s
       normal[k] = static_cast<signed char>(branches < 0 ? 0 : ((branches >> k) & 1 ? 2 : 1));
     for (int flipped = 0; flipped <= max_flipped; ++flipped)
       for (int flips = 0; flips < (1 << a); ++flips) {
-        if (__builtin_popcount(static_cast<unsigned>(flips)) != flipped) continue;
+        if (std::popcount(static_cast<unsigned>(flips)) != flipped) continue;
         for (int changed = 0; changed <= a; ++changed)
           for (int code = 0; code < total; ++code) {
             // code's base-3 digits: 0 keeps the guess's mode of that contact, 1 and 2 the others.
