@@ -753,13 +753,14 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   if (has_prox && (automatic || want == SolverMethod::proximal)) {
     const bool from_zero = P.isZero(0.0);
     auto o = proximal_iterations(rows, P, opt);
-    // With Coulomb the law is quasi-variational: where the splitting ends depends on where it
-    // starts. Newton's last iterate or the decoupled guess can lead it nowhere where P = 0, the
-    // start of the method when forced, reaches a solution (the bar upright on both ends with
-    // μ = 0.105: stress fremond_coulomb #62070 of seed 23). Only on this failure path; else NLopt
-    // goes on from the first run's end, as before.
-    if (automatic && o.status != SolverStatus::converged && !from_zero &&
-        law.tangential == TangentialLaw::coulomb) {
+    // Where the splitting ends depends on where it starts: with Coulomb the law is
+    // quasi-variational, and Newton's last iterate or the decoupled guess can lead it nowhere
+    // where P = 0, the start of the method when forced, reaches a solution (the bar upright on
+    // both ends with μ = 0.105: stress fremond_coulomb #62070 of seed 23). Without Coulomb the
+    // answer is unique, but the splitting from Newton's last iterate can stop on stagnation where
+    // from zero it converges (four contacts, p = 1.38, q = 1.10: 2,726 sweeps). Only on this
+    // failure path; else NLopt goes on from the first run's end, as before.
+    if (automatic && o.status != SolverStatus::converged && !from_zero) {
       const Rows<N, C> first_end = P;
       P.setZero();
       const auto again = proximal_iterations(rows, P, opt);
@@ -778,11 +779,12 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     ++tried;
     split_end = o;
     have_split_end = true;
-    // With Coulomb, Newton once more from where the splitting stopped: it stops on stagnation
-    // (no progress in 1,000 sweeps) near answers that Newton from the decoupled guess or from
-    // zero does not reach (four contacts, beyond the enumeration: of 5,000 random bodies with
-    // n ≤ 6 and μ up to 2, 5.6 % were left stalled, 2.6 % after this).
-    if (automatic && rows.coulomb && newton_answers(P)) return;
+    // Newton once more from where the splitting stopped: it stops on stagnation (no progress in
+    // 1,000 sweeps) near answers that Newton from the decoupled guess or from zero does not reach
+    // (Frémond + Coulomb on four contacts of random bodies with μ up to 2: 5.6 % were left
+    // stalled, 2.6 % after this; with the viscous dead zone, p = 1.23 and q = 2.9, the splitting
+    // stalled at 6e-8 and Newton from there converges in a few steps).
+    if (automatic && newton_answers(P)) return;
   }
   const Rows<N, C> P_split = P;  // where NLopt starts: the splitting's end, if it ran
   const auto o = nlopt_velocity_space(pb, rows, P, opt);

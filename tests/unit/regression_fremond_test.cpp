@@ -1086,5 +1086,40 @@ TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
   }
 }
 
+// Frémond with the viscous dead zone on four contacts of random bodies (p ≈ 1.2–1.4, q from 1.1
+// to 2.9): the answer is unique (a strongly convex problem), yet every method stalled. The
+// splitting, started from Newton's last iterate, stops on stagnation: (a) at 6e-8, where Newton
+// restarted from there converges; (b) where the splitting from zero converges (2,726 sweeps).
+// Both restarts, once for Coulomb only, now run for every law. Against the quad reference.
+TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitting) {
+  struct Case {
+    const char* json;
+    double kN, p, kT, q, r;
+  };
+  const Case cases[] = {
+      {R"({"M": [[0.7077193479239462,-0.17045052276871808],[-0.17045052276871808,0.86054087999774287]], "W_N": [[0.68002268311234437,0.85570860612568245,0.47805157281625399,0.35927537561422818],[0.39857834852343665,0.28981319197035504,-0.80487345646448483,-0.19467436896913837]], "W_T": [[-0.36530050373185552,0.54294512133894801,0.35457656764183598,-0.53793989408720266],[0.16649189990020852,0.094865895389332655,0.52357273998550324,-0.97723269422870573]], "qdot_A": [-0.96021194525707099,0.63806566635368678], "law": {"type": "fremond", "normal": {"potential": "power", "k": 91.505437149853876, "p": 1.2299736407473134}, "tangential": {"potential": "deadzone_power", "k": 91.505437149853876, "q": 2.9245042322444896, "r": 0.1}}})",
+       91.50543714985388, 1.2299736407473134, 91.50543714985388, 2.9245042322444896, 0.1},
+      {R"({"M": [[0.5690455134223471,-0.1454661321351858,-0.011000474166873447,-0.14399839527099367,-0.013594917929946316],[-0.1454661321351858,1.0606502472184305,0.089237793224511169,0.54864467948968798,-0.19489657111524777],[-0.011000474166873447,0.089237793224511169,1.0324775498100123,0.12749797441905397,-0.32737626349930149],[-0.14399839527099367,0.54864467948968798,0.12749797441905397,1.0845254083856988,-0.23598404880870491],[-0.013594917929946316,-0.19489657111524777,-0.32737626349930149,-0.23598404880870491,0.8749822460515343]], "W_N": [[-0.1776419566431946,-0.060974403785284181,-0.38795581278284241,-0.90438258854470965],[-0.01860230982060318,0.54193915908008483,0.62925661781777498,0.18605170504993795],[0.22945319430118083,0.2137566193915672,-0.6782852457712627,-0.53841182314755254],[0.28346051381005366,-0.9062919369233815,-0.66010069830404849,0.25978490822938927],[-0.88108272503858998,0.051978672699573236,0.37480415857157645,-0.47087827109688551]], "W_T": [[0.61371060612617812,0.83818744055113847,-0.44651361762612418,-0.53464640400844599],[-0.30551340986336895,0.23125210276844776,0.48812742810535337,-0.81887521763189541],[-0.5889642359195344,-0.64026511848422696,0.22337810984941742,0.40952062281977031],[-0.29032853974935846,0.76419923869086581,-0.08539445974249138,0.18638647018396481],[0.19276945546621316,0.14111902014303657,0.60895037487436166,-0.0062229556298210031]], "qdot_A": [0.9679551362165526,0.01193895931202249,0.88983806892765993,0.97097182404253513,0.74901299329569859], "law": {"type": "fremond", "normal": {"potential": "power", "k": 92.239710831296435, "p": 1.3776363563286513}, "tangential": {"potential": "deadzone_power", "k": 92.239710831296435, "q": 1.103656941538653, "r": 0.1}}})",
+       92.23971083129643, 1.3776363563286513, 92.23971083129643, 1.103656941538653, 0.1}};
+  namespace ref = fremond_reference;
+  for (const Case& c : cases) {
+    const auto file = io::parse_problem_file(c.json, PotentialRegistry::with_builtins());
+    const ImpactResult r = solve_and_check(file);
+    const ImpactProblem& pb = file.problem;
+    const int m = static_cast<int>(pb.W_N.cols());
+    const std::vector<ref::PowerLaw> normal(m, ref::PowerLaw{c.kN, c.p});
+    const std::vector<ref::TangentialLaw> tangential(m,
+                                                     ref::TangentialLaw::dead_zone(c.kT, c.q, c.r));
+    const ref::Solution s = ref::fremond_several(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                                 normal, tangential);
+    ASSERT_TRUE(s.ok);
+    const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
+    for (int i = 0; i < m; ++i) {
+      EXPECT_NEAR(r.D_NE(i), ref::to_double(s.D_NE[i]), 1e-10 * v) << i;
+      EXPECT_NEAR(r.D_TE(i), ref::to_double(s.D_TE[i]), 1e-10 * v) << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fremond
