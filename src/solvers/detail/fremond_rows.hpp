@@ -52,14 +52,16 @@ struct FremondRowsT {
   const signed char* fixed_modes = nullptr;
   /// With fixed_modes: the sign σ = ±1 of each contact's P_N held fixed as well, so that the bound
   /// μ|P_N| is the linear μσP_N. Newton on a sliding mode otherwise meets the kink of |P_N| at 0
-  /// and can stop there (two contacts, one sliding with a reaction: stalled at P_N = 2e-8 where the
-  /// answer has P_N = 0.38); σ = −1 is the pull of Frémond's two-sided normal law (SPEC §2).
+  /// and can stop there (two contacts, one pulling with P_N = −0.76 and sliding); σ = −1 is the
+  /// pull of Frémond's two-sided normal law (SPEC §2).
   /// nullptr: the sign of P_N itself.
   const signed char* fixed_signs = nullptr;
   /// With fixed_modes: each contact's normal row held in one branch of its law too, 0 the law's
   /// own (the power law's prox, then the reaction's bound D_NE ≥ 0), 1 the power law alone (no
   /// reaction), 2 the reaction active (D_NE = 0, P_N free). Each branch is smooth where the law's
-  /// own row has the kink of the bound, at which Newton can stop short of an answer. nullptr: 0.
+  /// own row has the kink of the bound, at which Newton can stop short of an answer (two contacts,
+  /// one sliding with its reaction active: stalled at P_N = 2e-8 where the answer has P_N = 0.38).
+  /// nullptr: 0.
   const signed char* fixed_normal = nullptr;
 
   void init(const CS& space, const ImpactLaw& l) {
