@@ -36,7 +36,8 @@ double coulomb(double t, double v, double b, double g) {
 
 template <int N, int C>
 double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                          const ImpactResultT<N, C>& r, double* beyond_rounding) {
+                          const ImpactResultT<N, C>& r, double* beyond_rounding,
+                          bool percussions_rounded) {
   const double inf = std::numeric_limits<double>::infinity();
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
@@ -51,8 +52,32 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   auto wt = [&](int i) { return pb.w_T.size() ? pb.w_T(i) : 0.0; };
   // Velocities after the percussions (PN, PT), from the problem data only.
   auto velocity = [&](const VecT<C>& PN, const VecT<C>& PT) {
-    VecT<N> f = pb.W_N * PN;
-    if (tangential) f.noalias() += pb.W_T * PT;
+    // f = W_N P_N + W_T P_T, summed again in twice the precision where its terms cancel: with W_T
+    // nearly parallel to W_N the percussions are 1e4 times the velocities they make, and the plain
+    // sum carries ε·1e4 of noise into every velocity it yields.
+    VecT<N> f(n);
+    double terms = 0.0, largest = 0.0;
+    for (int k = 0; k < n; ++k) {
+      double sum = 0.0, size = 0.0;
+      for (int i = 0; i < c; ++i) {
+        const double x = pb.W_N(k, i) * PN(i), y = tangential ? pb.W_T(k, i) * PT(i) : 0.0;
+        sum += x + y;
+        size += std::fabs(x) + std::fabs(y);
+      }
+      f(k) = sum;
+      terms = std::max(terms, size);
+      largest = std::max(largest, std::fabs(sum));
+    }
+    if (terms > 8.0 * largest) {
+      VecT<times2(C)> wk(tangential ? 2 * c : c), pk(tangential ? 2 * c : c);
+      pk.head(c) = PN;
+      if (tangential) pk.tail(c) = PT;
+      for (int k = 0; k < n; ++k) {
+        wk.head(c) = pb.W_N.row(k).transpose();
+        if (tangential) wk.tail(c) = pb.W_T.row(k).transpose();
+        f(k) = accurate_dot(wk, pk);
+      }
+    }
     // Refined where M is not diagonal: through the plain factor an ill-conditioned M (cond 3e10)
     // shows 1e-14 where the answer misses the law by 1e-6 (refined_solve.hpp).
     VecT<N> x = llt.solve(f);
@@ -70,12 +95,46 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   // ε times that, far above ε|D_NA|.
   // Only where asked for: the stopping test asks only when the residual misses the tolerance.
   VecT<N> q_abs(n);
+  // With percussions_rounded, Σ_k |G_jk||P_k| (G = WᵀM⁻¹W over every row of the problem): the
+  // percussions are stored in double precision, each to ε|P_k|, and where W_T is nearly parallel
+  // to W_N they are 1e4 times the velocities they make, so even correctly rounded percussions
+  // move the velocities by ε Σ_k |G_jk||P_k|. That part of the floor is capped at 1e-10 of the
+  // velocities, not 1e-6: with cond(G) = 2.5e11 (cond(M) > 1e9) the terms reach 1e-6 of the
+  // velocities, and an answer in the wrong mode (a contact open whose true percussion is 5 % of
+  // the others) met the law that closely, 8e-7 away from the quad reference.
+  const int rows = tangential ? 2 * c : c;
+  MatT<N, times2(C)> MinvW_all;
+  VecT<times2(C)> P_abs;
   if (beyond_rounding) {
     q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
     if (poisson) q_abs += qC.cwiseAbs();
   }
+  if (beyond_rounding && percussions_rounded) {
+    MinvW_all.resize(n, rows);
+    P_abs.resize(rows);
+    MinvW_all.leftCols(c) = pb.W_N;
+    P_abs.head(c) = r.P_N.cwiseAbs();
+    if (poisson) P_abs.head(c) += r.P_NC.cwiseAbs();
+    if (tangential) {
+      MinvW_all.rightCols(c) = pb.W_T;
+      P_abs.tail(c) = r.P_T.cwiseAbs();
+      if (poisson) P_abs.tail(c) += r.P_TC.cwiseAbs();
+    }
+    llt.solve_lower_in_place(MinvW_all);
+    llt.solve_upper_in_place(MinvW_all);
+  }
+  // Σ_k |W_jᵀ M⁻¹W_k| |P_k| for the direction W_j; zero percussions add nothing (also where their
+  // column overflows).
+  auto percussion_terms = [&](const auto& W_j) {
+    double t = 0.0;
+    if (!percussions_rounded) return t;
+    for (int k = 0; k < rows; ++k)
+      if (P_abs(k) != 0.0) t += std::fabs(W_j.dot(MinvW_all.col(k))) * P_abs(k);
+    return t;
+  };
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
-  VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c);
+  VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c),
+          percussion_floor = VecT<C>::Zero(c);
   for (int i = 0; i < c; ++i) {
     const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
     const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
@@ -87,12 +146,19 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
       gt = g > 0 ? g : 1.0;
     }
     // The rounding floor of the contact's terms, as in Frémond's stopping test
-    // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities.
+    // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities (the
+    // percussions' part at 1e-10, above).
     if (beyond_rounding) {
       double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
-      if (tangential) floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
+      double terms = percussion_terms(pb.W_N.col(i));
+      if (tangential) {
+        floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
+        terms += percussion_terms(pb.W_T.col(i));
+      }
       floor *= 16.0 * std::numeric_limits<double>::epsilon();
+      terms *= 16.0 * std::numeric_limits<double>::epsilon();
       contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
+      percussion_floor(i) = std::isfinite(terms) ? terms : 0.0;
     }
     auto keep = [&](double x) {
       const double a = std::isnan(x) ? inf : std::fabs(x);
@@ -130,7 +196,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   if (beyond_rounding) {
     double beyond = 0.0;
     for (int i = 0; i < c; ++i)
-      if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale)))
+      if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale) +
+                                    std::min(percussion_floor(i), 1e-10 * v_scale)))
         beyond = std::max(beyond, contact_worst(i));
     *beyond_rounding = beyond / v_scale;
   }
@@ -139,7 +206,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
 
 #define FREMOND_INSTANTIATE(N, C)                                                   \
   template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&, \
-                                     const ImpactResultT<N, C>&, double*);
+                                     const ImpactResultT<N, C>&, double*, bool);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE
