@@ -396,6 +396,7 @@ struct Tally {
   long broken = 0, broken_known = 0;
   long reference_checked = 0, reference_mismatch = 0, reference_skipped = 0;
   double worst_reference_error = 0.0;
+  std::string worst_reference_case;
   double worst_residual_ratio = 0.0;
   std::string worst_residual_case;
   double slowest = 0.0, solve_seconds = 0.0;
@@ -491,7 +492,10 @@ void tally_line(Tally& t, const std::string& line, const StressCase& sc, const s
       ++t.reference_skipped;
     } else {
       ++t.reference_checked;
-      t.worst_reference_error = std::max(t.worst_reference_error, error);
+      if (error > t.worst_reference_error) {
+        t.worst_reference_error = error;
+        t.worst_reference_case = label;
+      }
       if (outcome == "mismatch") {
         ++t.reference_mismatch;
         add_failure(t, known, law, "reference: " + what, label, problem_to_json(sc.problem, sc.law),
@@ -599,9 +603,11 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
   std::printf(
       "%s: %ld problems, %ld solves (%.1f s solving, %.1f s in all); %ld broken invariant(s) "
       "beside %ld known; reference: %ld checked, %ld mismatch(es), %ld skipped, worst "
-      "velocity error %.3g of the scale\n",
+      "velocity error %.3g of the scale%s%s%s\n",
       name.c_str(), t.problems, t.solves, t.solve_seconds, secs, t.broken, t.broken_known,
-      t.reference_checked, t.reference_mismatch, t.reference_skipped, t.worst_reference_error);
+      t.reference_checked, t.reference_mismatch, t.reference_skipped, t.worst_reference_error,
+      t.worst_reference_case.empty() ? "" : " (", t.worst_reference_case.c_str(),
+      t.worst_reference_case.empty() ? "" : ")");
   std::printf("  statuses:");
   for (const auto& [s, n] : t.statuses) std::printf(" %s %ld", s.c_str(), n);
   std::printf("\n  methods:");
