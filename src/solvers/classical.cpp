@@ -164,7 +164,7 @@ void fill_trivial(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                   const ImpactLaw& law, ImpactResultT<N, C>& out) {
   typename ContactSpaceT<N, C>::Rows P(0);
   scatter_solution(pb, cs, P, out);
-  out.has_phases = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  out.has_phases = is_poisson(law);
   if (out.has_phases) {
     out.P_NC.setZero(cs.contacts);
     out.P_TC.setZero(cs.contacts);
@@ -191,7 +191,7 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // No answer: report the state before the impact (no percussion) so every field is defined.
   typename ContactSpaceT<N, C>::Rows P = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
   scatter_solution(pb, cs, P, out);
-  out.has_phases = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  out.has_phases = is_poisson(law);
   if (out.has_phases) {
     out.P_NC.setZero(cs.contacts);
     out.P_TC.setZero(cs.contacts);
