@@ -397,6 +397,8 @@ struct Tally {
   long reference_checked = 0, reference_mismatch = 0, reference_skipped = 0;
   double worst_reference_error = 0.0;
   std::string worst_reference_case;
+  std::map<std::string, std::pair<double, std::string>>
+      worst_reference_by_shape;  // the accuracy each kind of data gets
   double worst_residual_ratio = 0.0;
   std::string worst_residual_case;
   double slowest = 0.0, solve_seconds = 0.0;
@@ -492,6 +494,8 @@ void tally_line(Tally& t, const std::string& line, const StressCase& sc, const s
       ++t.reference_skipped;
     } else {
       ++t.reference_checked;
+      auto& shape_worst = t.worst_reference_by_shape[sc.shape];
+      if (error >= shape_worst.first) shape_worst = {error, label};
       if (error > t.worst_reference_error) {
         t.worst_reference_error = error;
         t.worst_reference_case = label;
@@ -617,6 +621,13 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
     for (const auto& [s, n] : t.shapes) std::printf(" %s %ld", s.c_str(), n);
     std::printf("\n  not converged (automatic), by shape:");
     for (const auto& [s, n] : t.not_converged_by_shape) std::printf(" %s %ld", s.c_str(), n);
+    std::printf("\n  worst reference error, by shape:");
+    for (const auto& [s, e] : t.worst_reference_by_shape)
+      std::printf(" %s %.2g [#%s]", s.c_str(), e.first,
+                  e.second
+                      .substr(e.second.find('#') + 1,
+                              e.second.find(' ', e.second.find('#')) - e.second.find('#') - 1)
+                      .c_str());
   }
   std::printf("\n  converged but not admissible (SPEC §4): %ld", t.inadmissible_converged);
   for (const auto& [s, n] : t.inadmissible_by_inequality) std::printf(" [%s %ld]", s.c_str(), n);
