@@ -1121,5 +1121,46 @@ TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitt
   }
 }
 
+// The bar nearly upright on both ends (W_N's columns differ by 7e-9 in one entry), one contact
+// soft (k = 6.8e-6, p = 2.58), the other with its reaction active; viscous dead zones. Newton from
+// the decoupled guess and the splitting stalled on wrong splits of P_N between the nearly equal
+// rows (3e-9 and 7e-9 of the velocities: a wrong split moves them by 7e-9 times the error), and
+// NLopt, the last fallback, stopped at its own tolerance 8e-10 from the reference (dynamic
+// storage) or failed (stack storage: the splitting's end was returned, `stalled`). Newton from
+// NLopt's end now polishes it. Reference: the mode's four equations (P_N1 = −φ'(z_N1), D_NE2 = 0,
+// P_Ti = −φ_T'(z_Ti)) solved to 50 digits by mpmath's findroot from the data as printed here.
+TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[179.32339602043095, 0, 0], [0, 179.32339602043095, 0], [0, 0, 14.943616335035912]],
+    "W_N": [[0, 0], [1, 1], [-3.5741238053350548e-09, 3.5741238053350548e-09]],
+    "W_T": [[1, 1], [0, 0], [0.5, -0.5]],
+    "qdot_A": [-0.90311200536352632, -0.30976052981586705, 0.015417588641822787],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": [6.8259324178360091e-06, 35.253899449369612],
+                       "p": [2.5760277635250635, 2]},
+            "tangential": {"potential": "deadzone_power",
+                           "k": [8.7629353705275542e-05, 158.86181804355593], "q": [2, 2],
+                           "r": [0, 0.017350158885100681]}}})",
+                                           PotentialRegistry::with_builtins());
+  const Eigen::Vector3d qdot_E(-0.6175479837544124988719945, 6.068717835959395379462766e-9,
+                               -1.69795960254669628205947);
+  const Eigen::Vector4d P(3.610549432132220412679155e-7, 55.54731088687738358575489,
+                          1.034872433410523586566764e-4, 51.20820664895467687567923);
+  const auto check = [&](const auto& pb, const char* storage) {
+    SCOPED_TRACE(storage);
+    const auto r = solve_impact(pb, file.law);
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    EXPECT_EQ(r.solver.criterion, StopCriterion::residual);
+    const double v = r.D_TA.cwiseAbs().maxCoeff();  // 0.91
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.qdot_E(i), qdot_E(i), 1e-14 * v) << i;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(r.P_N(i), P(i), 1e-13 * P(1)) << i;
+      EXPECT_NEAR(r.P_T(i), P(2 + i), 1e-13 * P(1)) << i;
+    }
+    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
+  };
+  check(file.problem, "dynamic");
+  check(to_small(file.problem), "small");
+}
 }  // namespace
 }  // namespace fremond
