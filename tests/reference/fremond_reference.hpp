@@ -30,6 +30,15 @@
 ///  - newton_frictionless(): Newton's law, LCP 0 ≤ P_N ⊥ G_NN P_N + (1 + e) D_NA ≥ 0 (eq. 6 for one
 ///    contact), by enumeration of the active sets; every distinct solution (G_NN singular:
 ///    several).
+///  - classical_modes(): Newton's or Poisson's law, with or without Coulomb friction (SPEC §2
+///    table; Poisson + Coulomb in the compression/expansion form), on up to 4 contacts taking part,
+///    by enumeration of every contact mode of each phase (normal open or closed; tangential stick,
+///    slide forwards or backwards, or held at zero where the bound is zero): each mode's linear
+///    equations solved, its inequalities checked. Every solution; `complete` is false when some
+///    mode's equations are singular to 1e-12 (G singular: a continuum of percussions may solve
+///    it, which the enumeration does not list; or so nearly singular that double-precision data
+///    cannot resolve the answer). The law's residual (classical_residual(), from the velocities
+///    the percussions make) comes with each solution.
 ///
 /// Ranges: checked (tests/unit/reference_selftest.cpp) for p ∈ [1.01, 50], q ∈ [1.01, 3], r from 0
 /// to above every velocity, |D_A| from 1e-10 to 1e6, k from 1e-6 to 1e6, mass ratios up to 1e6.
@@ -39,9 +48,11 @@
 /// Not handled: α = 0 exactly in a Coulomb slide mode (μ G_NT = ±G_NN: a continuum of solutions or
 /// none; that mode is skipped), stick with W_T parallel to W_N (G singular on one contact) and
 /// D_NE = 0 exactly (the reaction free: a continuum),
-/// Coulomb on several contacts, more than 12 contacts taking part in newton_frictionless (2^c
-/// active sets). Observed, not proved: on one contact with Coulomb the number of solutions found
-/// was always odd (1 or 3) over 20000 random draws up to μ = 400, never 0.
+/// Frémond + Coulomb on several contacts, more than 12 contacts taking part in newton_frictionless
+/// (2^c active sets), more than 4 in classical_modes (6^c modes a phase), and whether a classical
+/// law has a solution where a mode is singular (classical_modes says `complete` = false). Observed,
+/// not proved: on one contact with Coulomb the number of solutions found was always odd (1 or 3)
+/// over 20000 random draws up to μ = 400, never 0.
 #include <quadmath.h>
 
 #include <algorithm>
@@ -135,7 +146,9 @@ struct Solution {
   QVec P_N, P_T;    ///< total percussions on the body.
   QVec P_reaction;  ///< the reaction part of P_N (≥ 0; −I_reac of SPEC §2).
   QVec D_NA, D_TA, D_NE, D_TE;
-  QVec z_N, z_T;                ///< mean velocities.
+  QVec z_N, z_T;  ///< mean velocities.
+  /// Poisson's compression phase (classical_modes with ClassicalLaw::poisson; empty otherwise).
+  QVec P_NC, P_TC, D_NC, D_TC;
   std::vector<int> takes_part;  ///< 1 when D_NA ≤ 0.
   std::string mode;   ///< e.g. "c0:free/slide+" (normal: free or reaction; tangential mode).
   quad residual = 0;  ///< the law's scaled residual at this solution (fremond/newton_residual).
@@ -1051,6 +1064,278 @@ inline std::vector<Solution> newton_frictionless(const Problem& p, const QVec& e
     found.push_back(sol);
   }
   return found;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The classical laws with Coulomb friction, several contacts
+
+enum class ClassicalLaw { newton, poisson };
+
+/// What classical_modes() finds.
+struct ClassicalSolutions {
+  std::vector<Solution> solutions;
+  /// False when some contact mode's equations were singular: a continuum of percussions may solve
+  /// that mode, and the list may then miss solutions (or hold only some of a continuum's).
+  bool complete = true;
+};
+
+namespace detail {
+
+/// One phase of a classical law over the contacts J that take part: unknowns x_j (the phase's
+/// normal percussion, ≥ 0) and t_j (its tangential percussion), velocities
+///   v_N = bN + G_NN x + G_NT t,   v_T = bT + G_TN x + G_TT t,
+/// with 0 ≤ x ⊥ v_N ≥ 0 and Coulomb on (t, v_T) with the bound β = μ (cB + x).
+struct Phase {
+  std::vector<int> J;
+  QVec bN, bT, cB;  ///< one entry a contact
+  bool friction = false;
+};
+
+struct PhaseAnswer {
+  QVec x, t;  ///< one entry a contact (zero off J)
+};
+
+/// Every answer of one phase, by its modes; false when a mode's equations were singular, to the
+/// relative pivot `singular` (see classical_modes).
+inline bool phase_answers(const ContactData& d, const Phase& ph, const QVec& mu, quad vs,
+                          quad singular, std::vector<PhaseAnswer>& out) {
+  const int m = static_cast<int>(ph.J.size()), c = d.c;
+  bool complete = true;
+  quad gmax = 0;
+  for (int j : ph.J) gmax = fmaxq(gmax, fmaxq(d.GNN(j, j), d.has_T ? d.GTT(j, j) : quad(0)));
+  if (gmax == 0) gmax = 1;
+  auto gtn = [&](int i, int k) { return d.GNT(k, i); };  // W_T,iᵀ M⁻¹ W_N,k
+  // Each contact's modes: normal 0 open, 1 closed; tangential 0 stick, 1 slide with v_T > 0
+  // (t = −β), 2 slide with v_T < 0 (t = β), 3 t = 0 (no friction, or a bound that is zero).
+  std::vector<std::vector<std::pair<int, int>>> modes(m);
+  for (int a = 0; a < m; ++a) {
+    const int j = ph.J[a];
+    const bool coulomb = ph.friction && d.has_T && mu[j] > 0;
+    for (int nm = 0; nm < 2; ++nm) {
+      if (!coulomb || (nm == 0 && ph.cB[j] == 0)) {
+        modes[a].push_back({nm, 3});
+        continue;
+      }
+      for (int tm = 0; tm < 3; ++tm) modes[a].push_back({nm, tm});
+    }
+  }
+  std::vector<int> pick(m, 0);
+  const quad tol = ldexpq(1, -95);
+  for (;;) {
+    // Unknowns u = (x_J, t_J); one equation per unknown.
+    Mat A(2 * m, 2 * m);
+    QVec b(2 * m, 0);
+    for (int a = 0; a < m; ++a) {
+      const int j = ph.J[a];
+      const auto [nm, tm] = modes[a][pick[a]];
+      if (nm == 1) {  // closed: v_N = 0
+        for (int k = 0; k < m; ++k) {
+          A(a, k) = d.GNN(j, ph.J[k]);
+          A(a, m + k) = d.has_T ? d.GNT(j, ph.J[k]) : quad(0);
+        }
+        b[a] = -ph.bN[j];
+      } else {  // open: x = 0
+        A(a, a) = 1;
+      }
+      if (tm == 0) {  // stick: v_T = 0
+        for (int k = 0; k < m; ++k) {
+          A(m + a, k) = gtn(j, ph.J[k]);
+          A(m + a, m + k) = d.GTT(j, ph.J[k]);
+        }
+        b[m + a] = -ph.bT[j];
+      } else if (tm == 3) {  // t = 0
+        A(m + a, m + a) = 1;
+      } else {  // slide: t = −s μ (cB + x)
+        const quad sgn_v = tm == 1 ? 1 : -1;
+        A(m + a, m + a) = 1;
+        A(m + a, a) = sgn_v * mu[j];
+        b[m + a] = -sgn_v * mu[j] * ph.cB[j];
+      }
+    }
+    QVec u = b;
+    if (!solve_linear(A, u, singular)) {
+      complete = false;
+    } else {
+      PhaseAnswer ans{QVec(c, 0), QVec(c, 0)};
+      quad Pscale = vs / gmax;
+      for (int a = 0; a < m; ++a) {
+        ans.x[ph.J[a]] = u[a];
+        ans.t[ph.J[a]] = u[m + a];
+        Pscale = fmaxq(Pscale, fmaxq(fabsq(u[a]), fabsq(u[m + a])));
+        Pscale = fmaxq(Pscale, ph.cB[ph.J[a]]);
+      }
+      const quad vscale = fmaxq(vs, gmax * Pscale);  // the size of the terms each v is summed from
+      bool ok = true;
+      for (int a = 0; a < m && ok; ++a) {
+        const int j = ph.J[a];
+        const auto [nm, tm] = modes[a][pick[a]];
+        quad vN = ph.bN[j], vT = d.has_T ? ph.bT[j] : quad(0);
+        for (int k : ph.J) {
+          vN += d.GNN(j, k) * ans.x[k];
+          if (d.has_T) {
+            vN += d.GNT(j, k) * ans.t[k];
+            vT += gtn(j, k) * ans.x[k] + d.GTT(j, k) * ans.t[k];
+          }
+        }
+        if (nm == 1) ok = ans.x[j] >= -tol * Pscale;
+        if (nm == 0) ok = vN >= -tol * vscale;
+        const quad beta = ph.friction && d.has_T ? mu[j] * (ph.cB[j] + ans.x[j]) : quad(0);
+        if (ok && tm == 0) ok = fabsq(ans.t[j]) <= beta + tol * Pscale;
+        if (ok && tm == 1) ok = vT >= -tol * vscale;
+        if (ok && tm == 2) ok = vT <= tol * vscale;
+      }
+      if (ok) {
+        bool known = false;
+        for (const PhaseAnswer& f : out) {
+          quad diff = 0;
+          for (int i = 0; i < c; ++i)
+            diff = fmaxq(diff, fmaxq(fabsq(f.x[i] - ans.x[i]), fabsq(f.t[i] - ans.t[i])));
+          known = known || diff <= ldexpq(1, -80) * Pscale;
+        }
+        if (!known) out.push_back(ans);
+      }
+    }
+    int a = 0;  // the next combination of modes
+    while (a < m && ++pick[a] == static_cast<int>(modes[a].size())) pick[a++] = 0;
+    if (a == m) break;
+  }
+  return complete;
+}
+
+/// Velocities W q̇ + w after the percussions (PN, PT) on the body.
+inline void velocities_after(const Problem& p, const ContactData& d, const QVec& PN, const QVec& PT,
+                             QVec& DN, QVec& DT) {
+  QVec q = p.qdot_A;
+  for (int i = 0; i < d.c; ++i)
+    for (int k = 0; k < d.n; ++k) {
+      q[k] += d.MinvWN[i][k] * PN[i];
+      if (d.has_T) q[k] += d.MinvWT[i][k] * PT[i];
+    }
+  DN.assign(d.c, 0);
+  DT.assign(d.c, 0);
+  for (int i = 0; i < d.c; ++i) {
+    DN[i] = dot(p.W_N[i], q) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
+    if (d.has_T) DT[i] = dot(p.W_T[i], q) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
+  }
+}
+
+/// Coulomb's natural map on (t, v) with bound β, as a backward error: the smaller of the relative
+/// change of t and of v that makes it hold.
+inline quad coulomb_error(quad t, quad v, quad beta, quad Ps, quad vs) {
+  const quad proj = fminq(beta, fmaxq(-beta, t - v * Ps / vs));
+  return fabsq(t - proj) / Ps;
+}
+
+}  // namespace detail
+
+/// The scaled residual of a classical law at `s`, from its velocities (recomputed from its
+/// percussions): each complementarity |min(P/P_s, v/v_s)| and each Coulomb natural map, per phase.
+inline quad classical_residual(const Problem& p, ClassicalLaw law, const QVec& e, const QVec& mu,
+                               const Solution& s) {
+  using namespace detail;
+  const ContactData d = contact_data(p);
+  const auto [vs, Ps] = scales(d, s);
+  auto pick_e = [&](int i) { return e.size() == 1 ? e[0] : e.at(i); };
+  auto pick_mu = [&](int i) { return mu.empty() ? quad(0) : (mu.size() == 1 ? mu[0] : mu.at(i)); };
+  QVec DN, DT, DNC, DTC;
+  velocities_after(p, d, s.P_N, s.P_T, DN, DT);
+  const bool poisson = law == ClassicalLaw::poisson;
+  if (poisson) velocities_after(p, d, s.P_NC, s.P_TC, DNC, DTC);
+  quad r = 0;
+  for (int i = 0; i < d.c; ++i) {
+    if (!d.part[i]) {
+      r = fmaxq(r, fmaxq(fabsq(s.P_N[i]), fabsq(s.P_T[i])) / Ps);
+      continue;
+    }
+    const quad ei = pick_e(i), mi = pick_mu(i);
+    if (!poisson) {
+      r = fmaxq(r, fabsq(fminq(s.P_N[i] / Ps, (DN[i] + ei * d.DNA[i]) / vs)));
+      if (d.has_T) r = fmaxq(r, coulomb_error(s.P_T[i], DT[i], mi * s.P_N[i], Ps, vs));
+      continue;
+    }
+    r = fmaxq(r, fabsq(fminq(s.P_NC[i] / Ps, DNC[i] / vs)));
+    const quad pne = s.P_N[i] - s.P_NC[i];  // e P_NC + ΔP
+    r = fmaxq(r, fabsq(fminq((pne - ei * s.P_NC[i]) / Ps, DN[i] / vs)));
+    if (d.has_T) {
+      r = fmaxq(r, coulomb_error(s.P_TC[i], DTC[i], mi * s.P_NC[i], Ps, vs));
+      r = fmaxq(r, coulomb_error(s.P_T[i] - s.P_TC[i], DT[i], mi * pne, Ps, vs));
+    }
+  }
+  return r;
+}
+
+/// Every solution of Newton's or Poisson's law (SPEC §2 table), with Coulomb friction when `mu` is
+/// not empty (one entry for every contact or one each; frictionless otherwise, P_T = 0), on up to
+/// 4 contacts taking part. Newton: one phase, 0 ≤ P_N ⊥ D_NE + e D_NA ≥ 0, Coulomb on (P_T, D_TE)
+/// with the bound μ P_N. Poisson: the compression 0 ≤ P_NC ⊥ D_NC ≥ 0 with Coulomb on
+/// (P_TC, D_TC), bound μ P_NC; then for each compression answer the expansion P_NE = e P_NC + ΔP,
+/// 0 ≤ ΔP ⊥ D_NE ≥ 0, Coulomb on (P_TE, D_TE) with the bound μ P_NE; P = P_C + P_E.
+/// `singular`: a mode's equations whose Gaussian elimination meets a pivot below `singular` times
+/// their largest entry count as singular (the list is then not complete). The default 2^-40
+/// (9e-13) leaves out what double-precision data cannot resolve: the bar upright on both ends,
+/// whose normals differ by 6e-17 (cos(π/2) in double), has an exact solution for its exact data,
+/// but one that any rounding of them moves by 30 % of the velocities.
+inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, const QVec& e,
+                                          const QVec& mu, quad singular = ldexpq(1, -40)) {
+  using namespace detail;
+  const ContactData d = contact_data(p);
+  const int c = d.c;
+  auto pick_e = [&](int i) { return e.size() == 1 ? e[0] : e.at(i); };
+  QVec mus(c, 0);
+  for (int i = 0; i < c && !mu.empty(); ++i) mus[i] = mu.size() == 1 ? mu[0] : mu.at(i);
+  Phase ph;
+  for (int i = 0; i < c; ++i)
+    if (d.part[i]) ph.J.push_back(i);
+  if (ph.J.size() > 4) throw std::invalid_argument("classical_modes: at most 4 contacts take part");
+  ph.friction = !mu.empty() && d.has_T;
+  quad vs = 0;
+  for (int i : ph.J) vs = fmaxq(vs, fmaxq(fabsq(d.DNA[i]), fabsq(d.DTA[i])));
+  if (vs == 0) vs = 1;
+  const bool poisson = law == ClassicalLaw::poisson;
+  ph.bN = d.DNA;
+  ph.bT = d.DTA;
+  ph.cB.assign(c, 0);
+  if (!poisson)
+    for (int i = 0; i < c; ++i) ph.bN[i] = (1 + pick_e(i)) * d.DNA[i];
+  ClassicalSolutions res;
+  std::vector<PhaseAnswer> first;
+  res.complete = phase_answers(d, ph, mus, vs, singular, first);
+  for (const PhaseAnswer& a : first) {
+    std::vector<PhaseAnswer> second;
+    Phase ex = ph;
+    if (poisson) {  // the expansion, from the compression's end
+      for (int i = 0; i < c; ++i) {
+        ex.bN[i] = d.DNA[i];
+        ex.bT[i] = d.DTA[i];
+        for (int k = 0; k < c; ++k) {
+          const quad pn = (1 + pick_e(k)) * a.x[k];
+          ex.bN[i] += d.GNN(i, k) * pn + (d.has_T ? d.GNT(i, k) * a.t[k] : quad(0));
+          if (d.has_T) ex.bT[i] += d.GNT(k, i) * pn + d.GTT(i, k) * a.t[k];
+        }
+        ex.cB[i] = pick_e(i) * a.x[i];
+      }
+      res.complete = phase_answers(d, ex, mus, vs, singular, second) && res.complete;
+    } else {
+      second.push_back(a);
+    }
+    for (const PhaseAnswer& b : second) {
+      Solution sol = empty_solution(c);
+      for (int i = 0; i < c; ++i) {
+        sol.P_N[i] = poisson ? (1 + pick_e(i)) * a.x[i] + b.x[i] : a.x[i];
+        sol.P_T[i] = poisson ? a.t[i] + b.t[i] : a.t[i];
+      }
+      if (poisson) {
+        sol.P_NC = a.x;
+        sol.P_TC = a.t;
+        velocities_after(p, d, sol.P_NC, sol.P_TC, sol.D_NC, sol.D_TC);
+      }
+      complete(p, d, sol);
+      sol.mode = poisson ? "poisson" : "newton";
+      sol.residual = classical_residual(p, law, e, mu, sol);
+      res.solutions.push_back(sol);
+    }
+  }
+  return res;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -413,4 +413,135 @@ TEST(ReferenceSelfTest, SeveralContactsResidualsAreQuadSmall) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// The classical laws by their contact modes (classical_modes)
+
+// Without friction the modes are newton_frictionless's active sets: the same solutions, on random
+// bodies with two to four contacts on six dofs (G_NN regular).
+TEST(ReferenceSelfTest, ClassicalModesFrictionlessAreNewtonsActiveSets) {
+  Rng rng{5};
+  for (int trial = 0; trial < 60; ++trial) {
+    const int c = 2 + trial % 3;
+    ref::Problem p = random_problem(rng, 6, c, rng.log_uniform(1e-3, 1e3), trial % 4 ? 1 : 1e6);
+    p.W_T.clear();
+    const ref::QVec e{q(rng.uniform(0, 1))};
+    const auto lcp = ref::newton_frictionless(p, e);
+    const auto modes = ref::classical_modes(p, ref::ClassicalLaw::newton, e, {});
+    ASSERT_TRUE(modes.complete) << trial;
+    ASSERT_EQ(modes.solutions.size(), lcp.size()) << trial;
+    for (std::size_t k = 0; k < lcp.size(); ++k) {
+      EXPECT_LT(d(modes.solutions[k].residual), 1e-28) << trial;
+      bool match = false;
+      for (const auto& s : lcp) {
+        quad diff = 0, size = 0;
+        for (int i = 0; i < c; ++i) {
+          diff = fmaxq(diff, fabsq(s.P_N[i] - modes.solutions[k].P_N[i]));
+          size = fmaxq(size, fabsq(s.P_N[i]));
+        }
+        match = match || diff <= q(1e-28) * size;
+      }
+      EXPECT_TRUE(match) << trial;
+    }
+  }
+}
+
+// One contact with Coulomb, by hand: closed, then stick (G P = −((1 + e) D_NA, D_TA), inside the
+// cone) or slide with v_T of sign s (P_T = −sμP_N, P_N = −(1 + e) D_NA/(G_NN − sμG_NT), v_T
+// of sign s), each a 2×2 or scalar equation solved here by Cramer's rule. Poisson's compression is
+// the same with e = 0, and on one contact its expansion adds P_NE = e P_NC in the compression's
+// direction only where the contact sticks or slides on: checked through the residual. The paper's
+// bar with random velocities and μ past Painlevé's condition (a slide mode whose α = G_NN − sμG_NT
+// is negative, so that its P_N would be negative).
+TEST(ReferenceSelfTest, ClassicalModesOneContactCoulombByHand) {
+  Rng rng{17};
+  int painleve = 0, sticks = 0, slides = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const quad theta = q(rng.uniform(0.05, 1.5));
+    const ref::Problem p =
+        bar(theta, q(rng.uniform(-4, 4)), -q(rng.uniform(0.1, 4)), q(rng.uniform(-3, 3)));
+    const quad mu = q(rng.log_uniform(0.05, 20)), e = q(rng.uniform(0, 1));
+    const quad l = q(0.5), J = l * l / 3;
+    const quad GNN = 1 + l * l * cosq(theta) * cosq(theta) / J;
+    const quad GNT = -l * l * sinq(theta) * cosq(theta) / J;
+    const quad GTT = 1 + l * l * sinq(theta) * sinq(theta) / J;
+    const quad DNA = p.qdot_A[1] - l * cosq(theta) * p.qdot_A[2];
+    const quad DTA = p.qdot_A[0] + l * sinq(theta) * p.qdot_A[2];
+    if (DNA > 0) continue;
+    std::vector<LinearSolution> expected;
+    const quad tol = q(1e-28) * (fabsq(DNA) + fabsq(DTA));
+    const quad b = -(1 + e) * DNA;
+    // Open: P = 0 where D_NA + e D_NA ≥ 0, i.e. never here (D_NA < 0).
+    const quad det = GNN * GTT - GNT * GNT;
+    const quad PN_st = (b * GTT + GNT * DTA) / det, PT_st = (-GNN * DTA - GNT * b) / det;
+    if (PN_st >= -tol && fabsq(PT_st) <= mu * PN_st + tol) expected.push_back({PN_st, PT_st});
+    for (quad sgn : {q(1), q(-1)}) {
+      const quad alpha = GNN - sgn * mu * GNT;
+      painleve += alpha < 0;
+      if (alpha == 0) continue;
+      const quad PN = b / alpha, PT = -sgn * mu * PN;
+      const quad vT = DTA + GNT * PN + GTT * PT;
+      if (PN >= -tol && sgn * vT >= -tol) expected.push_back({PN, PT});
+    }
+    const auto found = ref::classical_modes(p, ref::ClassicalLaw::newton, {e}, {mu});
+    ASSERT_TRUE(found.complete);
+    // A stick answer on the cone's edge is also a slide answer: count distinct ones.
+    std::vector<LinearSolution> distinct;
+    for (const auto& x : expected) {
+      bool seen = false;
+      for (const auto& y : distinct)
+        seen = seen || (rel(x.PN, y.PN) < q(1e-25) && fabsq(x.PT - y.PT) <= q(1e-25) * x.PN);
+      if (!seen) distinct.push_back(x);
+    }
+    ASSERT_EQ(found.solutions.size(), distinct.size()) << "trial " << trial << " mu " << d(mu);
+    for (const auto& s : found.solutions) {
+      EXPECT_LT(d(s.residual), 1e-30) << trial;
+      bool match = false;
+      for (const auto& x : distinct)
+        match =
+            match || (rel(s.P_N[0], x.PN) < q(1e-28) && fabsq(s.P_T[0] - x.PT) <= q(1e-28) * x.PN);
+      EXPECT_TRUE(match) << trial;
+      const quad zT = s.D_TE[0];
+      (fabsq(zT) <= tol ? sticks : slides) += 1;
+    }
+    // Poisson: the compression is Newton's phase with e = 0; every answer satisfies both phases.
+    const auto poisson = ref::classical_modes(p, ref::ClassicalLaw::poisson, {e}, {mu});
+    ASSERT_TRUE(poisson.complete);
+    const auto compression = ref::classical_modes(p, ref::ClassicalLaw::newton, {q(0)}, {mu});
+    for (const auto& s : poisson.solutions) {
+      EXPECT_LT(d(s.residual), 1e-30) << trial;
+      bool match = false;
+      for (const auto& c : compression.solutions)
+        match = match || (rel(s.P_NC[0], c.P_N[0]) < q(1e-28) &&
+                          fabsq(s.P_TC[0] - c.P_T[0]) <= q(1e-28) * c.P_N[0]);
+      EXPECT_TRUE(match) << trial;
+    }
+  }
+  EXPECT_GT(sticks, 0);
+  EXPECT_GT(slides, 0);
+  EXPECT_GT(painleve, 0);  // μ|G_NT| > G_NN is reached: a slide mode with α < 0
+}
+
+// Poisson without friction on one contact is Newton (SPEC §2): P_N = (1 + e) P_NC with
+// P_NC = −D_NA/G_NN; with friction, the residual of both phases is quad-small on random bodies.
+TEST(ReferenceSelfTest, ClassicalModesPoissonOnRandomBodies) {
+  Rng rng{23};
+  for (int trial = 0; trial < 40; ++trial) {
+    const int c = 1 + trial % 3;
+    ref::Problem p = random_problem(rng, 6, c, rng.log_uniform(1e-3, 1e3));
+    const ref::QVec e{q(rng.uniform(0, 1))};
+    const ref::QVec mu{q(rng.log_uniform(0.01, 2))};
+    const auto sols = ref::classical_modes(p, ref::ClassicalLaw::poisson, e, mu);
+    ASSERT_TRUE(sols.complete) << trial;
+    for (const auto& s : sols.solutions) EXPECT_LT(d(s.residual), 1e-28) << trial;
+    if (c != 1) continue;
+    p.W_T.clear();
+    const auto plain = ref::classical_modes(p, ref::ClassicalLaw::poisson, e, {});
+    const auto newton = ref::newton_frictionless(p, e);
+    ASSERT_EQ(plain.solutions.size(), 1u);
+    ASSERT_EQ(newton.size(), 1u);
+    EXPECT_LT(d(rel(plain.solutions[0].P_N[0], newton[0].P_N[0])), 1e-30) << trial;
+    EXPECT_LT(d(rel(plain.solutions[0].P_N[0], (1 + e[0]) * plain.solutions[0].P_NC[0])), 1e-30);
+  }
+}
+
 }  // namespace
