@@ -28,8 +28,9 @@
 ///    coordinate descent of the dual problem, which converges), then Levenberg-Marquardt on
 ///    F(s) = z(s) − D_A − G P(s)/2, whose Jacobian stays bounded for p or q near 1 and for large p.
 ///  - newton_frictionless(): Newton's law, LCP 0 ≤ P_N ⊥ G_NN P_N + (1 + e) D_NA ≥ 0 (eq. 6 for one
-///    contact), by enumeration of the active sets; every distinct solution (G_NN singular:
-///    several).
+///    contact), by enumeration of the active sets; every distinct solution of a regular active
+///    set (a singular one is skipped: where G_NN is singular the list may be empty although the
+///    law has a solution; classical_modes says so).
 ///  - classical_modes(): Newton's or Poisson's law, with or without Coulomb friction (SPEC §2
 ///    table; Poisson + Coulomb in the compression/expansion form), on up to 4 contacts taking part,
 ///    by enumeration of every contact mode of each phase (normal open or closed; tangential stick,
@@ -149,6 +150,10 @@ struct Solution {
   QVec z_N, z_T;  ///< mean velocities.
   /// Poisson's compression phase (classical_modes with ClassicalLaw::poisson; empty otherwise).
   QVec P_NC, P_TC, D_NC, D_TC;
+  /// classical_modes: the smallest relative pivot of the equations of its modes, about the
+  /// inverse of their condition. The answer in double precision can be no closer than
+  /// ε/mode_pivot relative, however exact the method (1 for the other laws).
+  quad mode_pivot = 1;
   std::vector<int> takes_part;  ///< 1 when D_NA ≤ 0.
   std::string mode;   ///< e.g. "c0:free/slide+" (normal: free or reaction; tangential mode).
   quad residual = 0;  ///< the law's scaled residual at this solution (fremond/newton_residual).
@@ -197,8 +202,10 @@ struct Mat {
 };
 
 /// Solves A x = b by Gaussian elimination with partial pivoting; false when a pivot is below
-/// rel_tol × the largest entry of A (singular to that tolerance).
-inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100)) {
+/// rel_tol × the largest entry of A (singular to that tolerance). `smallest_pivot`, if given,
+/// receives the smallest pivot over that largest entry (about 1/cond(A)).
+inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100),
+                         quad* smallest_pivot = nullptr) {
   const int n = A.rows;
   quad scale = 0;
   for (quad v : A.a) scale = fmaxq(scale, fabsq(v));
@@ -208,6 +215,7 @@ inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100)) {
     for (int i = k + 1; i < n; ++i)
       if (fabsq(A(i, k)) > fabsq(A(piv, k))) piv = i;
     if (fabsq(A(piv, k)) <= rel_tol * scale) return false;
+    if (smallest_pivot) *smallest_pivot = fminq(*smallest_pivot, fabsq(A(piv, k)) / scale);
     if (piv != k) {
       for (int j = 0; j < n; ++j) std::swap(A(k, j), A(piv, j));
       std::swap(b[k], b[piv]);
@@ -1092,7 +1100,8 @@ struct Phase {
 };
 
 struct PhaseAnswer {
-  QVec x, t;  ///< one entry a contact (zero off J)
+  QVec x, t;       ///< one entry a contact (zero off J)
+  quad pivot = 1;  ///< the smallest relative pivot of its mode's equations (about 1/cond)
 };
 
 /// Every answer of one phase, by its modes; false when a mode's equations were singular, to the
@@ -1153,10 +1162,11 @@ inline bool phase_answers(const ContactData& d, const Phase& ph, const QVec& mu,
       }
     }
     QVec u = b;
-    if (!solve_linear(A, u, singular)) {
+    quad pivot = 1;
+    if (!solve_linear(A, u, singular, &pivot)) {
       complete = false;
     } else {
-      PhaseAnswer ans{QVec(c, 0), QVec(c, 0)};
+      PhaseAnswer ans{QVec(c, 0), QVec(c, 0), pivot};
       quad Pscale = vs / gmax;
       for (int a = 0; a < m; ++a) {
         ans.x[ph.J[a]] = u[a];
@@ -1331,6 +1341,7 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
       }
       complete(p, d, sol);
       sol.mode = poisson ? "poisson" : "newton";
+      sol.mode_pivot = poisson ? fminq(a.pivot, b.pivot) : a.pivot;
       sol.residual = classical_residual(p, law, e, mu, sol);
       res.solutions.push_back(sol);
     }

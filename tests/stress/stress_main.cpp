@@ -238,6 +238,13 @@ double velocity_error(const ImpactResult& r, const ref::Solution& s) {
   return e / std::max(v, std::numeric_limits<double>::min());
 }
 
+/// The largest condition (about 1/pivot) of the classical reference's modes over its solutions.
+double max_mode_cond(const std::vector<ref::Solution>& sols) {
+  double c = 1.0;
+  for (const auto& s : sols) c = std::max(c, 1.0 / ref::to_double(s.mode_pivot));
+  return c;
+}
+
 /// The reference's laws for `law`, or false when the reference does not cover it.
 bool reference_laws(const ImpactLaw& law, int c, std::vector<ref::PowerLaw>& normal,
                     std::vector<ref::TangentialLaw>& tangential) {
@@ -276,13 +283,11 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     for (int i = 0; i < pb.w_N.size(); ++i) q.w_N.push_back(pb.w_N(i));
     if (pb.has_tangential())
       for (int i = 0; i < pb.w_T.size(); ++i) q.w_T.push_back(pb.w_T(i));
-    if (law.type == LawType::newton && !pb.has_tangential()) {
-      ref::QVec e;
-      for (double v : law.e.values) e.push_back(v);
-      sols = ref::newton_frictionless(q, e);
-    } else if (law.type != LawType::fremond) {
-      // The other classical laws by their contact modes: every mode's equations must be regular
-      // for the list to be complete (G singular: a continuum the enumeration cannot list).
+    if (law.type != LawType::fremond) {
+      // The classical laws by their contact modes: every mode's equations must be regular for the
+      // list to be complete (G singular: a continuum the enumeration cannot list, and
+      // newton_frictionless, which skips a singular active set, can miss the only solution: three
+      // contacts on two dofs, newton #90835 of seed 23).
       ref::QVec e, mu;
       for (double v : law.e.values) e.push_back(v);
       if (law.has_friction())
@@ -337,6 +342,13 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     if (r.solver.status == SolverStatus::no_solution) agreed = "no solution on either side";
   } else if (r.solver.status == SolverStatus::no_solution) {
     problem = "the library says no_solution, the reference finds " + std::to_string(sols.size());
+  } else if (r.ok() && max_mode_cond(sols) > 1e10) {
+    // Modes singular to the library's rank test (1e-10): the answer of the exact data moves by
+    // O(1) under changes of the data of 1e-11 (the bar upright on both ends, its normals 3.5e-12
+    // apart: 3 % from the library's, which says "not unique"). Existence is checked; velocities
+    // are not comparable.
+    out.line("R skipped 0\tthe reference's modes are singular to 1e-10");
+    return;
   } else if (r.ok()) {
     best = std::numeric_limits<double>::infinity();
     for (const auto& s : sols) best = std::min(best, velocity_error(r, s));
@@ -358,7 +370,12 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
       if (r.takes_part(i)) scale = std::max({scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
     }
     const double growth = scale > 0.0 ? std::max(1.0, size / scale) : 1.0;
-    double allowed = std::max(1e-7, 64 * std::numeric_limits<double>::epsilon() * cond * growth);
+    // The classical reference's modes can be ill-conditioned themselves where M is not (the bar
+    // nearly upright on both ends, its normals 5e-12 apart: cond = 7e9, so the answer is known in
+    // double precision to 1e-6 whatever the method): their condition counts as M's does.
+    const double mode_cond = max_mode_cond(sols);
+    double allowed = std::max(
+        1e-7, 64 * std::numeric_limits<double>::epsilon() * std::max(cond, mode_cond) * growth);
     // Nor closer than the rounding of q̇_E = q̇_A + M⁻¹WP, which the result is bound to (its
     // percussions are doubles): ε|W_i|ᵀ(|M⁻¹W_N||P_N| + |M⁻¹W_T||P_T|) per contact. A stick held
     // by percussions of 1e15 that cancel to a velocity change of 1e7 is known to 1e-6 of it.
