@@ -138,9 +138,15 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
     if (!friction) {
       // Symmetric positive semidefinite LCP: the velocities are unique, and a ray proves that
       // there is no solution in exact arithmetic (solve_law checks that rounding agrees:
-      // ray_is_proof).
+      // ray_is_proof). Where rounding made the ray (cond(G) = 7e10: Lemke stopped after two
+      // pivots where both contacts close), the modes still have the answer, to rounding.
       if (have) out.u.push(u);
       out.exhaustive = true;
+      if (!have && automatic && ph.a <= kMaxEnumerated) {
+        enumerate = true;
+        out.primary = out.others = SolverMethod::mode_enumeration;
+        out.fallbacks = 1;
+      }
     } else if (automatic && (ph.a <= list_up_to || (!have && ph.a <= kMaxEnumerated))) {
       enumerate = true;
       out.others = SolverMethod::mode_enumeration;
@@ -361,7 +367,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   else
     out.percussion_unique = first.percussion_unique;
 
-  if (!ph.friction && first.u.size == 0 && !ray_is_proof(cs, ph)) {
+  if (frictionless(ph) && first.u.size == 0 && !ray_is_proof(cs, ph)) {
     out.exhaustive = false;
     out.beyond_precision = true;
   }
@@ -396,7 +402,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     out.pivots += second.pivots;
     out.fallbacks += second.fallbacks;
     out.exhaustive = out.exhaustive && second.exhaustive;
-    if (!ph.friction && second.u.size == 0 && !ray_is_proof(cs, ex)) {
+    if (frictionless(ex) && second.u.size == 0 && !ray_is_proof(cs, ex)) {
       out.exhaustive = false;
       out.beyond_precision = true;
     }
