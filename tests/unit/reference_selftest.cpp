@@ -49,6 +49,17 @@ ref::Problem bar(quad theta, quad xdot, quad ydot, quad thetadot) {
   return p;
 }
 
+/// The contact-space data of bar(theta, ...), by hand: G = WᵀM⁻¹W and D_A = Wᵀq̇_A.
+struct BarContact {
+  quad GNN, GNT, GTT, DNA, DTA;
+};
+BarContact bar_contact(quad theta, const ref::Problem& p) {
+  const quad l = q(0.5), J = l * l / 3;
+  return {1 + l * l * cosq(theta) * cosq(theta) / J, -l * l * sinq(theta) * cosq(theta) / J,
+          1 + l * l * sinq(theta) * sinq(theta) / J, p.qdot_A[1] - l * cosq(theta) * p.qdot_A[2],
+          p.qdot_A[0] + l * sinq(theta) * p.qdot_A[2]};
+}
+
 /// SplitMix64, for reproducible random cases.
 struct Rng {
   std::uint64_t s;
@@ -241,12 +252,7 @@ TEST(ReferenceSelfTest, CoulombP2MatchesPiecewiseLinearClosedForms) {
     const quad k = q(rng.log_uniform(0.01, 100));
     const quad mu = q(rng.log_uniform(0.05, 20));  // well past Painlevé's μ|G_NT| = G_NN sometimes
     const auto sols = ref::fremond_one_contact(p, {k, 2}, ref::TangentialLaw::coulomb(mu));
-    const quad l = q(0.5), J = l * l / 3;
-    const quad GNN = 1 + l * l * cosq(theta) * cosq(theta) / J;
-    const quad GNT = -l * l * sinq(theta) * cosq(theta) / J;
-    const quad GTT = 1 + l * l * sinq(theta) * sinq(theta) / J;
-    const quad DNA = p.qdot_A[1] - l * cosq(theta) * p.qdot_A[2];
-    const quad DTA = p.qdot_A[0] + l * sinq(theta) * p.qdot_A[2];
+    const auto [GNN, GNT, GTT, DNA, DTA] = bar_contact(theta, p);
     if (DNA > 0) continue;
     const auto expected = coulomb_p2_closed_forms(GNN, GNT, GTT, DNA, DTA, k, mu);
     ASSERT_EQ(sols.size(), expected.size()) << "trial " << trial << " mu " << d(mu);
@@ -460,12 +466,7 @@ TEST(ReferenceSelfTest, ClassicalModesOneContactCoulombByHand) {
     const ref::Problem p =
         bar(theta, q(rng.uniform(-4, 4)), -q(rng.uniform(0.1, 4)), q(rng.uniform(-3, 3)));
     const quad mu = q(rng.log_uniform(0.05, 20)), e = q(rng.uniform(0, 1));
-    const quad l = q(0.5), J = l * l / 3;
-    const quad GNN = 1 + l * l * cosq(theta) * cosq(theta) / J;
-    const quad GNT = -l * l * sinq(theta) * cosq(theta) / J;
-    const quad GTT = 1 + l * l * sinq(theta) * sinq(theta) / J;
-    const quad DNA = p.qdot_A[1] - l * cosq(theta) * p.qdot_A[2];
-    const quad DTA = p.qdot_A[0] + l * sinq(theta) * p.qdot_A[2];
+    const auto [GNN, GNT, GTT, DNA, DTA] = bar_contact(theta, p);
     if (DNA > 0) continue;
     std::vector<LinearSolution> expected;
     const quad tol = q(1e-28) * (fabsq(DNA) + fabsq(DTA));
