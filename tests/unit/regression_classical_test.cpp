@@ -680,5 +680,39 @@ TEST(RegressionClassical, RayOfAFrictionlessPhaseIsCheckedWhateverTheLaw) {
   }
 }
 
+// Poisson + Coulomb on one contact taking part (of two) with cond(M) = 7.7e9: the compression
+// sticks (P_NC = 874, P_TC = 592), so D_NC is zero exactly, but from the closed form it came out
+// −4e-11 against the expansion's tolerance of 3e-15, no expansion mode held, and the law said
+// `no_solution` (stress poisson_coulomb #60537 of seed 23, found by the quad reference). Where no
+// closed form holds, the enumeration now decides, and its refined answer is the reference's.
+TEST(RegressionClassical, OneContactWithoutAClosedFormAnswerIsEnumerated) {
+  ImpactProblem pb;
+  pb.M.resize(2, 2);
+  pb.M << 101805559.98736908, -33134497.844038639, -33134497.844038639, 10784233.681939119;
+  pb.W_N.resize(2, 2);
+  pb.W_N << 0.87817700254468445, -0.74750055478967115, -0.32215283495408231, -0.48319686931813377;
+  pb.W_T.resize(2, 2);
+  pb.W_T << -0.91785456083832595, -0.93502876090805065, 0.35233646494319126, 0.70594035827058121;
+  pb.qdot_A = Eigen::Vector2d(-1.7296112495367535e-06, 1.4377280074596086e-06);
+  const std::vector<double> e{0, 0.93979708388578109};
+  const double mu = 6.2416570511793186;
+  const ImpactLaw law = ImpactLaw::poisson_coulomb(PerContact(e), mu);
+  namespace ref = fremond_reference;
+  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                          ref::ClassicalLaw::poisson, {e[0], e[1]}, {mu});
+  ASSERT_TRUE(found.complete);
+  ASSERT_EQ(found.solutions.size(), 1u);
+  const auto& s = found.solutions[0];
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, law, opt);
+  EXPECT_NE(r.solver.status, SolverStatus::no_solution) << r.solver.message;
+  const double scale = ref::to_double(s.P_N[0]);  // 874
+  EXPECT_NEAR(r.P_N(0), scale, 1e-12 * scale);
+  EXPECT_NEAR(r.P_T(0), ref::to_double(s.P_T[0]), 1e-12 * scale);
+  EXPECT_NEAR(r.P_NC(0), ref::to_double(s.P_NC[0]), 1e-12 * scale);
+  EXPECT_EQ(r.P_N(1), 0.0);
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+}
+
 }  // namespace
 }  // namespace fremond

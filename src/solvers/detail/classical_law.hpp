@@ -101,7 +101,9 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
     const OneContact oc =
         one_contact(ph.G(0, 0), f ? ph.G(0, 1) : 0.0, f ? ph.G(1, 1) : 0.0, ph.q(0),
                     f ? ph.q(1) : 0.0, f ? ph.mu(0) : 0.0, f ? ph.b0(0) : 0.0, f, tol);
-    if (!oc.degenerate) {
+    // No answer by the closed forms is checked by the enumeration where automatic chooses (see
+    // solve_law_one_contact: rounding can refuse every closed form of an ill-conditioned G).
+    if (!oc.degenerate && (oc.count > 0 || !automatic)) {
       // count ≤ 4 by construction; said here too, or GCC 12 warns of a read past x[3].
       for (int k = 0; k < std::min(oc.count, 4); ++k) {
         u(0) = oc.x[k];
@@ -116,7 +118,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
       out.unsupported = true;
       return;
     }
-    enumerate = true;  // singular 2×2 G: only the enumeration is sure
+    enumerate = true;  // singular 2×2 G, or no closed form held: only the enumeration is sure
     out.primary = out.others = SolverMethod::mode_enumeration;
   } else {
     const bool friction = !frictionless(ph);
@@ -295,6 +297,12 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
     }
     for (int j = 0; j < second.count; ++j) push(xc, tc, xc + s + second.x[j], tc + second.t[j]);
   }
+  // No solution by the closed forms: the general path decides (Lemke, the enumeration, the
+  // checks of a ray), since rounding can refuse every closed form of an ill-conditioned G.
+  // Poisson + Coulomb with cond(M) = 8e9: the compression sticks (P_NC = 874), and its D_NC,
+  // zero exactly, came out −4e-11, below the expansion's tolerance, so no expansion mode held
+  // and the law said `no_solution`.
+  if (out.solutions.size == 0) return false;
   if (out.solutions.size > 1) {
     // T_E − T_A = P·(Wᵀq̇_A) + ½ PᵀGP (eq. 9), to choose between several solutions.
     const double wn = pb.W_N.col(i).dot(pb.qdot_A);
