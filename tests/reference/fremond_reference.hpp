@@ -1343,6 +1343,20 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
       sol.mode = poisson ? "poisson" : "newton";
       sol.mode_pivot = poisson ? fminq(a.pivot, b.pivot) : a.pivot;
       sol.residual = classical_residual(p, law, e, mu, sol);
+      // One answer reached through two compression answers equal to rounding (or two expansion
+      // modes) is one solution.
+      quad size = 0, diff = ldexpq(1, 16000);
+      for (int i = 0; i < c; ++i) size = fmaxq(size, fmaxq(fabsq(sol.P_N[i]), fabsq(sol.P_T[i])));
+      for (const Solution& f : res.solutions) {
+        quad di = 0;
+        for (int i = 0; i < c; ++i) {
+          di = fmaxq(di, fmaxq(fabsq(f.P_N[i] - sol.P_N[i]), fabsq(f.P_T[i] - sol.P_T[i])));
+          if (poisson)
+            di = fmaxq(di, fmaxq(fabsq(f.P_NC[i] - sol.P_NC[i]), fabsq(f.P_TC[i] - sol.P_TC[i])));
+        }
+        diff = fminq(diff, di);
+      }
+      if (!res.solutions.empty() && diff <= ldexpq(1, -80) * size) continue;
       res.solutions.push_back(sol);
     }
   }
