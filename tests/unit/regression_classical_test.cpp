@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fremond/fremond.hpp"
+#include "fremond/io/problem_file.hpp"
 #include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
 
@@ -712,6 +713,68 @@ TEST(RegressionClassical, OneContactWithoutAClosedFormAnswerIsEnumerated) {
   EXPECT_NEAR(r.P_NC(0), ref::to_double(s.P_NC[0]), 1e-12 * scale);
   EXPECT_EQ(r.P_N(1), 0.0);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+}
+
+// OPEN: Newton + Coulomb with μ = 1e8 on two contacts taking part has three solutions (the quad
+// reference's modes, residuals 1e-30), two of them with one contact sliding on P_N = 8e-6 or
+// 1.3e-5; the library returns one and calls it unique. In those modes' equations the sliding row
+// t + σμx = −σb₀ (entries 1 and μ) beside rows of G puts their pivots below the rank threshold
+// (1e-10 of the largest), so the modes are taken for singular ones without answers (stress
+// newton_coulomb #2569 of seed 7, found by comparing `unique` with the reference's count; about
+// 12 in 20,000 Poisson + Coulomb and Frémond + Coulomb problems too). Dividing that row by
+// max(1, μ) fixes this case, but over 100,000 Newton + Coulomb problems it also turned 767
+// answers of near-singular modes into `no_solution` where the reference cannot decide (a mode
+// singular in quad precision too): not taken until those can be checked.
+TEST(RegressionClassical, DISABLED_EveryModeOfALargeMuIsSolved) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[3012.7566428340924, -4659.0323437871175, 82440.6809237579, -16826.035147921924],
+          [-4659.0323437871175, 7876.2774466071105, -134119.65584136252, 27083.499607898688],
+          [82440.6809237579, -134119.65584136252, 2323518.6966798538, -471478.54550145566],
+          [-16826.035147921924, 27083.499607898688, -471478.54550145566, 95798.959340855479]],
+    "W_N": [[-0.73321392481352221, 0.26601267502243298, 0.34331154818023135],
+            [-0.018314116960653437, 0.81384043780691995, -0.066894304044340713],
+            [-0.44529667050908328, 0.18602697177174554, 0.46715427094921602],
+            [0.47766099971481069, -0.99122493499826803, -0.30429562242304997]],
+    "W_T": [[-0.37596075675819662, 0.0096327348277542857, 0.10978004699458177],
+            [0.091425663285154446, 0.60696264581040071, -0.69497860014560475],
+            [0.97468270318323036, -0.92197967726168839, -0.099144352802571389],
+            [0.4371589145385566, 0.30715098369991822, -0.24123011843148057]],
+    "qdot_A": [0.6874178224009857, -3.0709638683957441, 1.0207052529930616, 0.57511194407664223],
+    "law": {"type": "newton_coulomb", "e": 1, "mu": 100000000}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  namespace ref = fremond_reference;
+  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                          ref::ClassicalLaw::newton, {1.0}, {1e8});
+  ASSERT_TRUE(found.complete);
+  ASSERT_EQ(found.solutions.size(), 3u);
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_FALSE(r.unique);
+  EXPECT_EQ(r.solutions_found, 3);
+  // The most dissipative of the three (SPEC §2: one is returned, and says which), by hand from the
+  // reference's velocities: T_E − T_A = ½ Σ P·(D_A + D_E) (eq. 9).
+  int best = -1;
+  double best_e = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const auto& s = found.solutions[k];
+    double e = 0.0;
+    for (int i = 0; i < 3; ++i)
+      e += 0.5 *
+           ref::to_double(s.P_N[i] * (s.D_NA[i] + s.D_NE[i]) + s.P_T[i] * (s.D_TA[i] + s.D_TE[i]));
+    if (best < 0 || e < best_e) {
+      best = k;
+      best_e = e;
+    }
+  }
+  const auto& s = found.solutions[best];
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(r.P_N(i), ref::to_double(s.P_N[i]), 1e-9 * 1300) << i;
+    EXPECT_NEAR(r.P_T(i), ref::to_double(s.P_T[i]), 1e-9 * 1300) << i;
+  }
+  EXPECT_NEAR(r.energy_change, best_e, 1e-9 * std::fabs(best_e));
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
 }  // namespace
