@@ -480,29 +480,41 @@ inline const TangentialLaw& pick(const std::vector<TangentialLaw>& v, int i) {
 }
 
 /// Fills velocities and the mean velocities of `s` from its percussions.
-inline void complete(const Problem& p, const ContactData& d, Solution& s) {
-  const int n = d.n, c = d.c;
-  s.qdot_E = p.qdot_A;
-  for (int i = 0; i < c; ++i)
-    for (int j = 0; j < n; ++j) {
-      s.qdot_E[j] += d.MinvWN[i][j] * s.P_N[i];
-      if (d.has_T) s.qdot_E[j] += d.MinvWT[i][j] * s.P_T[i];
+/// q̇ = q̇_A + M⁻¹(W_N P_N + W_T P_T) and the velocities W q̇ + w it gives each contact.
+inline void velocities_after(const Problem& p, const ContactData& d, const QVec& PN, const QVec& PT,
+                             QVec& q, QVec& DN, QVec& DT) {
+  q = p.qdot_A;
+  for (int i = 0; i < d.c; ++i)
+    for (int k = 0; k < d.n; ++k) {
+      q[k] += d.MinvWN[i][k] * PN[i];
+      if (d.has_T) q[k] += d.MinvWT[i][k] * PT[i];
     }
+  DN.assign(d.c, 0);
+  DT.assign(d.c, 0);
+  for (int i = 0; i < d.c; ++i) {
+    DN[i] = dot(p.W_N[i], q) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
+    if (d.has_T) DT[i] = dot(p.W_T[i], q) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
+  }
+}
+
+inline void complete(const Problem& p, const ContactData& d, Solution& s) {
+  const int c = d.c;
+  velocities_after(p, d, s.P_N, s.P_T, s.qdot_E, s.D_NE, s.D_TE);
   s.D_NA = d.DNA;
   s.D_TA = d.DTA;
-  s.D_NE.assign(c, 0);
-  s.D_TE.assign(c, 0);
   s.z_N.assign(c, 0);
   s.z_T.assign(c, 0);
   s.takes_part = d.part;
   for (int i = 0; i < c; ++i) {
-    s.D_NE[i] = dot(p.W_N[i], s.qdot_E) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
     s.z_N[i] = (s.D_NA[i] + s.D_NE[i]) / 2;
-    if (d.has_T) {
-      s.D_TE[i] = dot(p.W_T[i], s.qdot_E) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
-      s.z_T[i] = (s.D_TA[i] + s.D_TE[i]) / 2;
-    }
+    if (d.has_T) s.z_T[i] = (s.D_TA[i] + s.D_TE[i]) / 2;
   }
+}
+
+/// Coulomb's natural map on (t, v) with bound β, scaled: |t − proj_[−β, β](t − v P_s/v_s)| / P_s.
+inline quad coulomb_error(quad t, quad v, quad beta, quad Ps, quad vs) {
+  const quad proj = fminq(beta, fmaxq(-beta, t - v * Ps / vs));
+  return fabsq(t - proj) / Ps;
 }
 
 inline Solution empty_solution(int c) {
@@ -611,12 +623,9 @@ inline quad fremond_residual(const Problem& p, const std::vector<PowerLaw>& norm
         r = fmaxq(r, fminq(fabsq(s.P_T[i] + detail::f_tangent(tl, z_T)) / Ps, dz / vs));
         break;
       }
-      case TangentialKind::coulomb: {
-        const quad bound = tl.mu * fabsq(s.P_N[i]);
-        const quad proj = fminq(bound, fmaxq(-bound, s.P_T[i] - z_T * Ps / vs));
-        r = fmaxq(r, fabsq(s.P_T[i] - proj) / Ps);
+      case TangentialKind::coulomb:
+        r = fmaxq(r, detail::coulomb_error(s.P_T[i], z_T, tl.mu * fabsq(s.P_N[i]), Ps, vs));
         break;
-      }
     }
   }
   return r;
@@ -1212,30 +1221,6 @@ inline bool phase_answers(const ContactData& d, const Phase& ph, const QVec& mu,
   return complete;
 }
 
-/// Velocities W q̇ + w after the percussions (PN, PT) on the body.
-inline void velocities_after(const Problem& p, const ContactData& d, const QVec& PN, const QVec& PT,
-                             QVec& DN, QVec& DT) {
-  QVec q = p.qdot_A;
-  for (int i = 0; i < d.c; ++i)
-    for (int k = 0; k < d.n; ++k) {
-      q[k] += d.MinvWN[i][k] * PN[i];
-      if (d.has_T) q[k] += d.MinvWT[i][k] * PT[i];
-    }
-  DN.assign(d.c, 0);
-  DT.assign(d.c, 0);
-  for (int i = 0; i < d.c; ++i) {
-    DN[i] = dot(p.W_N[i], q) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
-    if (d.has_T) DT[i] = dot(p.W_T[i], q) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
-  }
-}
-
-/// Coulomb's natural map on (t, v) with bound β, as a backward error: the smaller of the relative
-/// change of t and of v that makes it hold.
-inline quad coulomb_error(quad t, quad v, quad beta, quad Ps, quad vs) {
-  const quad proj = fminq(beta, fmaxq(-beta, t - v * Ps / vs));
-  return fabsq(t - proj) / Ps;
-}
-
 }  // namespace detail
 
 /// The scaled residual of a classical law at `s`, from its velocities (recomputed from its
@@ -1247,10 +1232,10 @@ inline quad classical_residual(const Problem& p, ClassicalLaw law, const QVec& e
   const auto [vs, Ps] = scales(d, s);
   auto pick_e = [&](int i) { return e.size() == 1 ? e[0] : e.at(i); };
   auto pick_mu = [&](int i) { return mu.empty() ? quad(0) : (mu.size() == 1 ? mu[0] : mu.at(i)); };
-  QVec DN, DT, DNC, DTC;
-  velocities_after(p, d, s.P_N, s.P_T, DN, DT);
+  QVec q, DN, DT, DNC, DTC;
+  velocities_after(p, d, s.P_N, s.P_T, q, DN, DT);
   const bool poisson = law == ClassicalLaw::poisson;
-  if (poisson) velocities_after(p, d, s.P_NC, s.P_TC, DNC, DTC);
+  if (poisson) velocities_after(p, d, s.P_NC, s.P_TC, q, DNC, DTC);
   quad r = 0;
   for (int i = 0; i < d.c; ++i) {
     if (!d.part[i]) {
@@ -1337,7 +1322,8 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
       if (poisson) {
         sol.P_NC = a.x;
         sol.P_TC = a.t;
-        velocities_after(p, d, sol.P_NC, sol.P_TC, sol.D_NC, sol.D_TC);
+        QVec q_C;
+        velocities_after(p, d, sol.P_NC, sol.P_TC, q_C, sol.D_NC, sol.D_TC);
       }
       complete(p, d, sol);
       sol.mode = poisson ? "poisson" : "newton";
