@@ -793,13 +793,10 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   // reaction active and one soft: Newton from the decoupled guess and the splitting stall at
   // 3e-9 and 7e-9 on the wrong split of the percussions, NLopt ends 8e-10 from the quad reference
   // and Newton from there converges in a few steps).
-  if (automatic && has_prox && P.allFinite()) {
-    ++tried;
-    if (newton_answers(P)) {
-      out.solver.message = "semismooth Newton converged from NLopt's answer";
-      return;
-    }
-    --tried;
+  if (automatic && has_prox && P.allFinite() && newton_answers(P)) {
+    out.solver.fallbacks = tried + 1;  // NLopt, then Newton from its end
+    out.solver.message = "semismooth Newton converged from NLopt's answer";
+    return;
   }
   // Every method failed: the answer is the nearest to the law, not the last. NLopt, stopped by
   // its budget, can end far from where the splitting left off (a singular G of rank 3 with 8 rows
