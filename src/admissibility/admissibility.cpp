@@ -67,12 +67,18 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
   const double fs = on_domain([&](double x) { return phi.conjugate(x); }, s, ds);
   if (!std::isfinite(fz) || !std::isfinite(fs) || !std::isfinite(s * z))
     return subdifferential_miss();
+  // The gap is what is left after the noise, and the noise is at least the rounding of z and s
+  // acting on the product s·z: where that alone covers φ(z) + φ*(s) − s·z (every solved problem,
+  // up to rounding), the gap is zero and the four evaluations around (z, s) are not needed.
+  const double excess = fz + fs - s * z;
+  const double product_noise = dz * std::fabs(s) + ds * std::fabs(z);
+  if (excess - product_noise <= 0.0) return 0.0;
   const Around conj = around([&](double x) { return phi.conjugate(x); }, s, fs, ds);
   const double conj_noise = change_within(conj);
   const Around val = around([&](double x) { return phi.value(x); }, z, fz, dz);
-  const double noise = change_within(val) + conj_noise + dz * std::fabs(s) + ds * std::fabs(z);
+  const double noise = product_noise + change_within(val) + conj_noise;
   const double scale = std::fabs(fz) + std::fabs(fs) + std::fabs(s * z) + energy + 1e-300;
-  const double gap = std::max(0.0, fz + fs - s * z - noise) / scale;
+  const double gap = std::max(0.0, excess - noise) / scale;
   if (gap == 0.0) return 0.0;
   // The values decide wherever φ and φ* are resolvable near (z, s), so that a wrong conjugate (a
   // user's potential that lies about itself) is caught; only where φ within dz of z or φ* within
