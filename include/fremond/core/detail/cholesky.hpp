@@ -28,7 +28,8 @@ class CholeskyT {
   CholeskyT& compute(const Mat& A) {
     if constexpr (kHandLoops) {
       L_ = A;
-      info_ = factorize_in_place(L_) ? Eigen::Success : Eigen::NumericalIssue;
+      diagonal_ = lower_is_diagonal(A);
+      info_ = factorize_in_place(L_, diagonal_) ? Eigen::Success : Eigen::NumericalIssue;
     } else {
       llt_.compute(A);
     }
@@ -63,7 +64,7 @@ class CholeskyT {
   template <class Y>
   void solve_lower_in_place(Y& y) const {
     if constexpr (kHandLoops)
-      small_dense::forward_substitute(L_, y);
+      diagonal_ ? divide_by_diagonal(y) : small_dense::forward_substitute(L_, y);
     else
       llt_.matrixL().solveInPlace(y);
   }
@@ -72,7 +73,7 @@ class CholeskyT {
   template <class X>
   void solve_upper_in_place(X& x) const {
     if constexpr (kHandLoops)
-      small_dense::backward_substitute_transposed(L_, x);
+      diagonal_ ? divide_by_diagonal(x) : small_dense::backward_substitute_transposed(L_, x);
     else
       llt_.matrixU().solveInPlace(x);
   }
@@ -81,8 +82,15 @@ class CholeskyT {
   // Eigen's llt_inplace<Lower>::unblocked: column k's pivot A_kk − |L_k,0:k|², refused unless
   // positive (a NaN pivot passes, as in Eigen; the callers test the data's finiteness first), then
   // the column below it.
-  static bool factorize_in_place(Mat& A) {
+  static bool factorize_in_place(Mat& A, bool diagonal) {
     const Eigen::Index n = A.rows();
+    if (diagonal) {  // the same pivots: every product below subtracts an exact zero
+      for (Eigen::Index k = 0; k < n; ++k) {
+        if (A(k, k) <= 0.0) return false;
+        A(k, k) = std::sqrt(A(k, k));
+      }
+      return true;
+    }
     for (Eigen::Index k = 0; k < n; ++k) {
       double x = A(k, k);
       for (Eigen::Index j = 0; j < k; ++j) x -= A(k, j) * A(k, j);
@@ -98,7 +106,26 @@ class CholeskyT {
     return true;
   }
 
+  // A diagonal M (a body in principal axes: the bar, a point mass, the plate) has a diagonal
+  // factor, and both substitutions are one division per entry: the general loops would only
+  // subtract products with its zeros (exact), at a third of a one-contact impact's contact space.
+  static bool lower_is_diagonal(const Mat& A) {
+    const Eigen::Index n = A.rows();
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index i = j + 1; i < n; ++i)
+        if (A(i, j) != 0.0) return false;
+    return true;
+  }
+
+  template <class Y>
+  void divide_by_diagonal(Y& y) const {
+    const Eigen::Index n = L_.rows();
+    for (Eigen::Index k = 0; k < y.cols(); ++k)
+      for (Eigen::Index i = 0; i < n; ++i) y(i, k) /= L_(i, i);
+  }
+
   struct Empty {};
+  bool diagonal_ = false;
   std::conditional_t<kHandLoops, Mat, Empty> L_{};
   Eigen::ComputationInfo info_ = Eigen::InvalidInput;
   std::conditional_t<kHandLoops, Empty, Eigen::LLT<Mat>> llt_{};
