@@ -235,6 +235,96 @@ inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100),
   return true;
 }
 
+/// Is the polyhedron {u : A u = b, C u ≥ h} non-empty? Phase one of the simplex method on
+/// u = u⁺ − u⁻ (u⁺, u⁻ ≥ 0), with an artificial variable per row and Bland's rule (no cycling on
+/// degenerate vertices), in quad precision. Each row is scaled to a largest coefficient of 1; the
+/// polyhedron counts as non-empty when the artificials' least sum is below `rel_tol` times the
+/// largest scaled right-hand side (each constraint then holds to that, relative). A or C may have
+/// no row. `point`, if given, receives a point of it. Used where a mode's equations are singular
+/// (a continuum of percussions, or none): Gaussian elimination cannot say which.
+inline bool polyhedron_nonempty(const Mat& A, const QVec& b, const Mat& C, const QVec& h,
+                                QVec* point = nullptr, quad rel_tol = ldexpq(1, -70)) {
+  const int n = A.rows ? A.cols : C.cols, me = A.rows, mi = C.rows, m = me + mi;
+  // Columns: u⁺ (n), u⁻ (n), surplus of each inequality (mi), artificial of each row (m), rhs.
+  const int ca = 2 * n + mi, cols = ca + m + 1, rhs = cols - 1;
+  Mat T(m + 1, cols);  // row m: the reduced costs of Σ artificials
+  std::vector<int> basis(m);
+  quad rhs_max = 0;
+  for (int i = 0; i < m; ++i) {
+    const bool eq = i < me;
+    quad scale = 0;
+    for (int j = 0; j < n; ++j) scale = fmaxq(scale, fabsq(eq ? A(i, j) : C(i - me, j)));
+    const quad r = eq ? b[i] : h[i - me];
+    if (scale == 0) {  // 0 = r or 0 ≥ r: no variable helps
+      if (eq ? r != 0 : r > 0) return false;
+      scale = 1;
+    }
+    const quad sign = r < 0 ? -1 : 1;
+    for (int j = 0; j < n; ++j) {
+      const quad v = sign * (eq ? A(i, j) : C(i - me, j)) / scale;
+      T(i, j) = v;
+      T(i, n + j) = -v;
+    }
+    if (!eq) T(i, 2 * n + (i - me)) = -sign;
+    T(i, ca + i) = 1;
+    T(i, rhs) = sign * r / scale;
+    rhs_max = fmaxq(rhs_max, T(i, rhs));
+    basis[i] = ca + i;
+  }
+  for (int j = 0; j < cols; ++j) {
+    if (j >= ca && j < rhs) continue;
+    quad s = 0;
+    for (int i = 0; i < m; ++i) s += T(i, j);
+    T(m, j) = -s;
+  }
+  // Reduced costs below 2^-100 of the largest are zero; a pivot must be 2^-60 of its column's
+  // largest entry: pivots down to 2^-100 were taken, and their growth left the tableau off by
+  // 1e-7 (μ = 1e8 beside entries of 1e-3: an answer with slack 42 in every inequality was called
+  // infeasible, stress newton_coulomb #71778 of seed 23).
+  const quad tiny = ldexpq(1, -100), pivot_tol = ldexpq(1, -60);
+  for (int it = 0; it < 5000; ++it) {
+    quad cost_scale = 1;
+    for (int j = 0; j < ca + m; ++j) cost_scale = fmaxq(cost_scale, fabsq(T(m, j)));
+    int enter = -1;
+    for (int j = 0; j < ca + m && enter < 0; ++j)
+      if (T(m, j) < -tiny * cost_scale) enter = j;
+    if (enter < 0) break;
+    quad col_scale = 0;
+    for (int i = 0; i < m; ++i) col_scale = fmaxq(col_scale, fabsq(T(i, enter)));
+    int leave = -1;
+    quad best = 0;
+    for (int i = 0; i < m; ++i) {
+      if (!(T(i, enter) > pivot_tol * col_scale)) continue;
+      const quad ratio = T(i, rhs) / T(i, enter);
+      if (leave < 0 || ratio < best || (ratio == best && basis[i] < basis[leave])) {
+        leave = i;
+        best = ratio;
+      }
+    }
+    if (leave < 0) break;  // unbounded below: impossible for a sum of non-negative artificials
+    const quad pv = T(leave, enter);
+    for (int j = 0; j < cols; ++j) T(leave, j) /= pv;
+    for (int i = 0; i <= m; ++i) {
+      if (i == leave || T(i, enter) == 0) continue;
+      const quad f = T(i, enter);
+      for (int j = 0; j < cols; ++j) T(i, j) -= f * T(leave, j);
+      T(i, enter) = 0;
+    }
+    basis[leave] = enter;
+  }
+  if (!(-T(m, rhs) <= rel_tol * rhs_max)) return false;
+  if (point) {
+    point->assign(n, 0);
+    for (int i = 0; i < m; ++i) {
+      if (basis[i] < n)
+        (*point)[basis[i]] += T(i, rhs);
+      else if (basis[i] < 2 * n)
+        (*point)[basis[i] - n] -= T(i, rhs);
+    }
+  }
+  return true;
+}
+
 /// Cholesky factor L (M = L Lᵀ) of the symmetric positive definite M; throws otherwise.
 struct Cholesky {
   int n = 0;
@@ -1094,6 +1184,17 @@ struct ClassicalSolutions {
   /// False when some contact mode's equations were singular: a continuum of percussions may solve
   /// that mode, and the list may then miss solutions (or hold only some of a continuum's).
   bool complete = true;
+  /// Whether the law has a solution at all, where that is known: a singular mode's polyhedron
+  /// (its equations with its inequalities) is tested for a point by a linear program. Known where
+  /// every singular polyhedron is empty, or a solution is listed, or (Newton's laws) a singular
+  /// mode's vertex solves the law; open otherwise (Poisson's singular modes, whose points are not
+  /// carried through both phases, and vertices the program's rounding put off the law).
+  bool exists = false;
+  bool existence_known = true;
+  /// Some singular mode has answers (not listed in `solutions`); `singular_example` is one of
+  /// them (Newton's laws: a vertex of the first such mode's polyhedron, with its residual).
+  bool singular_answers = false;
+  std::vector<Solution> singular_example;
 };
 
 namespace detail {
@@ -1116,7 +1217,9 @@ struct PhaseAnswer {
 /// Every answer of one phase, by its modes; false when a mode's equations were singular, to the
 /// relative pivot `singular` (see classical_modes).
 inline bool phase_answers(const ContactData& d, const Phase& ph, const QVec& mu, quad vs,
-                          quad singular, std::vector<PhaseAnswer>& out) {
+                          quad singular, std::vector<PhaseAnswer>& out,
+                          bool* singular_answers = nullptr,
+                          std::vector<PhaseAnswer>* singular_points = nullptr) {
   const int m = static_cast<int>(ph.J.size()), c = d.c;
   bool complete = true;
   quad gmax = 0;
@@ -1174,6 +1277,64 @@ inline bool phase_answers(const ContactData& d, const Phase& ph, const QVec& mu,
     quad pivot = 1;
     if (!solve_linear(A, u, singular, &pivot)) {
       complete = false;
+      // Singular: the mode's equations with its inequalities, as a linear program.
+      // (Where points are kept, up to 8 of them: a vertex can miss the law by the program's own
+      // rounding, and another mode's may not.)
+      if (singular_answers &&
+          (singular_points ? singular_points->size() < 8 : !*singular_answers)) {
+        Mat C(0, 2 * m);
+        QVec h;
+        auto add_row = [&](const QVec& row, quad rhs) {
+          Mat D(C.rows + 1, 2 * m);
+          std::copy(C.a.begin(), C.a.end(), D.a.begin());
+          for (int k = 0; k < 2 * m; ++k) D(C.rows, k) = row[k];
+          C = D;
+          h.push_back(rhs);
+        };
+        for (int a = 0; a < m; ++a) {
+          const int j = ph.J[a];
+          const auto [nm, tm] = modes[a][pick[a]];
+          QVec row(2 * m, 0);
+          if (nm == 1) {  // x ≥ 0
+            row[a] = 1;
+            add_row(row, 0);
+          } else {  // v_N ≥ 0
+            for (int k = 0; k < m; ++k) {
+              row[k] = d.GNN(j, ph.J[k]);
+              row[m + k] = d.has_T ? d.GNT(j, ph.J[k]) : quad(0);
+            }
+            add_row(row, -ph.bN[j]);
+          }
+          if (tm == 0) {  // |t| ≤ μ (cB + x)
+            for (const quad side : {quad(1), quad(-1)}) {
+              QVec r2(2 * m, 0);
+              r2[a] = mu[j];
+              r2[m + a] = side;
+              add_row(r2, -mu[j] * ph.cB[j]);
+            }
+          } else if (tm == 1 || tm == 2) {  // v_T ≥ 0 (1) or ≤ 0 (2)
+            const quad side = tm == 1 ? 1 : -1;
+            QVec r2(2 * m, 0);
+            for (int k = 0; k < m; ++k) {
+              r2[k] = side * gtn(j, ph.J[k]);
+              r2[m + k] = side * d.GTT(j, ph.J[k]);
+            }
+            add_row(r2, -side * ph.bT[j]);
+          }
+        }
+        QVec point;
+        if (polyhedron_nonempty(A, b, C, h, &point)) {
+          *singular_answers = true;
+          if (singular_points) {
+            PhaseAnswer ans{QVec(c, 0), QVec(c, 0), 0};
+            for (int a = 0; a < m; ++a) {
+              ans.x[ph.J[a]] = point[a];
+              ans.t[ph.J[a]] = point[m + a];
+            }
+            singular_points->push_back(ans);
+          }
+        }
+      }
     } else {
       PhaseAnswer ans{QVec(c, 0), QVec(c, 0), pivot};
       quad Pscale = vs / gmax;
@@ -1294,7 +1455,20 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
     for (int i = 0; i < c; ++i) ph.bN[i] = (1 + pick_e(i)) * d.DNA[i];
   ClassicalSolutions res;
   std::vector<PhaseAnswer> first;
-  res.complete = phase_answers(d, ph, mus, vs, singular, first);
+  bool first_singular = false, second_singular = false;
+  std::vector<PhaseAnswer> first_points;
+  res.complete = phase_answers(d, ph, mus, vs, singular, first, &first_singular, &first_points);
+  if (!poisson)
+    for (const PhaseAnswer& a : first_points) {
+      Solution sol = empty_solution(c);
+      sol.P_N = a.x;
+      sol.P_T = a.t;
+      complete(p, d, sol);
+      sol.mode = "newton (singular mode)";
+      sol.mode_pivot = 0;
+      sol.residual = classical_residual(p, law, e, mu, sol);
+      res.singular_example.push_back(sol);
+    }
   for (const PhaseAnswer& a : first) {
     std::vector<PhaseAnswer> second;
     Phase ex = ph;
@@ -1309,7 +1483,8 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
         }
         ex.cB[i] = pick_e(i) * a.x[i];
       }
-      res.complete = phase_answers(d, ex, mus, vs, singular, second) && res.complete;
+      res.complete =
+          phase_answers(d, ex, mus, vs, singular, second, &second_singular) && res.complete;
     } else {
       second.push_back(a);
     }
@@ -1346,6 +1521,17 @@ inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, co
       res.solutions.push_back(sol);
     }
   }
+  // Every singular mode is decided by its linear program. An empty polyhedron everywhere leaves
+  // the regular list complete as to existence. A non-empty one is an answer where its vertex,
+  // taken as percussions, solves the law (Newton: its residual below 1e-15; with percussions 1e19
+  // times the velocities, μ = 1e8, the program's own rounding made a point 0.9 off the law look
+  // feasible); else, and for Poisson's two phases, existence is left open unless a solution is
+  // known anyway.
+  res.singular_answers = first_singular || second_singular;
+  bool verified = false;
+  for (const Solution& s : res.singular_example) verified = verified || s.residual <= 1e-15;
+  res.exists = !res.solutions.empty() || verified;
+  res.existence_known = !res.singular_answers || res.exists;
   return res;
 }
 

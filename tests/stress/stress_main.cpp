@@ -33,6 +33,7 @@
 // --known FILE: failures that are known library issues (known_issues.hpp; the file
 // tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
 // issue no longer seen is said so. --show N: reproducers printed, one per kind of failure.
+// --list N: the first N cases of each kind of failure, by number (for --case).
 //
 // Exit status 0 when nothing but known issues broke: no invariant, no hang, no crash, no reference
 // disagreement. The summary lists the statuses, methods, non-convergence by problem shape,
@@ -80,6 +81,7 @@ struct Args {
   long reference_every = 10;
   long methods_every = 10;
   std::size_t show = 5;
+  std::size_t list = 0;
   double hang = 60.0;
   std::string known;
   long single_case = -1;
@@ -93,7 +95,7 @@ const std::vector<std::string> kLaws = {"newton",          "poisson", "newton_co
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(stderr,
                "fremond_stress: %s\nusage: fremond_stress --law LAW|all [--count N] [--seed S] "
-               "[--reference-every K] [--methods-every K] [--hang SECONDS] [--show N] "
+               "[--reference-every K] [--methods-every K] [--hang SECONDS] [--show N] [--list N] "
                "[--known FILE] [--case K] [--quiet]\nlaws:",
                why.c_str());
   for (const auto& l : kLaws) std::fprintf(stderr, " %s", l.c_str());
@@ -136,6 +138,8 @@ Args parse(int argc, char** argv) {
       a.methods_every = non_negative(value(), k);
     } else if (k == "--show") {
       a.show = static_cast<std::size_t>(non_negative(value(), k));
+    } else if (k == "--list") {
+      a.list = static_cast<std::size_t>(non_negative(value(), k));
     } else if (k == "--hang") {
       a.hang = static_cast<double>(non_negative(value(), k));
     } else if (k == "--known") {
@@ -296,7 +300,29 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
       const auto found = ref::classical_modes(
           q, poisson ? ref::ClassicalLaw::poisson : ref::ClassicalLaw::newton, e, mu);
       if (!found.complete) {
-        out.line("R skipped 0\ta contact mode's equations are singular to 1e-12");
+        // A continuum the enumeration cannot list; but whether the law has a solution at all is
+        // decided by each singular mode's linear program (Newton's laws always, Poisson's unless
+        // a singular compression mode has answers): a `no_solution` of the library is checked.
+        if (!found.existence_known) {
+          out.line("R skipped 0\ta singular compression mode has answers: existence not decided");
+          return;
+        }
+        std::string problem;
+        if (found.exists && r.solver.status == SolverStatus::no_solution)
+          problem = found.solutions.empty()
+                        ? "the library says no_solution, a singular mode of the reference has "
+                          "answers (its linear program)"
+                        : "the library says no_solution, the reference finds " +
+                              std::to_string(found.solutions.size()) + " (and singular modes)";
+        else if (!found.exists && r.ok())
+          problem =
+              "the reference finds no solution (every singular mode's polyhedron is empty), the "
+              "library converged to one";
+        const char* agreed = !found.exists && r.solver.status == SolverStatus::no_solution
+                                 ? "no solution on either side"
+                                 : "existence only: singular modes";
+        out.line(std::string(problem.empty() ? "R checked 0\t" : "R mismatch 0\t") +
+                 (problem.empty() ? std::string(agreed) : problem));
         return;
       }
       sols = found.solutions;
@@ -431,9 +457,10 @@ void run_case(const StressCase& sc, long k, const Args& a, Sink& out) {
 // The parent: one child per case, its lines tallied.
 
 struct Failure {
-  std::string example;     // the first case's sentence
-  std::string reproducer;  // its problem file
-  std::string method;      // a forced method, or ""
+  std::string example;             // the first case's sentence
+  std::string reproducer;          // its problem file
+  std::string method;              // a forced method, or ""
+  std::vector<std::string> cases;  // the first cases' labels (--list)
   long count = 0;
   const KnownIssue* known = nullptr;
 };
@@ -447,6 +474,7 @@ struct Tally {
   long broken = 0, broken_known = 0;
   long reference_checked = 0, reference_mismatch = 0, reference_skipped = 0;
   long reference_no_solution = 0;  // checked: no solution, said by both
+  long reference_existence = 0;    // checked for existence only (singular modes)
   double worst_reference_error = 0.0;
   std::string worst_reference_case;
   std::map<std::string, std::pair<double, std::string>>
@@ -492,6 +520,7 @@ void add_failure(Tally& t, std::vector<KnownIssue>& known, const std::string& la
     f.method = method;
     f.known = match;
   }
+  if (f.cases.size() < 10000) f.cases.push_back(label);
   ++f.count;
 }
 
@@ -547,6 +576,7 @@ void tally_line(Tally& t, const std::string& line, const StressCase& sc, const s
     } else {
       ++t.reference_checked;
       if (what == "no solution on either side") ++t.reference_no_solution;
+      if (what == "existence only: singular modes") ++t.reference_existence;
       auto& shape_worst = t.worst_reference_by_shape[sc.shape];
       if (error >= shape_worst.first) shape_worst = {error, label};
       if (error > t.worst_reference_error) {
@@ -659,11 +689,12 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
 
   std::printf(
       "%s: %ld problems, %ld solves (%.1f s solving, %.1f s in all); %ld broken invariant(s) "
-      "beside %ld known; reference: %ld checked (%ld of them no solution on either side), %ld "
+      "beside %ld known; reference: %ld checked (%ld of them no solution on either side, %ld "
+      "existence only), %ld "
       "mismatch(es), %ld skipped, worst velocity error %.3g of the scale%s%s%s\n",
       name.c_str(), t.problems, t.solves, t.solve_seconds, secs, t.broken, t.broken_known,
-      t.reference_checked, t.reference_no_solution, t.reference_mismatch, t.reference_skipped,
-      t.worst_reference_error, t.worst_reference_case.empty() ? "" : " (",
+      t.reference_checked, t.reference_no_solution, t.reference_existence, t.reference_mismatch,
+      t.reference_skipped, t.worst_reference_error, t.worst_reference_case.empty() ? "" : " (",
       t.worst_reference_case.c_str(), t.worst_reference_case.empty() ? "" : ")");
   std::printf("  statuses:");
   for (const auto& [s, n] : t.statuses) std::printf(" %s %ld", s.c_str(), n);
@@ -692,6 +723,8 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
   for (const auto& [kind, f] : t.failures) {
     std::printf("  %s x%ld: %s\n", f.known ? "KNOWN" : "BROKEN", f.count, f.example.c_str());
     if (f.known) std::printf("    (known issue: %s)\n", f.known->note.c_str());
+    for (std::size_t i = 0; i < std::min(a.list, f.cases.size()); ++i)
+      std::printf("    %s\n", f.cases[i].c_str());
     if (shown < a.show && !f.reproducer.empty() && !f.known) {
       ++shown;
       std::printf("  reproducer (fremond impact%s FILE):\n%s\n",

@@ -522,6 +522,156 @@ TEST(ReferenceSelfTest, ClassicalModesOneContactCoulombByHand) {
   EXPECT_GT(painleve, 0);  // μ|G_NT| > G_NN is reached: a slide mode with α < 0
 }
 
+// The linear program that decides a singular mode: small polyhedra whose emptiness is known by
+// hand, among them singular equations (consistent or not) and a degenerate vertex.
+TEST(ReferenceSelfTest, PolyhedronTestOnHandCases) {
+  using ref::detail::Mat;
+  using ref::detail::polyhedron_nonempty;
+  auto mat = [](int r, int c, std::vector<double> v) {
+    Mat m(r, c);
+    for (int i = 0; i < r * c; ++i) m.a[static_cast<std::size_t>(i)] = q(v[i]);
+    return m;
+  };
+  const Mat none(0, 2);
+  // u1 + u2 = 1 with u ≥ 0: the segment; with u1 ≥ 2 as well: empty.
+  ref::QVec point;
+  EXPECT_TRUE(polyhedron_nonempty(mat(1, 2, {1, 1}), {1}, mat(2, 2, {1, 0, 0, 1}), {0, 0}, &point));
+  EXPECT_LT(d(fabsq(point[0] + point[1] - 1)), 1e-30);
+  EXPECT_GE(d(point[0]), -1e-30);
+  EXPECT_GE(d(point[1]), -1e-30);
+  EXPECT_FALSE(polyhedron_nonempty(mat(1, 2, {1, 1}), {1}, mat(2, 2, {1, 0, 0, 1}), {2, 0}));
+  // Singular equations: [1 1; 2 2] u = (1, 2) is a line, (1, 3) is nothing.
+  EXPECT_TRUE(polyhedron_nonempty(mat(2, 2, {1, 1, 2, 2}), {1, 2}, mat(0, 2, {}), {}));
+  EXPECT_FALSE(polyhedron_nonempty(mat(2, 2, {1, 1, 2, 2}), {1, 3}, mat(0, 2, {}), {}));
+  // Free variables: u1 − u2 = −5 needs u1 ≤ −4 when u2 ≤ 1; u1 ≥ −3 then makes it empty.
+  EXPECT_TRUE(polyhedron_nonempty(mat(1, 2, {1, -1}), {-5}, mat(1, 2, {0, -1}), {-1}, &point));
+  EXPECT_LT(d(fabsq(point[0] - point[1] + 5)), 1e-30);
+  EXPECT_FALSE(polyhedron_nonempty(mat(1, 2, {1, -1}), {-5}, mat(2, 2, {0, -1, 1, 0}), {-1, -3}));
+  // A degenerate vertex (three constraints through the origin of the plane) and only inequalities.
+  EXPECT_TRUE(polyhedron_nonempty(none, {}, mat(3, 2, {1, 0, 0, 1, -1, -1}), {0, 0, 0}));
+  EXPECT_FALSE(polyhedron_nonempty(none, {}, mat(3, 2, {1, 0, 0, 1, -1, -1}), {0, 0, 1e-20}));
+}
+
+// A vertex the linear program must reach through small pivots: Newton + Coulomb with μ = 1e8 on
+// a 6-dof body, one contact sliding on P_N = 1.4e-4 (P_T = −1.4e4) and two sticking with P_N = 9e5.
+// That mode's equations are regular (pivot 1e-13 of the largest, below the enumeration's 2^-40)
+// and their solution meets every inequality with slack; the program took pivots down to 2^-100 of
+// their column, its tableau drifted by 1e-7, and it called the polyhedron empty (stress
+// newton_coulomb #71778 of seed 23, where the library converged to this answer).
+TEST(ReferenceSelfTest, PolyhedronOfALargeMuModeIsNotCalledEmpty) {
+  ref::Problem p;
+  const std::vector<std::vector<double>> M = {
+      {20207.647852902795, 4476.76026298953, -8635.288987136848, 11273.252680417767,
+       -6666.899668494869, -16059.82195132682},
+      {4476.76026298953, 16239.584443813588, -4712.341293945614, 6523.470026066114,
+       12124.996981811806, 6501.445701506309},
+      {-8635.288987136848, -4712.341293945614, 22516.90994111805, 8320.024164039143,
+       -7370.898401106853, 7970.334002043254},
+      {11273.252680417767, 6523.470026066114, 8320.024164039143, 35744.059577807624,
+       -7404.926000112, -4726.123086907719},
+      {-6666.899668494869, 12124.996981811806, -7370.898401106853, -7404.926000112,
+       18864.610367508245, 13052.44118582522},
+      {-16059.82195132682, 6501.445701506309, 7970.334002043254, -4726.123086907719,
+       13052.44118582522, 19941.41729495258}};
+  const std::vector<std::vector<double>> WN = {
+      {0.36607877291921276, 0.42912183067063236, -0.5723548366901124, 0.9700378813078021,
+       0.5516982625467963, 0.1518916587436545},
+      {0.36208355822411065, -0.5952285698667076, 0.3180921492047175, -0.3863270979068436,
+       -0.4137919560365927, 0.07738920477518607},
+      {-0.2626856090612867, -0.7675126253330109, 0.7098818280220835, 0.9190663856768115,
+       0.8076748180590485, -0.030400547811632928},
+      {-0.30168189972293524, 0.7386436050633218, 0.017071781389445206, 0.3382465605346807,
+       -0.5189847597244597, 0.469497073983975}};
+  const std::vector<std::vector<double>> WT = {
+      {0.8036903217681908, -0.8459385843781588, 0.7577624815635196, 0.23705128949866938,
+       -0.6636567998848781, 0.6258504437418335},
+      {0.06060197772740805, -0.21234018210898387, 0.23069921703285146, 0.15090230128993198,
+       0.7750838774430941, 0.3073785635632085},
+      {0.5492718989457601, 0.18182092966095853, 0.7886605132149485, -0.7108867022386862,
+       0.6628519518748806, -0.4997706263551268},
+      {-0.291971226837625, -0.5516842844606827, 0.5531650981067704, 0.42720031981551343,
+       0.49001426620953814, -0.422674512388198}};
+  const std::vector<double> qdot = {26.29870859982304, -18.858740677581924, -7.182814030552544,
+                                    -6.28822195987506, -24.34249009411725,  -8.503008507687639};
+  for (const auto& row : M) {
+    p.M.emplace_back();
+    for (double x : row) p.M.back().push_back(q(x));
+  }
+  for (const auto& col : WN) {
+    p.W_N.emplace_back();
+    for (double x : col) p.W_N.back().push_back(q(x));
+  }
+  for (const auto& col : WT) {
+    p.W_T.emplace_back();
+    for (double x : col) p.W_T.back().push_back(q(x));
+  }
+  for (double x : qdot) p.qdot_A.push_back(q(x));
+  const std::vector<double> e = {0, 0.6363607249753587, 0.1464428238255093, 0.19037491255952424};
+  ref::QVec eq;
+  for (double x : e) eq.push_back(q(x));
+  const auto found = ref::classical_modes(p, ref::ClassicalLaw::newton, eq, {q(1e8)});
+  EXPECT_FALSE(found.complete);
+  EXPECT_TRUE(found.exists);
+  ASSERT_FALSE(found.singular_example.empty());
+  EXPECT_LT(d(found.singular_example[0].residual), 1e-20);
+  // The answer: contact 0 slides on P_N = 1.4127585787e-4, contacts 2 and 3 stick.
+  bool seen = false;
+  for (const auto& s : found.singular_example)
+    seen = seen || d(rel(s.P_N[0], q(1.4127585787287515e-4))) < 1e-9;
+  EXPECT_TRUE(seen);
+}
+
+// A contact listed twice makes every mode that closes both singular (its W_N twice in G), and such
+// a problem has a solution exactly when the contacts without the copy have one (the two
+// percussions add up to the single one, and so do Coulomb's cones). Random bodies with two
+// contacts under Newton + Coulomb, μ up to 20 (where some have no solution): existence with the
+// copy, decided by the linear programs of its singular modes, against the regular enumeration
+// without it.
+TEST(ReferenceSelfTest, SingularModesAreDecidedByTheirPolyhedra) {
+  Rng rng{29};
+  int with = 0, without = 0;
+  for (int trial = 0; trial < 600 && (with < 40 || without < 8); ++trial) {
+    const ref::Problem p = random_problem(rng, 2 + trial % 3, 2, 1.0);
+    const ref::QVec e{q(rng.uniform(0, 1))}, mu{q(rng.log_uniform(0.1, 20))};
+    const auto two = ref::classical_modes(p, ref::ClassicalLaw::newton, e, mu);
+    if (!two.complete) continue;  // G singular already (2 dofs, one contact a copy of the other)
+    ref::Problem copy = p;
+    copy.W_N.push_back(p.W_N[0]);
+    copy.W_T.push_back(p.W_T[0]);
+    const auto three = ref::classical_modes(copy, ref::ClassicalLaw::newton, e, mu);
+    if (three.complete) continue;  // the copied contact does not take part
+    ASSERT_TRUE(three.existence_known) << trial;
+    EXPECT_EQ(three.exists, !two.solutions.empty()) << "trial " << trial << " mu " << d(mu[0]);
+    (two.solutions.empty() ? without : with) += 1;
+  }
+  EXPECT_GE(with, 40);
+  // None of these has no solution (nor any of the stress's regular problems under Newton +
+  // Coulomb); the empty case is the next test's.
+  EXPECT_EQ(without, 0);
+}
+
+// A point mass between a floor and a ceiling that both approach it (w_N = −1 each: normals (0, 1)
+// and (0, −1)): D_NE,1 + D_NE,2 = −2 whatever the percussions, so both cannot separate and Newton's
+// law has no solution, with or without friction. The mode closing both is singular (G of rank
+// one) and its polyhedron is empty; the others are regular and have no answer.
+TEST(ReferenceSelfTest, SingularModeOfASqueezeHasNoAnswer) {
+  ref::Problem p = point_mass(1, q(0.3), 0);
+  p.W_N = {{0, 1}, {0, -1}};
+  p.W_T = {{1, 0}, {1, 0}};
+  p.w_N = {-1, -1};
+  for (const ref::QVec& mu : {ref::QVec{}, ref::QVec{q(0.5)}}) {
+    const auto found = ref::classical_modes(p, ref::ClassicalLaw::newton, {q(0.5)}, mu);
+    EXPECT_FALSE(found.complete);
+    EXPECT_TRUE(found.existence_known);
+    EXPECT_FALSE(found.exists);
+    EXPECT_TRUE(found.solutions.empty());
+  }
+  // The ceiling receding instead (w_N,2 = +1): only the floor takes part, and there is a solution.
+  p.w_N = {-1, 1};
+  const auto some = ref::classical_modes(p, ref::ClassicalLaw::newton, {q(0.5)}, {});
+  EXPECT_TRUE(some.exists);
+}
+
 // Poisson without friction on one contact is Newton (SPEC §2): P_N = (1 + e) P_NC with
 // P_NC = −D_NA/G_NN; with friction, the residual of both phases is quad-small on random bodies.
 TEST(ReferenceSelfTest, ClassicalModesPoissonOnRandomBodies) {
