@@ -715,17 +715,97 @@ TEST(RegressionClassical, OneContactWithoutAClosedFormAnswerIsEnumerated) {
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
 }
 
-// OPEN: Newton + Coulomb with μ = 1e8 on two contacts taking part has three solutions (the quad
+// Four contacts on a 2-dof body with cond(M) ≈ 1e12, Newton + Coulomb, no obstacle moving: q̇_E =
+// −e q̇_A closes every contact taking part at once (D_NE = −e D_NA for each), and percussions of
+// 2e10 that stay in Coulomb's cones make it. Every mode that closes three contacts is singular (3
+// velocity rows on 2 dofs) and the others are not, but G's two singular values are 1e-13 apart
+// relative to a percussion row's 1: the rank test on the mode's equations as formed took G's
+// smaller one for rounding, the truncated solution was inconsistent, every mode was refused, and
+// the law said `no_solution` (stress newton_coulomb #18741 of seed 23; the quad reference's
+// linear program over the singular modes finds this answer, residual 3e-23). Now `stalled`: the
+// answer, to the 1e-4 of the velocities that double precision can hold here (ε·cond(M)).
+TEST(RegressionClassical, SingularModeOfAnIllConditionedBodyIsSolvedNotRefused) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[264767175657.59604, 1714712043475.9536], [1714712043475.9536, 11104992107215.059]],
+    "W_N": [[-0.64019798235530956, -0.85199285497615784, -0.4740287030294531, 0.37966341494392042],
+            [-0.24017915440890569, -0.32910844065707223, -0.59435630112116855, 0.2820584424343231]],
+    "W_T": [[0.3091337442062847, -0.98334923570219546, -0.72577496195918711, 0.5664313828538472],
+            [0.64681642418023433, 0.59013086735906395, 0.43911034065311338, -0.041423660485371161]],
+    "qdot_A": [0.00023597211927432936, -0.00034741204152818797],
+    "law": {"type": "newton_coulomb", "e": 0.70486568860403065, "mu": 0.025345792982438501}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  const double e = 0.70486568860403065;
+  namespace ref = fremond_reference;
+  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                          ref::ClassicalLaw::newton, {e}, {0.025345792982438501});
+  ASSERT_FALSE(found.complete);
+  ASSERT_TRUE(found.exists);
+  ASSERT_FALSE(found.singular_example.empty());
+  const auto& s = found.singular_example[0];
+  ASSERT_LT(ref::to_double(s.residual), 1e-15);
+  // The reference's velocities are −e q̇_A's: D_NE = −e D_NA on every contact.
+  for (int i = 0; i < 4; ++i)
+    EXPECT_NEAR(ref::to_double(s.D_NE[i]), -e * ref::to_double(s.D_NA[i]), 1e-20) << i;
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_NE(r.solver.status, SolverStatus::no_solution) << r.solver.message;
+  EXPECT_TRUE(r.solver.status == SolverStatus::converged ||
+              r.solver.status == SolverStatus::stalled)
+      << r.solver.message;
+  const Eigen::Vector2d expected = -e * pb.qdot_A;
+  EXPECT_LT((r.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-4 * pb.qdot_A.cwiseAbs().maxCoeff());
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+}
+
+// Two contacts with the same normal (a repeated row), μ = 1e8, cond(M) = 1e9: one contact sticks
+// with percussions 3e10 while the other is free. The mode's equations, singular to the rank test
+// (a row (1, 1e8) beside rows of G), gave their regular solution only through the near-singular
+// fallback, 5e-7 off the quad reference's P_N; with the rank tests on row-scaled equations the
+// mode is regular, and its answer was refused by 5e-6 of rounding in an inequality (D_NE = 0 of
+// the free contact, a product of 1e10 percussions), until the inequalities allowed their own
+// rounding (stress newton_coulomb #171 of seed 23). Now within 1e-12 of the reference.
+TEST(RegressionClassical, LargeMuOnARepeatedRowIsSolvedToItsRounding) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[1275671383.8325198, -21605595.293370385], [-21605595.293370385, 365926.42495192058]],
+    "W_N": [[-0.56401620827601229, -0.56401620827601229], [0.91308928504477249, 0.91308928504477249]],
+    "W_T": [[-0.50270023745400294, 0.29487298923455185], [-0.56155270620382403, 0.84105907593258489]],
+    "qdot_A": [-434.57755703053431, -924.03530845050489],
+    "law": {"type": "newton_coulomb", "e": 1, "mu": 100000000}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  namespace ref = fremond_reference;
+  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                                          ref::ClassicalLaw::newton, {1.0}, {1e8});
+  ASSERT_EQ(found.solutions.size(), 2u);
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_NE(r.solver.status, SolverStatus::no_solution) << r.solver.message;
+  bool near_one = false;
+  for (const auto& s : found.solutions) {
+    const double scale =
+        std::max(std::fabs(ref::to_double(s.P_N[0])), std::fabs(ref::to_double(s.P_N[1])));
+    bool all = true;
+    for (int i = 0; i < 2; ++i)
+      all = all && std::fabs(r.P_N(i) - ref::to_double(s.P_N[i])) <= 1e-12 * scale &&
+            std::fabs(r.P_T(i) - ref::to_double(s.P_T[i])) <= 1e-12 * scale;
+    near_one = near_one || all;
+  }
+  EXPECT_TRUE(near_one) << r.P_N.transpose() << " / " << r.P_T.transpose();
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+}
+
+// Newton + Coulomb with μ = 1e8 on two contacts taking part has three solutions (the quad
 // reference's modes, residuals 1e-30), two of them with one contact sliding on P_N = 8e-6 or
-// 1.3e-5; the library returns one and calls it unique. In those modes' equations the sliding row
-// t + σμx = −σb₀ (entries 1 and μ) beside rows of G puts their pivots below the rank threshold
-// (1e-10 of the largest), so the modes are taken for singular ones without answers (stress
-// newton_coulomb #2569 of seed 7, found by comparing `unique` with the reference's count; about
-// 12 in 20,000 Poisson + Coulomb and Frémond + Coulomb problems too). Dividing that row by
-// max(1, μ) fixes this case, but over 100,000 Newton + Coulomb problems it also turned 767
-// answers of near-singular modes into `no_solution` where the reference cannot decide (a mode
-// singular in quad precision too): not taken until those can be checked.
-TEST(RegressionClassical, DISABLED_EveryModeOfALargeMuIsSolved) {
+// 1.3e-5; the library returned one and called it unique. In those modes' equations the sliding row
+// t + σμx = −σb₀ (entries 1 and μ) beside rows of G put their pivots below the rank threshold
+// (1e-10 of the largest), so the modes were taken for singular ones without answers (stress
+// newton_coulomb #2569 of seed 7, found by comparing `unique` with the reference's count). The
+// rank tests now run on the mode's equations with every row scaled to a largest entry of 1. (That
+// also turned answers of near-singular modes into `no_solution` until those modes were solved to
+// a finer rank and their inequalities allowed their products' rounding; the reference's linear
+// programs, deciding its singular modes, agree on all but 2 of 20,000 such problems.)
+TEST(RegressionClassical, EveryModeOfALargeMuIsSolved) {
   const auto file = io::parse_problem_file(R"({
     "M": [[3012.7566428340924, -4659.0323437871175, 82440.6809237579, -16826.035147921924],
           [-4659.0323437871175, 7876.2774466071105, -134119.65584136252, 27083.499607898688],

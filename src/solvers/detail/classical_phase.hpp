@@ -378,37 +378,82 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   // A row's tolerance scales with the row: tol.p · ‖row‖∞ is about tol.v for velocity rows (G rows)
   // and tol.p for percussion rows (entries 1 and μ).
   auto row_tol = [&](int j) { return tol.p * s.C.row(j).cwiseAbs().maxCoeff(); };
-  Eigen::FullPivLU<MatT<kMaxRows, kMaxRows>> lu(s.K);
+  // The mode's inequalities at u, each to its tolerance and to the rounding of its own product:
+  // percussions 1e10 times the velocities they make (cond(M) = 1e11, μ = 1e8) leave ε|C_j||u| in
+  // C_j u, far above the tolerance (a contact open at D_NE = 0 by 5e-6 of rounding was refused).
+  auto meets_inequalities = [&](const typename Phase<MaxC>::Rows& x) {
+    for (int j = 0; j < s.m; ++j) {
+      const double noise = 64 * std::numeric_limits<double>::epsilon() *
+                           (s.C.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.g(j)));
+      if (s.C.row(j).dot(x) - s.g(j) < -(row_tol(j) + noise)) return false;
+    }
+    return true;
+  };
+  // The rank tests on K with each row scaled to a largest entry of 1: its rows are in different
+  // units (velocity rows of G, percussion rows of 1 and μ), and a relative threshold on K as
+  // formed took G's own small directions (cond(M) = 1e11: G's singular values 1e-13 of a row's
+  // 1) for rounding beside a percussion row, or a row (1, μ = 1e8) hid the pivots of every other.
+  VecT<kMaxRows> row_scale(r);
+  for (int j = 0; j < r; ++j) {
+    const double m = s.K.row(j).cwiseAbs().maxCoeff();
+    row_scale(j) = m > 0.0 ? 1.0 / m : 1.0;
+  }
+  const MatT<kMaxRows, kMaxRows> Ks = row_scale.asDiagonal() * s.K;
+  const VecT<kMaxRows> rhs_s = row_scale.cwiseProduct(s.rhs);
+  Eigen::FullPivLU<MatT<kMaxRows, kMaxRows>> lu(Ks);
   lu.setThreshold(1e-10);
   if (lu.rank() == r) {
-    u = lu.solve(s.rhs);
-    for (int j = 0; j < s.m; ++j)
-      if (s.C.row(j).dot(u) - s.g(j) < -row_tol(j)) return false;
-    return true;
+    u = lu.solve(rhs_s);
+    return meets_inequalities(u);
   }
   // Singular mode (e.g. the flat bar's equal tangents): u = u0 + N y, feasibility by projection.
-  Eigen::JacobiSVD<MatT<kMaxRows, kMaxRows>> svd(s.K, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::JacobiSVD<MatT<kMaxRows, kMaxRows>> svd(Ks, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const auto& sv = svd.singularValues();
   const double smax = sv.size() ? sv(0) : 0.0;
   int rank = 0;
   while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
-  svd.setThreshold(1e-10);
-  const typename Phase<MaxC>::Rows u0 = svd.solve(s.rhs);
-  if ((s.K * u0 - s.rhs).cwiseAbs().maxCoeff() >
-      std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff())) {
-    // Inconsistent to the rank test, but K may be regular to rounding (cond(K) from 1e10 to 1e14,
-    // e.g. cond(M) = 1e11): the mode then has the regular solution of K as formed, the answer of
-    // data that near. Refused, a mode with an answer (the quad reference's: two contacts closed,
-    // one sticking, cond(G) = 3e11) was taken for one without, and the law said `no_solution`.
-    // Taken where it meets the mode's inequalities; the law's residual judges it as any other.
-    if (!(r > 0 && sv(r - 1) > 1e-14 * smax)) return false;
-    svd.setThreshold(0.0);
-    u = svd.solve(s.rhs);
-    if (!u.allFinite()) return false;
-    for (int j = 0; j < s.m; ++j)
-      if (s.C.row(j).dot(u) - s.g(j) < -row_tol(j)) return false;
-    near_singular = true;
+  // Consistent to the tolerance; on the last-resort path below also to the rounding of the
+  // product K u0 itself: where a consistent singular mode needs percussions 1e10 times the
+  // velocities they make (cond(M) = 1e11), ε|K||u0| is far above the tolerance. (Not on the first
+  // test: with μ = 1e8 in a sliding row, ε|K||u0| let a truncated u0 that solves nothing through,
+  // and its answer displaced the exact ones of the near-singular modes.)
+  auto consistent = [&](const typename Phase<MaxC>::Rows& x, bool rounding) {
+    const double allowed = std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff());
+    const typename Phase<MaxC>::Rows Kx = s.K * x;
+    for (int j = 0; j < r; ++j) {
+      const double noise = rounding
+                               ? 64 * std::numeric_limits<double>::epsilon() *
+                                     (s.K.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.rhs(j)))
+                               : 0.0;
+      if (!(std::fabs(Kx(j) - s.rhs(j)) <= allowed + noise)) return false;
+    }
     return true;
+  };
+  svd.setThreshold(1e-10);
+  typename Phase<MaxC>::Rows u0 = svd.solve(rhs_s);
+  if (!consistent(u0, false)) {
+    // Inconsistent to the rank test, but the singular values from 1e-14 to 1e-10 of the largest
+    // may be the data's own: cond(M) = 1e11 spreads G over eleven decades, and the mode's answer
+    // (every contact closed by q̇_E = −e q̇_A, percussions 1e10) lies along them. Refused, a mode
+    // with an answer was taken for one without, and the law said `no_solution` (the quad
+    // reference's linear program finds the answer; stress newton_coulomb #18741 of seed 23). K
+    // regular to that finer test (cond(K) from 1e10 to 1e14: two contacts closed, one sticking,
+    // cond(G) = 3e11) has the regular solution of K as formed. Either is the answer of data that
+    // near, taken where it meets the mode's inequalities and only as a last resort
+    // (enumerate_modes); the law's residual judges it as any other.
+    int fine = rank;
+    while (fine < sv.size() && sv(fine) > 1e-14 * smax) ++fine;
+    if (fine == rank) return false;
+    svd.setThreshold(1e-14);
+    u0 = svd.solve(rhs_s);
+    if (!u0.allFinite()) return false;
+    near_singular = true;
+    if (fine == r) {  // regular: its solve leaves cond(K)·ε, not ε, in K u0 − rhs
+      u = u0;
+      return meets_inequalities(u);
+    }
+    if (!consistent(u0, true)) return false;
+    rank = fine;
   }
   const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
   MatT<times(MaxC, 3), kMaxRows> B = s.C.topRows(s.m) * N;
