@@ -239,11 +239,14 @@ inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100),
 /// u = u⁺ − u⁻ (u⁺, u⁻ ≥ 0), with an artificial variable per row and Bland's rule (no cycling on
 /// degenerate vertices), in quad precision. Each row is scaled to a largest coefficient of 1; the
 /// polyhedron counts as non-empty when the artificials' least sum is below `rel_tol` times the
-/// largest scaled right-hand side (each constraint then holds to that, relative). A or C may have
+/// largest scaled right-hand side (each constraint then holds to that, relative). The default
+/// 2^-50 (9e-16) is loose for quad precision on purpose: a mode regular to 3e-12 with μ = 1e8
+/// left 1e-20 of it at its exact answer (stress newton_coulomb #37224 of seed 23); a point the
+/// program accepts is then checked against the law by the caller. A or C may have
 /// no row. `point`, if given, receives a point of it. Used where a mode's equations are singular
 /// (a continuum of percussions, or none): Gaussian elimination cannot say which.
 inline bool polyhedron_nonempty(const Mat& A, const QVec& b, const Mat& C, const QVec& h,
-                                QVec* point = nullptr, quad rel_tol = ldexpq(1, -70)) {
+                                QVec* point = nullptr, quad rel_tol = ldexpq(1, -50)) {
   const int n = A.rows ? A.cols : C.cols, me = A.rows, mi = C.rows, m = me + mi;
   // Columns: u⁺ (n), u⁻ (n), surplus of each inequality (mi), artificial of each row (m), rhs.
   const int ca = 2 * n + mi, cols = ca + m + 1, rhs = cols - 1;
