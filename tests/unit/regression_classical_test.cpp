@@ -16,6 +16,21 @@
 namespace fremond {
 namespace {
 
+/// The quad reference's contact modes for a classical law, with the law's own e and μ.
+fremond_reference::ClassicalSolutions reference_modes(const ImpactProblem& pb,
+                                                      const ImpactLaw& law) {
+  namespace ref = fremond_reference;
+  ref::QVec e, mu;
+  for (double v : law.e.values) e.push_back(v);
+  if (law.has_friction())
+    for (double v : law.mu.values) mu.push_back(v);
+  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  return ref::classical_modes(
+      ref::problem_from(pb.M, pb.W_N, pb.has_tangential() ? pb.W_T : Eigen::MatrixXd(pb.dofs(), 0),
+                        pb.qdot_A),
+      poisson ? ref::ClassicalLaw::poisson : ref::ClassicalLaw::newton, e, mu);
+}
+
 // Newton + Coulomb on four contacts of a 2-dof body with μ up to 1e8: Lemke ends on a secondary
 // ray and the result says `failed` (fair: no enumeration decides existence beyond 3 contacts). Its
 // residual was left NaN; it is now that of the state returned (no percussion). 10 of 1,700 solves.
@@ -624,9 +639,7 @@ TEST(RegressionClassical, IllConditionedModeIsSolvedNotRefused) {
   const std::vector<double> mu{0, 877.71900497408717, 0.0016389430306868098, 1e8};
   const ImpactLaw law = ImpactLaw::newton_coulomb(e, PerContact(mu));
   namespace ref = fremond_reference;
-  const auto found =
-      ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                           ref::ClassicalLaw::newton, {e}, {mu[0], mu[1], mu[2], mu[3]});
+  const auto found = reference_modes(pb, law);
   ASSERT_TRUE(found.complete);
   ASSERT_EQ(found.solutions.size(), 1u);
   const auto& s = found.solutions[0];
@@ -666,8 +679,7 @@ TEST(RegressionClassical, RayOfAFrictionlessPhaseIsCheckedWhateverTheLaw) {
       Eigen::Vector3d(7.1570286139711014e-11, 4.8172556195141395e-11, 6.0565976102502019e-11);
   const double e = 0.15904409892358187;
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::newton, {e}, {0.0});
+  const auto found = reference_modes(pb, ImpactLaw::newton_coulomb(e, 0.0));
   ASSERT_TRUE(found.complete);
   ASSERT_EQ(found.solutions.size(), 1u);
   const auto& s = found.solutions[0];
@@ -699,8 +711,7 @@ TEST(RegressionClassical, OneContactWithoutAClosedFormAnswerIsEnumerated) {
   const double mu = 6.2416570511793186;
   const ImpactLaw law = ImpactLaw::poisson_coulomb(PerContact(e), mu);
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::poisson, {e[0], e[1]}, {mu});
+  const auto found = reference_modes(pb, law);
   ASSERT_TRUE(found.complete);
   ASSERT_EQ(found.solutions.size(), 1u);
   const auto& s = found.solutions[0];
@@ -737,8 +748,7 @@ TEST(RegressionClassical, SingularModeOfAnIllConditionedBodyIsSolvedNotRefused) 
   const ImpactProblem& pb = file.problem;
   const double e = 0.70486568860403065;
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::newton, {e}, {0.025345792982438501});
+  const auto found = reference_modes(pb, file.law);
   ASSERT_FALSE(found.complete);
   ASSERT_TRUE(found.exists);
   ASSERT_FALSE(found.singular_example.empty());
@@ -775,8 +785,7 @@ TEST(RegressionClassical, LargeMuOnARepeatedRowIsSolvedToItsRounding) {
                                            PotentialRegistry::with_builtins());
   const ImpactProblem& pb = file.problem;
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::newton, {1.0}, {1e8});
+  const auto found = reference_modes(pb, file.law);
   ASSERT_EQ(found.solutions.size(), 2u);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, file.law, opt);
@@ -820,9 +829,7 @@ TEST(RegressionClassical, DISABLED_AnswerOfPercussions1e13TimesTheVelocitiesIsFo
                                            PotentialRegistry::with_builtins());
   const ImpactProblem& pb = file.problem;
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::newton, {0.4019331927709493},
-                                          {0.0, 558.47157216813184, 0.74024269106281637});
+  const auto found = reference_modes(pb, file.law);
   ASSERT_TRUE(found.exists);
   ASSERT_FALSE(found.singular_example.empty());
   const auto& s = found.singular_example[0];
@@ -864,8 +871,7 @@ TEST(RegressionClassical, EveryModeOfALargeMuIsSolved) {
                                            PotentialRegistry::with_builtins());
   const ImpactProblem& pb = file.problem;
   namespace ref = fremond_reference;
-  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
-                                          ref::ClassicalLaw::newton, {1.0}, {1e8});
+  const auto found = reference_modes(pb, file.law);
   ASSERT_TRUE(found.complete);
   ASSERT_EQ(found.solutions.size(), 3u);
   const SolverOptions opt;
