@@ -25,7 +25,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
   using Rows = typename FremondRowsT<N, C>::Rows;
   using RowMat = typename ContactSpaceT<N, C>::RowMat;
   const auto& cs = *rows.cs;
-  const int r = cs.rows(), a = cs.active;
+  const int r = cs.rows();
   MethodOutcome o;
   Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r), newton_dP(r);
   RowMat J(r, r);
@@ -64,17 +64,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
       o.message = "semismooth Newton: iteration budget exhausted";
       return o;
     }
-    // Generalized Jacobian.
-    for (int j = 0; j < r; ++j) {
-      double d = 0.0, dydb = 0.0;
-      rows.prox(j, z(j) - rows.tau(j) * P(j), rows.bound(j, P), &d, &dydb);
-      J.row(j) = (0.5 * (1.0 - d)) * cs.G.row(j);
-      J(j, j) += d * rows.tau(j);
-      if (dydb != 0.0) {
-        const int k = j - a;  // the normal row of the same contact
-        J(j, k) -= dydb * rows.bound_slope(j, P);
-      }
-    }
+    rows.jacobian(z, P, J);
     // Directions in order: Newton (LU), then Levenberg–Marquardt with a damping that grows tenfold
     // each time the line search finds no decrease (towards steepest descent on θ = ½‖R‖²).
     const double theta0 = 0.5 * R.squaredNorm();

@@ -1162,5 +1162,40 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
   check(file.problem, "dynamic");
   check(to_small(file.problem), "small");
 }
+
+/// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6) hit at 1e6 m/s: G has condition
+/// 3e6, the percussions are 1e6 and the terms G_jk P_k of z = D_A + GP/2 are 1e12 that cancel to
+/// velocities of 1e6. Newton's answer stopped at that form's rounding floor (criterion `rounding`)
+/// was 2.3e-9 from the 50-digit reference (mpmath, nested bisection of the two rows) in the
+/// kinetic-energy norm, with D_NE = −6e-3 where the reaction holds it at 0; refined with the mean
+/// velocity taken from q̇_E itself (velocity_space_residual), it is within 1e-13.
+TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
+    "W_N": [[0], [1], [-0.23486765760076336]], "W_T": [[1], [0], [0.44140365133642767]],
+    "qdot_A": [-751980.2931977182, -1439035.6379865322, 1777218.0671113417],
+    "law": {"type": "fremond", "normal": {"potential": "power", "k": 100, "p": 1.5},
+            "tangential": {"potential": "deadzone_power", "k": 1e-06, "q": 3, "r": 0}}})",
+                                           PotentialRegistry::with_builtins());
+  const Eigen::Vector3d qdot_E(-294848.3432693812811552702, -579913.2378973941970961045,
+                               -2469106.405800461187807878);
+  const double PN = 859122.4000891379825426389, PT = 457131.9499283369349510254;
+  const auto check = [&](const auto& pb, const char* storage) {
+    SCOPED_TRACE(storage);
+    const auto r = solve_impact(pb, file.law);
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    const Eigen::VectorXd d = r.qdot_E - qdot_E;
+    const Eigen::MatrixXd M = pb.M;
+    const Eigen::VectorXd qA = pb.qdot_A;
+    EXPECT_LT(std::sqrt(d.dot(M * d) / qA.dot(M * qA)), 1e-13);
+    // The percussions are known only to the condition of G (3e6) times their rounding.
+    EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);
+    EXPECT_NEAR(r.P_T(0), PT, 1e-9 * PN);
+    EXPECT_TRUE(r.admissibility.admissible);
+    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
+  };
+  check(file.problem, "dynamic");
+  check(to_small(file.problem), "small");
+}
 }  // namespace
 }  // namespace fremond

@@ -155,6 +155,24 @@ struct FremondRowsT {
     return law->mu[contact(j)] * (fixed_signs ? fixed_signs[k] : (P(k) >= 0.0 ? 1.0 : -1.0));
   }
 
+  /// The generalized Jacobian of R(P) = z − prox(z − τP) at P, z = D_A + G P/2 its mean
+  /// velocity: J = (I − D) G/2 + D T, with D = diag(∂prox/∂x) ∈ [0, 1] and T = diag(τ), plus the
+  /// Coulomb coupling ∂R_T/∂P_N of a sliding row (its bound μ|P_N|). Semismooth Newton's matrix,
+  /// and the refinement's.
+  template <class RowMat>
+  void jacobian(const Rows& z, const Rows& P, RowMat& J) const {
+    const int r = cs->rows(), a = cs->active;
+    J.resize(r, r);
+    for (int j = 0; j < r; ++j) {
+      double d = 0.0, dydb = 0.0;
+      prox(j, z(j) - tau(j) * P(j), bound(j, P), &d, &dydb);
+      J.row(j) = (0.5 * (1.0 - d)) * cs->G.row(j);
+      J(j, j) += d * tau(j);
+      // j − a: the normal row of the same contact.
+      if (dydb != 0.0) J(j, j - a) -= dydb * bound_slope(j, P);
+    }
+  }
+
   /// z = D_A + G P / 2. A hand loop for the stack-stored sizes (≤ 8 rows), where Eigen's
   /// dynamic-size matrix-vector product costs more in dispatch than in arithmetic.
   void mean_velocity(const Rows& P, Rows& z) const {
