@@ -29,6 +29,10 @@ using classical::LawSolution;
 using classical::Phase;
 using classical::solve_law;
 
+/// The largest part of the velocities that the rounding of a refined answer's percussions may
+/// account for (classical_residual's percussion_cap, for the answer's acceptance only).
+constexpr double kRoundedPercussionCap = 1e-8;
+
 bool is_poisson(const ImpactLaw& law) {
   return law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
 }
@@ -120,7 +124,30 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
       write_answer(pb, cs, law, P, P_C, trial);
       double trial_beyond = 0.0;
       const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, rounded);
-      if (trial_residual < residual || (rounded && trial_beyond <= options.tolerance)) {
+      bool keep = trial_residual < residual || (rounded && trial_beyond <= options.tolerance);
+      // Still beyond, on a diagonal M: the refined answer is allowed the rounding of its
+      // percussions up to 1e-8 of the velocities (kRoundedPercussionCap) instead of 1e-10. A light
+      // rotor (mass ratio 1e6) sticking under Newton + Coulomb has torques of 1e-6 that cancel to
+      // 1e-13: the last bit of P moves D_TE by 1e-10 of the velocities, so no double P meets the
+      // 1e-10 cap, and the refined answer, 8e-14 from a 60-digit reference in the kinetic norm,
+      // was `stalled`. A diagonal M (a body in its principal axes) is solved to the last bit of
+      // each component, so the percussions' rounding is all that is left; with M not diagonal
+      // (cond(M) > 1e9) answers within this allowance were up to 2.3e-8 from the quad reference
+      // (stress seed 23), and `stalled` is the honest word there. The refinement's trigger keeps
+      // the 1e-10 cap (accepted unrefined, one answer stayed 6e-9 from the reference). Neither
+      // the law's residual nor the refinement's own verdict ranks the answers here: the
+      // unrefined one of the stack-stored solve had 9.7e-12 beside the refined 1.0e-10 and was
+      // 1.4e-11 from the reference against 8e-14; under Poisson + Coulomb the refinement stops
+      // on corrections that no longer shrink, at the percussions' last bits, 1e-16 from it.
+      if (!(trial_beyond <= options.tolerance) && is_diagonal(pb.M)) {
+        double loose = 0.0;
+        classical_residual(pb, law, trial, &loose, true, kRoundedPercussionCap);
+        if (loose <= options.tolerance) {
+          keep = true;
+          trial_beyond = loose;
+        }
+      }
+      if (keep) {
         write_answer(pb, cs, law, P, P_C, out);
         residual = trial_residual;
         beyond_rounding = trial_beyond;

@@ -37,7 +37,7 @@ double coulomb(double t, double v, double b, double g) {
 template <int N, int C>
 double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                           const ImpactResultT<N, C>& r, double* beyond_rounding,
-                          bool percussions_rounded) {
+                          bool percussions_rounded, double percussion_cap) {
   const double inf = std::numeric_limits<double>::infinity();
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
@@ -197,7 +197,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     double beyond = 0.0;
     for (int i = 0; i < c; ++i)
       if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale) +
-                                    std::min(percussion_floor(i), 1e-10 * v_scale)))
+                                    std::min(percussion_floor(i), percussion_cap * v_scale)))
         beyond = std::max(beyond, contact_worst(i));
     *beyond_rounding = beyond / v_scale;
   }
@@ -206,7 +206,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
 
 #define FREMOND_INSTANTIATE(N, C)                                                   \
   template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&, \
-                                     const ImpactResultT<N, C>&, double*, bool);
+                                     const ImpactResultT<N, C>&, double*, bool, double);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -26,11 +26,13 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& problem, cons
 /// q = |q̇_A| + |q̇_E| (+ |q̇_C|): the solvers' stopping test, as Frémond's row_rounding_floor.
 /// `percussions_rounded`: the percussions are the exact solution of their contact mode rounded to
 /// double (refined, classical_refine.hpp); the floor then also holds the terms 16ε Σ_k |G_ik||P_k|
-/// that this rounding moves the velocities by, up to 1e-10 v_scale. Never for an unrefined answer:
-/// Lemke's pivots on cond(M) = 1e9 leave errors of 1e-5 that such a floor would hide.
+/// that this rounding moves the velocities by, up to `percussion_cap` v_scale. Never for an
+/// unrefined answer: Lemke's pivots on cond(M) = 1e9 leave errors of 1e-5 that such a floor would
+/// hide.
 template <int MaxDofs, int MaxContacts>
 double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
                           const ImpactResultT<MaxDofs, MaxContacts>& result,
-                          double* beyond_rounding = nullptr, bool percussions_rounded = false);
+                          double* beyond_rounding = nullptr, bool percussions_rounded = false,
+                          double percussion_cap = 1e-10);
 
 }  // namespace fremond::detail
