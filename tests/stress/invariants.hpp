@@ -53,6 +53,16 @@ inline std::string num(double v) {
 
 }  // namespace detail
 
+/// ‖q̇ − q̇_ref‖_M / ‖q̇_A‖_M: a velocity's distance to a reference in the kinetic-energy norm,
+/// relative to the velocity before the impact.
+template <int N, int C, class Vec, class RefVec>
+double kinetic_distance(const ImpactProblemT<N, C>& pb, const Vec& qdot, const RefVec& ref) {
+  const Eigen::VectorXd d = Eigen::VectorXd(qdot) - Eigen::VectorXd(ref);
+  const Eigen::MatrixXd M = pb.M;
+  const Eigen::VectorXd qA = pb.qdot_A;
+  return std::sqrt(d.dot(M * d) / qA.dot(M * qA));
+}
+
 /// The tolerance a converged result promises for its method.
 inline double promised_tolerance(const SolverOptions& options, SolverMethod method) {
   return method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
