@@ -967,5 +967,28 @@ TEST(RegressionClassical, LightRotorUnderPoissonIsConvergedToItsPercussionsRound
                             std::pair{4.319484203193400803123839, 1.767312920708548832474372});
 }
 
+// Poisson + Coulomb with e = 0 on the light rotor, sticking: the expansion is both "open" (ΔP = 0)
+// and "stick" with increments of rounding (1e-10, G of condition 3e6) that make the same
+// velocities. The two identical answers were listed as two solutions, `unique` false; the law has
+// one (the expansion's modes by hand: ΔP = 0 and P_TE = 0 is the only answer with G regular).
+TEST(RegressionClassical, AnswersWithTheSameVelocitiesAreOneSolution) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
+    "W_N": [[0], [1], [-0.07791703411178923]], "W_T": [[1], [0], [0.49389162353214927]],
+    "qdot_A": [-1029.0401058277293, -3209.876565461781, -514.1160041953543],
+    "law": {"type": "poisson_coulomb", "e": 0, "mu": 1}})",
+                                           PotentialRegistry::with_builtins());
+  const auto r = solve_impact(file.problem, file.law);
+  EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_TRUE(r.unique) << r.solver.message;
+  EXPECT_EQ(r.solutions_found, 1);
+  EXPECT_EQ(solve_impact_all(file.problem, file.law).size(), 1u);
+  // e = 0 after a sticking compression: no expansion percussion, both velocities at rest.
+  EXPECT_EQ(r.P_N(0), r.P_NC(0));
+  EXPECT_EQ(r.P_T(0), r.P_TC(0));
+  EXPECT_LT(std::fabs(r.D_NE(0)), 1e-11 * std::fabs(r.D_NA(0)));
+  EXPECT_LT(std::fabs(r.D_TE(0)), 1e-11 * std::fabs(r.D_NA(0)));
+}
+
 }  // namespace
 }  // namespace fremond

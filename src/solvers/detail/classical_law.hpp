@@ -265,7 +265,24 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
   Tolerances tol;
   tol.v = 1e-9 * cs.v_scale;
   tol.p = tol.v / std::max({gnn, gtt, std::numeric_limits<double>::min()});
+  // Answers with the same velocities (and, for Poisson, the same velocities after compression)
+  // are one, as in the enumeration (enumerate_modes): on a light rotor (mass ratio 1e6) Poisson's
+  // expansion from a sticking compression with e = 0 is both "open" (ΔP = 0) and "stick" with
+  // increments of rounding that G maps onto the same velocities, and the two identical answers
+  // were reported as two solutions (unique false).
+  auto same_velocities = [&](double dx, double dt) {
+    return std::fabs(gnn * dx + gnt * dt) <= 16 * tol.v &&
+           std::fabs(gnt * dx + gtt * dt) <= 16 * tol.v;
+  };
   auto push = [&](double xc, double tc, double x, double t) {
+    for (int k = 0; k < out.solutions.size; ++k) {
+      const LawSolution<C>& o = out.solutions[k];
+      const double ot = f ? o.P(1) : 0.0;
+      const bool same_after = same_velocities(x - o.P(0), t - ot);
+      const bool same_compression =
+          !poisson || same_velocities(xc - o.P_C(0), tc - (f ? o.P_C(1) : 0.0));
+      if (same_after && same_compression) return;
+    }
     LawSolution<C>* s = out.solutions.emplace();
     if (!s) return;
     s->P.resize(r);
