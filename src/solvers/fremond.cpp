@@ -358,18 +358,13 @@ double velocity_space_residual(const ImpactProblemT<N, C>& pb, const FremondRows
   VecT<N> q;
   velocity_after(pb, cs, P, q, /*accurate=*/true);
   z.resize(r);
-  R.resize(r);
-  double m = 0.0;
   for (int j = 0; j < r; ++j) {
     const bool normal = j < a;
     const int i = cs.index(normal ? j : j - a);
     const auto& w = normal ? pb.w_N : pb.w_T;
     z(j) = 0.5 * (cs.D_A(j) + contact_velocity(cs.W.col(j), q, w.size() ? w(i) : 0.0));
-    R(j) = rows.row_residual(j, z(j), P);
-    if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
-    m = std::max(m, rows.weight(j) * std::fabs(R(j)));
   }
-  return m;
+  return rows.residual_at(P, z, R);
 }
 
 /// Iterative refinement of an answer that the stopping test accepted at the contact space's

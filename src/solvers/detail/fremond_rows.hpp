@@ -193,6 +193,12 @@ struct FremondRowsT {
   /// R = z − prox(z − τP); returns the weighted norm max_j weight_j |R_j|.
   double residual(const Rows& P, Rows& z, Rows& R) const {
     mean_velocity(P, z);
+    return residual_at(P, z, R);
+  }
+
+  /// R and its weighted norm as residual(), with the mean velocity z given (the refinement takes
+  /// it from the velocities themselves).
+  double residual_at(const Rows& P, const Rows& z, Rows& R) const {
     const int r = cs->rows();
     R.resize(r);
     double m = 0.0;
