@@ -185,16 +185,22 @@ TEST(SimulationBar, AFlatDropHitsWithBothEndsAndDoesNotRotate) {
     EXPECT_EQ(first.contact_count, 2) << to_string(law);
     EXPECT_NEAR(first.t, std::sqrt(2.0 / 9.81), 1e-14);
     // A symmetric law on a symmetric impact: equal percussions, no spin, at every impact and at
-    // every sample.
+    // every sample, to rounding. Not to the bit: with friction G is singular (two identical
+    // tangential rows), and the sticking answer of the classical laws comes from a pivoted
+    // factorisation that takes one end first, so the two P_N differ in their last bits (a spin
+    // of 4e-15 rad/s against ẏ ≈ 4.4 m/s, an angle of 2e-16 rad after 5 s).
+    const double v = std::sqrt(2.0 * 9.81);  // the speed at the first impact
     for (const ImpactRecord& imp : log.impacts) {
       EXPECT_EQ(imp.contact_count, 2);
       EXPECT_NEAR(imp.P_N(0), imp.P_N(1), 1e-12 * (1 + std::fabs(imp.P_N(0))));
-      EXPECT_EQ(imp.qdot_E.z(), 0.0);
+      EXPECT_LE(std::fabs(imp.qdot_E.z()), 1e-14 * v / bar.half_length);
     }
     for (const TrajectorySample& s : log.samples) {
-      EXPECT_EQ(s.state.q.z(), 0.0) << to_string(law) << " t=" << s.t;
-      EXPECT_EQ(s.state.qdot.z(), 0.0) << to_string(law) << " t=" << s.t;
-      EXPECT_EQ(s.state.qdot.x(), 0.0);
+      EXPECT_LE(std::fabs(s.state.q.z()), 1e-14 * v / bar.half_length * s.t)
+          << to_string(law) << " t=" << s.t;
+      EXPECT_LE(std::fabs(s.state.qdot.z()), 1e-14 * v / bar.half_length)
+          << to_string(law) << " t=" << s.t;
+      EXPECT_LE(std::fabs(s.state.qdot.x()), 1e-14 * v);  // no sideways push either
     }
   }
 }

@@ -56,10 +56,12 @@ struct Factored {
   RowMat null;  ///< orthonormal basis of null(G), no columns when G is regular
 
   /// `dofs`: the number of degrees of freedom, a bound on G's rank (G = Wᵀ M⁻¹ W).
-  void compute(const RowMat& G, int dofs) {
+  /// `with_null`: false leaves null empty (the exact methods alone do not need it).
+  void compute(const RowMat& G, int dofs, bool with_null = true) {
     regular = false;
+    null.resize(G.rows(), 0);
     if (G.rows() > dofs) {  // singular for sure: skip the factor, whose pivots would be rounding
-      null = null_space<C>(G);
+      if (with_null) null = null_space<C>(G);
       return;
     }
     llt.compute(G);
@@ -68,12 +70,33 @@ struct Factored {
       regular = d.minCoeff() > 1e-7 * d.maxCoeff();
     }
     // A small pivot is only a hint: the eigenvalues decide what null(G) is.
-    if (regular)
-      null.resize(G.rows(), 0);
-    else
-      null = null_space<C>(G);
+    if (!regular && with_null) null = null_space<C>(G);
   }
 };
+
+/// The eq. 6 guess on several contacts, every contact closed (and sticking): with G's factor where
+/// G is regular, else in its semidefinite form (a line of solutions). True when it solves the
+/// phase.
+template <int C>
+bool closed_guess(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& fg,
+                  typename Phase<C>::Rows& u) {
+  return fg.regular ? all_closed_guess(ph, tol, fg.llt, true, u)
+                    : closed_sticking_semidefinite(ph, tol, u);
+}
+
+/// The exact method of a phase on several contacts that finds one solution: the eq. 6 guess, then
+/// Lemke. What solve_phase runs before any listing of solutions, and what the benchmarks time as
+/// the kernel. Returns the method that answered (Lemke also when it found none: `solved` false).
+template <int C>
+SolverMethod exact_phase(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& fg,
+                         typename Phase<C>::Rows& u, int& pivots, bool& solved) {
+  if (closed_guess(ph, tol, fg, u)) {
+    solved = true;
+    return SolverMethod::closed_form;
+  }
+  solved = lemke_phase(ph, LemkeOptions{}, u, pivots) == LcpStatus::solved;
+  return SolverMethod::lemke;
+}
 
 /// `force`: automatic takes the cheapest exact method, with the enumeration as fallback (where
 /// Lemke finds no answer, up to kMaxEnumerated contacts) and to list every solution (up to
@@ -123,7 +146,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
   } else {
     const bool friction = !frictionless(ph);
     bool have = false;
-    if (force != SolverMethod::lemke && all_closed_guess(ph, tol, fg.llt, fg.regular, u)) {
+    if (force != SolverMethod::lemke && closed_guess(ph, tol, fg, u)) {
       have = true;
       out.primary = SolverMethod::closed_form;
     } else if (force == SolverMethod::closed_form) {

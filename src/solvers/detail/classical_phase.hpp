@@ -203,6 +203,162 @@ bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Llt& l
   return true;
 }
 
+namespace semidefinite {
+
+// The body for r = R rows, R known to the compiler: on these few rows the loops unroll, and loop
+// bookkeeping was most of the work (the flat bar's 4 rows: 1,500 instructions with r a runtime
+// bound).
+template <int R, int MaxC>
+bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u) {
+  const int a = ph.a;
+  // S: the Schur complement still to factor (kept whole, both triangles); L: the unit lower
+  // factor's columns so far; D: the pivots' reciprocals. P G Pᵀ = L D Lᵀ on the first `rank`
+  // pivots. Uninitialised on purpose: every entry is written before it is read (L's columns as
+  // their pivots are taken, y and dir by the solves).
+  double S[R][R], L[R][R], D[R], y[R], dir[R], u0[R], d[R];
+  int perm[R];
+  double dmax = 0.0;
+  for (int i = 0; i < R; ++i) {
+    perm[i] = i;
+    for (int j = 0; j < R; ++j) S[i][j] = ph.G(i, j);
+    dmax = std::max(dmax, S[i][i]);
+  }
+  if (!(dmax > 0.0) || !std::isfinite(dmax)) return false;
+  int rank = 0;
+  for (int k = 0; k < R; ++k) {
+    int m = k;
+    for (int i = k + 1; i < R; ++i)
+      if (S[i][i] > S[m][m]) m = i;
+    if (!(S[m][m] > 1e-10 * dmax)) break;
+    if (m != k) {  // symmetric swap of rows and columns k, m
+      for (int j = 0; j < R; ++j) std::swap(S[k][j], S[m][j]);
+      for (int i = 0; i < R; ++i) std::swap(S[i][k], S[i][m]);
+      for (int j = 0; j < k; ++j) std::swap(L[k][j], L[m][j]);
+      std::swap(perm[k], perm[m]);
+    }
+    // One division per pivot (its reciprocal, kept in D).
+    const double inv = 1.0 / S[k][k];
+    D[k] = inv;
+    for (int i = k + 1; i < R; ++i) L[i][k] = S[i][k] * inv;
+    for (int i = k + 1; i < R; ++i)
+      for (int j = k + 1; j < R; ++j) S[i][j] -= L[i][k] * S[k][j];
+    rank = k + 1;
+  }
+  if (rank < R - 1) return false;
+  // L11 D L11ᵀ y = −P q on the first `rank` pivots, the free coordinate (if any) 0.
+  for (int i = 0; i < rank; ++i) {
+    double t = -ph.q(perm[i]);
+    for (int k = 0; k < i; ++k) t -= L[i][k] * y[k];
+    y[i] = t;
+  }
+  for (int i = 0; i < rank; ++i) y[i] *= D[i];
+  for (int i = rank - 1; i >= 0; --i)
+    for (int k = i + 1; k < rank; ++k) y[i] -= L[k][i] * y[k];
+  if (rank < R) y[R - 1] = 0.0;
+  for (int i = 0; i < R; ++i) u0[perm[i]] = y[i];
+  const bool line = rank == R - 1;
+  double s = 0.0;
+  if (line) {
+    // d = Pᵀ [−L11⁻ᵀ l; 1] with l the free row of L: G d = 0 to rounding.
+    dir[R - 1] = 1.0;
+    for (int i = rank - 1; i >= 0; --i) {
+      double t = -L[R - 1][i];
+      for (int k = i + 1; k < rank; ++k) t -= L[k][i] * dir[k];
+      dir[i] = t;
+    }
+    for (int i = 0; i < R; ++i) d[perm[i]] = dir[i];
+    // Each inequality α + β s ≥ 0 bounds s on one side; an empty interval: no sticking answer
+    // (Lemke decides). The exact inequalities, not relaxed by tol.p: an answer up to tol.p outside
+    // Coulomb's cone would pass this guess and then fail the law's own, tighter, test (stalled).
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+    bool feasible = true;
+    auto bound = [&](double alpha, double beta) {
+      if (beta > 0.0)
+        lo = std::max(lo, -alpha / beta);
+      else if (beta < 0.0)
+        hi = std::min(hi, -alpha / beta);
+      else if (alpha < 0.0)
+        feasible = false;
+    };
+    for (int i = 0; i < a; ++i) {
+      bound(u0[i], d[i]);
+      if (!ph.friction) continue;
+      const double cap = ph.mu(i) * u0[i] + ph.b0(i), dcap = ph.mu(i) * d[i];
+      bound(cap - u0[a + i], dcap - d[a + i]);
+      bound(cap + u0[a + i], dcap + d[a + i]);
+    }
+    if (!feasible || !(lo <= hi)) return false;
+    double ud = 0.0, dd = 0.0;
+    for (int i = 0; i < R; ++i) {
+      ud += u0[i] * d[i];
+      dd += d[i] * d[i];
+    }
+    s = std::clamp(dd > 0.0 ? -ud / dd : 0.0, lo, hi);
+    if (!std::isfinite(s)) return false;
+  } else {
+    for (int i = 0; i < R; ++i) d[i] = 0.0;
+  }
+  u.resize(R);
+  for (int i = 0; i < R; ++i) u(i) = u0[i] + s * d[i];
+  for (int i = 0; i < a; ++i) {
+    if (u(i) < -tol.p) return false;
+    u(i) = std::max(0.0, u(i));
+    if (ph.friction && std::fabs(u(a + i)) > ph.mu(i) * u(i) + ph.b0(i) + tol.p) return false;
+  }
+  // The mode holds only where −q is in G's range: every velocity of the phase vanishes, to the
+  // rounding of its own terms (and never beyond tol.v; a NaN fails the test). A looser test
+  // (tol.v alone) let answers of an ill-conditioned G through that the law's residual then
+  // refused: stress newton_coulomb seed 23, 50 more `stalled` of 17,000 solves where Lemke's
+  // answers had converged.
+  constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
+  for (int i = 0; i < R; ++i) {
+    double v = ph.q(i), size = std::fabs(ph.q(i));
+    for (int j = 0; j < R; ++j) {
+      v += ph.G(i, j) * u(j);
+      size += std::fabs(ph.G(i, j) * u(j));
+    }
+    if (!(std::fabs(v) <= std::min(tol.v, kRounding * size))) return false;
+  }
+  return true;
+}
+
+}  // namespace semidefinite
+
+/// The same guess where G is singular (more rows than the body has degrees of freedom: the flat
+/// bar on both ends with friction, 4 rows on 3), where every contact closed and sticking,
+/// G u = −q, has a line of solutions or none. A symmetric-pivoted LDLᵀ (rank-revealing on a
+/// semidefinite G; a pivot below 1e-10 of G's largest diagonal entry ends it) gives one solution
+/// u0 and, where G's rank is one short, the line's direction d. The points u0 + s d that satisfy
+/// the inequalities (x ≥ 0, |t| ≤ μx + b0) are an interval of s; the one nearest the minimum-norm
+/// point of the line is taken. True when that interval is not empty and the mode holds: G u + q
+/// vanishes to rounding (q in G's range). Null spaces of two or more dimensions, and
+/// phases of more than 8 rows, are left to Lemke (false). No allocation: stack arrays only.
+template <int MaxC>
+bool closed_sticking_semidefinite(const Phase<MaxC>& ph, const Tolerances& tol,
+                                  typename Phase<MaxC>::Rows& u) {
+  switch (ph.rows()) {
+    case 1:
+      return semidefinite::closed_sticking<1>(ph, tol, u);
+    case 2:
+      return semidefinite::closed_sticking<2>(ph, tol, u);
+    case 3:
+      return semidefinite::closed_sticking<3>(ph, tol, u);
+    case 4:
+      return semidefinite::closed_sticking<4>(ph, tol, u);
+    case 5:
+      return semidefinite::closed_sticking<5>(ph, tol, u);
+    case 6:
+      return semidefinite::closed_sticking<6>(ph, tol, u);
+    case 7:
+      return semidefinite::closed_sticking<7>(ph, tol, u);
+    case 8:
+      return semidefinite::closed_sticking<8>(ph, tol, u);
+    default:
+      return false;
+  }
+}
+
 /// True when the phase has no tangential percussion at all (no rows, or every bound identically 0).
 template <int MaxC>
 bool frictionless(const Phase<MaxC>& ph) {
