@@ -91,8 +91,9 @@ bool closed_guess(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& 
 }
 
 /// The exact method of a phase on several contacts that finds one solution: the eq. 6 guess, then
-/// Lemke. What solve_phase runs before any listing of solutions, and what the benchmarks time as
-/// the kernel. Returns the method that answered (Lemke also when it found none: `solved` false).
+/// Lemke, the order solve_phase's automatic choice takes before any listing of solutions (there
+/// written out, beside the methods forced by name); the benchmarks time this as the kernel.
+/// Returns the method that answered (Lemke also when it found none: `solved` false).
 template <int C>
 SolverMethod exact_phase(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& fg,
                          typename Phase<C>::Rows& u, int& pivots, bool& solved) {
