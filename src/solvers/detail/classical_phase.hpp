@@ -24,6 +24,7 @@
 #include <limits>
 #include <new>
 
+#include "fixed_size.hpp"
 #include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
@@ -340,26 +341,12 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
 template <int MaxC>
 bool closed_sticking_semidefinite(const Phase<MaxC>& ph, const Tolerances& tol,
                                   typename Phase<MaxC>::Rows& u) {
-  switch (ph.rows()) {
-    case 1:
-      return semidefinite::closed_sticking<1>(ph, tol, u);
-    case 2:
-      return semidefinite::closed_sticking<2>(ph, tol, u);
-    case 3:
-      return semidefinite::closed_sticking<3>(ph, tol, u);
-    case 4:
-      return semidefinite::closed_sticking<4>(ph, tol, u);
-    case 5:
-      return semidefinite::closed_sticking<5>(ph, tol, u);
-    case 6:
-      return semidefinite::closed_sticking<6>(ph, tol, u);
-    case 7:
-      return semidefinite::closed_sticking<7>(ph, tol, u);
-    case 8:
-      return semidefinite::closed_sticking<8>(ph, tol, u);
-    default:
+  return with_fixed_size<8>(ph.rows(), [&](auto rows) {
+    if constexpr (decltype(rows)::value == 0)
       return false;
-  }
+    else
+      return semidefinite::closed_sticking<decltype(rows)::value>(ph, tol, u);
+  });
 }
 
 /// True when the phase has no tangential percussion at all (no rows, or every bound identically 0).

@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "fixed_size.hpp"
+
 namespace fremond::detail {
 
 template <int MaxRows>
@@ -75,38 +77,11 @@ class SmallLU {
  private:
   static constexpr bool kDynamic = MaxRows == Eigen::Dynamic;
 
-  // Calls f(std::integral_constant<int, K>{}) with K = n_ for the fixed sizes 3 … MaxRows, whose
-  // loops the compiler unrolls (a 4×4 Jacobian's loops with run-time bounds cost five times their
-  // arithmetic), and K = 0 (n_ read at run time) for the dynamic size.
+  // Sizes 3 … MaxRows on loops of compile-time length K (fixed_size.hpp); K = 0, n_ read at run
+  // time, for the dynamic size.
   template <class F>
   static decltype(auto) with_size(int n, F&& f) {
-    if constexpr (!kDynamic) {
-      switch (n) {
-        case 1:
-          return f(std::integral_constant<int, 1>{});
-        case 3:
-          if constexpr (MaxRows >= 3) return f(std::integral_constant<int, 3>{});
-          break;
-        case 4:
-          if constexpr (MaxRows >= 4) return f(std::integral_constant<int, 4>{});
-          break;
-        case 5:
-          if constexpr (MaxRows >= 5) return f(std::integral_constant<int, 5>{});
-          break;
-        case 6:
-          if constexpr (MaxRows >= 6) return f(std::integral_constant<int, 6>{});
-          break;
-        case 7:
-          if constexpr (MaxRows >= 7) return f(std::integral_constant<int, 7>{});
-          break;
-        case 8:
-          if constexpr (MaxRows >= 8) return f(std::integral_constant<int, 8>{});
-          break;
-        default:
-          break;
-      }
-    }
-    return f(std::integral_constant<int, 0>{});
+    return with_fixed_size<(kDynamic ? 0 : (MaxRows < 8 ? MaxRows : 8))>(n, f);
   }
 
   template <int K>
