@@ -87,9 +87,9 @@ TEST(SmallLU, NearlySingularMatrixIsBelowNewtonsThreshold) {
 }
 
 TEST(SmallLU, TwoRowsGiveTheGeneralLoopsBits) {
-  // The 2×2 path on scalars does the general loops' operations in their order: embedded as
-  // [A 0; 0 1], the same A goes through the general loops (the third row and column add exact
-  // zeros), and both solutions agree to the bit, row swaps included. Its rcond is the exact one
+  // Two rows run the loops of length 2, three rows those of length 3: embedded as [A 0; 0 1], the
+  // same A goes through the 3-row loops (the third row and column add exact zeros), and both
+  // solutions agree to the bit, row swaps included. Its rcond is the exact one
   // (checked against the explicit inverse above for n = 2 too).
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
