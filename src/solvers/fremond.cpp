@@ -33,25 +33,6 @@ bool decoupled(const ContactSpaceT<N, C>& cs) {
   return true;
 }
 
-/// Whether every potential of the law offers a prox (else only NLopt applies).
-bool law_has_prox(const ImpactLaw& law) {
-  for (const auto& p : law.normal.potentials)
-    if (!p->capabilities().prox) return false;
-  if (law.tangential == TangentialLaw::potential)
-    for (const auto& p : law.tangential_potential.potentials)
-      if (!p->capabilities().prox) return false;
-  return true;
-}
-
-bool law_is_quadratic(const ImpactLaw& law) {
-  for (const auto& p : law.normal.potentials)
-    if (!p->capabilities().quadratic) return false;
-  if (law.tangential == TangentialLaw::potential)
-    for (const auto& p : law.tangential_potential.potentials)
-      if (!p->capabilities().quadratic) return false;
-  return true;
-}
-
 /// Decoupled rows: P_j = 2(z_j − D_A,j)/G_jj with z_j = prox_{τ_j ψ_j}(D_A,j), τ_j = G_jj/2 (the
 /// equation z = D_A + G_jj P/2, −P ∈ ∂ψ(z) is z = prox_{(G_jj/2)ψ}(D_A)). Normal rows first: the
 /// Coulomb bound of a tangential row needs its P_N. A row with G_jj = 0 cannot change its velocity:
@@ -526,7 +507,7 @@ MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const S
     return o;
   }
   Rows<N, C> Q = P;
-  if (law_has_prox(*rows.law)) {
+  if (rows.all_prox) {
     MethodOutcome n = semismooth_newton(rows, Q, opt);
     if (n.status == SolverStatus::converged) {
       P = Q;
@@ -637,7 +618,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     finish(o, SolverMethod::trivial);
     return;
   }
-  const bool has_prox = law_has_prox(law);
+  const bool has_prox = rows.all_prox;  // else only NLopt applies
   const bool automatic = want == SolverMethod::automatic;
   auto unsupported = [&](const char* why) {
     MethodOutcome o;
@@ -653,7 +634,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   if (has_prox && is_decoupled &&
       (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton)) {
     const auto o = check_exact(rows, P, opt, solve_decoupled(rows, P));
-    finish(o, law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+    finish(o, rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
     return;
   }
   if (has_prox && cs.active == 1 && rows.coulomb &&
@@ -761,7 +742,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       o.criterion = StopCriterion::exact;
       o.message = "one contact inside the tangential dead zone: one exact prox";
       finish(check_exact(rows, P, opt, o),
-             law_is_quadratic(law) ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+             rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
       return;
     }
   }
@@ -950,7 +931,7 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
   FremondRowsT<Dynamic, Dynamic> rows;
   rows.init(cs, law);
   std::vector<ImpactResult> all;
-  if (cs.active == 1 && rows.coulomb && law_has_prox(law) && !decoupled(cs)) {
+  if (cs.active == 1 && rows.coulomb && rows.all_prox && !decoupled(cs)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
     const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,

@@ -46,6 +46,9 @@ struct FremondRowsT {
                 ///< measures every row's percussion error on the same scale
   bool coulomb = false;
   bool all_prox = true;  ///< every potential has a prox (else those rows use subgradients)
+  /// Every potential is quadratic (a prox step is then linear): names the exact method's answer
+  /// closed_form rather than scalar_newton.
+  bool all_quadratic = true;
   /// Coulomb's tangential modes held fixed, one per active contact (the enumeration of modes):
   /// 0 sticks (z_T = 0, P_T free), +1 slides forwards (P_T = −μ|P_N|), −1 backwards
   /// (P_T = μ|P_N|). Each mode makes its rows smooth; nullptr: Coulomb's law itself.
@@ -68,11 +71,17 @@ struct FremondRowsT {
     cs = &space;
     law = &l;
     coulomb = l.tangential == TangentialLaw::coulomb && space.tangential;
-    all_prox = true;
-    for (const auto& p : l.normal.potentials) all_prox = all_prox && p->capabilities().prox;
+    // One pass over the law's potentials, the contacts that take no part included: what the law
+    // can do does not depend on which contacts touch.
+    all_prox = all_quadratic = true;
+    auto take = [&](const Potential& p) {
+      const PotentialCapabilities cap = p.capabilities();
+      all_prox = all_prox && cap.prox;
+      all_quadratic = all_quadratic && cap.quadratic;
+    };
+    for (const auto& p : l.normal.potentials) take(*p);
     if (l.tangential == TangentialLaw::potential)
-      for (const auto& p : l.tangential_potential.potentials)
-        all_prox = all_prox && p->capabilities().prox;
+      for (const auto& p : l.tangential_potential.potentials) take(*p);
     const int r = space.rows();
     tau.setZero(r);
     double gmax = 0.0;
