@@ -172,41 +172,59 @@ TEST(Lemke, SmallAndDynamicAgree) {
 // not copositive-plus, so where Lemke answers the answer must be an exact solution, and where the
 // enumeration of complementary bases finds none Lemke must not claim one. The stack-stored and the
 // heap-stored tableaux must pivot identically (same pivots, same z to the bit).
+// The LCP of a classical impact with Coulomb friction on a contacts (SPEC §3's 2-D friction split
+// into P_T = P_T⁺ − P_T⁻ with the slip multiplier λ): unknowns (P_N, P_T⁺, P_T⁻, λ), G = WᵀW the
+// Delassus matrix of normal and tangential columns, vt the tangential velocities, q_N the normal
+// ones, b the bounds' offsets.
+template <class Mat, class Vec>
+void frictional_lcp(const MatrixX& G, int a, double mu, const VectorX& qN, const VectorX& vt,
+                    const VectorX& b, Mat& M, Vec& q) {
+  const int n = 4 * a;
+  M.setZero(n, n);
+  q.resize(n);
+  for (int i = 0; i < a; ++i) {
+    for (int j = 0; j < a; ++j) {
+      M(i, j) = G(i, j);
+      M(i, a + j) = G(i, a + j);
+      M(i, 2 * a + j) = -G(i, a + j);
+      M(a + i, j) = G(a + i, j);
+      M(a + i, a + j) = G(a + i, a + j);
+      M(a + i, 2 * a + j) = -G(a + i, a + j);
+      M(2 * a + i, j) = -G(a + i, j);
+      M(2 * a + i, a + j) = -G(a + i, a + j);
+      M(2 * a + i, 2 * a + j) = G(a + i, a + j);
+    }
+    M(a + i, 3 * a + i) = M(2 * a + i, 3 * a + i) = 1.0;
+    M(3 * a + i, i) = mu;
+    M(3 * a + i, a + i) = M(3 * a + i, 2 * a + i) = -1.0;
+    q(i) = qN(i);
+    q(a + i) = vt(i);
+    q(2 * a + i) = -vt(i);
+    q(3 * a + i) = b(i);
+  }
+}
+
 TEST(Lemke, FrictionalImpactLcpsAreSolvedExactly) {
   std::mt19937 rng(23);
   std::uniform_int_distribution<int> entry(-4, 4), pick(0, 4);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int solved = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    const int a = 1 + trial % 3, n = 4 * a, dofs = 1 + trial % 4;
+    const int a = 1 + trial % 3, dofs = 1 + trial % 4;
     MatrixX W(dofs, 2 * a);
     for (int i = 0; i < dofs; ++i)
       for (int j = 0; j < 2 * a; ++j) W(i, j) = pick(rng) == 0 ? 0.0 : 0.5 * entry(rng);
     const MatrixX G = W.transpose() * W;
     const double mu = pick(rng) == 0 ? 10.0 : 0.25 * (1 + pick(rng));
-    MatT<kSmallLcp, kSmallLcp> M = MatT<kSmallLcp, kSmallLcp>::Zero(n, n);
-    VecT<kSmallLcp> q(n);
-    for (int i = 0; i < a; ++i) {
-      for (int j = 0; j < a; ++j) {
-        M(i, j) = G(i, j);
-        M(i, a + j) = G(i, a + j);
-        M(i, 2 * a + j) = -G(i, a + j);
-        M(a + i, j) = G(a + i, j);
-        M(a + i, a + j) = G(a + i, a + j);
-        M(a + i, 2 * a + j) = -G(a + i, a + j);
-        M(2 * a + i, j) = -G(a + i, j);
-        M(2 * a + i, a + j) = -G(a + i, a + j);
-        M(2 * a + i, 2 * a + j) = G(a + i, a + j);
-      }
-      M(a + i, 3 * a + i) = M(2 * a + i, 3 * a + i) = 1.0;
-      M(3 * a + i, i) = mu;
-      M(3 * a + i, a + i) = M(3 * a + i, 2 * a + i) = -1.0;
-      const double vt = pick(rng) < 2 ? 0.0 : unit(rng);
-      q(i) = pick(rng) == 0 ? 0.0 : 0.5 * entry(rng);
-      q(a + i) = vt;
-      q(2 * a + i) = -vt;
-      q(3 * a + i) = pick(rng) < 3 ? 0.0 : std::fabs(unit(rng));
+    VectorX qN(a), vt(a), b(a);
+    for (int i = 0; i < a; ++i) {  // drawn in the order the test always drew them
+      vt(i) = pick(rng) < 2 ? 0.0 : unit(rng);
+      qN(i) = pick(rng) == 0 ? 0.0 : 0.5 * entry(rng);
+      b(i) = pick(rng) < 3 ? 0.0 : std::fabs(unit(rng));
     }
+    MatT<kSmallLcp, kSmallLcp> M;
+    VecT<kSmallLcp> q;
+    frictional_lcp(G, a, mu, qN, vt, b, M, q);
     const SmallLcpResult s = solve_lcp(M, q);
     const LcpResult d = solve_lcp(MatrixX(M), VectorX(q));
     ASSERT_EQ(s.status, d.status) << "trial " << trial;
@@ -225,6 +243,48 @@ TEST(Lemke, FrictionalImpactLcpsAreSolvedExactly) {
         << "trial " << trial;
   }
   EXPECT_GT(solved, 400);
+}
+
+// Many contacts of a planar body (3 dofs): G of rank 3 and 64 to 128 unknowns, where most
+// pivots have a pivot row of mostly zeros and the elimination visits only its non-zero columns.
+// The answer is checked against its own definition: z ≥ 0, w = Mz + q ≥ 0 recomputed here, zᵀw = 0.
+TEST(Lemke, ManyContactFrictionalLcpsSatisfyTheComplementarityConditions) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int pivots = 0;
+  for (const int a : {16, 24, 32}) {
+    for (int trial = 0; trial < 4; ++trial) {
+      MatrixX W(3,
+                2 * a);  // a flat plate: normals (0, 1, x_i), tangents (1, 0, 0) at q̇ = (x, y, θ)
+      for (int i = 0; i < a; ++i) {
+        W.col(i) << 0.0, 1.0, -1.0 + 2.0 * i / (a - 1);
+        W.col(a + i) << 1.0, 0.0, trial % 2 ? 0.1 * unit(rng) : 0.0;
+      }
+      const MatrixX G = W.transpose() * W;
+      VectorX qN(a), vt(a), b = VectorX::Zero(a);
+      const double slope = 0.5 * unit(rng), x_dot = trial < 2 ? 0.7 : 0.0;
+      for (int i = 0; i < a; ++i) {
+        qN(i) = -1.0 + slope * W(2, i);  // every contact approaches
+        vt(i) = x_dot + W(2, a + i);
+      }
+      MatrixX M;
+      VectorX q;
+      frictional_lcp(G, a, 0.3, qN, vt, b, M, q);
+      const LcpResult r = solve_lcp(M, q);
+      ASSERT_EQ(r.status, LcpStatus::solved) << a << " contacts, trial " << trial;
+      pivots += r.pivots;
+      const VectorX w = M * r.z + q;
+      const double scale =
+          q.cwiseAbs().maxCoeff() + M.cwiseAbs().maxCoeff() * r.z.cwiseAbs().maxCoeff();
+      EXPECT_GE(r.z.minCoeff(), 0.0) << a << " contacts, trial " << trial;
+      EXPECT_GE(w.minCoeff(), -1e-13 * scale) << a << " contacts, trial " << trial;
+      EXPECT_LE(r.z.cwiseProduct(w).cwiseAbs().maxCoeff(),
+                1e-13 * scale * (1.0 + r.z.cwiseAbs().maxCoeff()))
+          << a << " contacts, trial " << trial;
+      EXPECT_LE(r.residual, 1e-13) << a << " contacts, trial " << trial;
+    }
+  }
+  EXPECT_GT(pivots, 12 * 16);  // the problems are not solved by a pivot or two
 }
 
 TEST(Lemke, RefusesBadInput) {
