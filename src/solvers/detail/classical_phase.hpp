@@ -747,7 +747,7 @@ MatT<times(MaxC, 2), times(MaxC, 2)> null_space(const typename Phase<MaxC>::RowM
 /// equalities and inequalities have one or two): only those entries' products, where a dense
 /// product multiplies every zero too (on 32 contacts with friction, 64 × 64 × 61 for E·NG).
 /// The non-zero products are summed in column order from zero, as the dense product sums its
-/// terms, whose zero ones add nothing: the same values.
+/// terms (its zero ones add nothing): the same terms in the same order.
 template <class MatA, class MatX, class MatOut>
 void few_nonzero_rows_times(const MatA& A, int count, const MatX& X, MatOut& out) {
   out.setZero(count, X.cols());
