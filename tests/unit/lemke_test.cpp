@@ -167,14 +167,8 @@ TEST(Lemke, SmallAndDynamicAgree) {
 }
 
 // The LCP of a phase of Coulomb friction on a contacts (classical_phase.hpp, Anitescu & Potra's
-// planar form, 4a unknowns) with G = WᵀW from a random W of fewer rows than contact rows (G
-// singular), zero columns, μ up to 10 and degenerate offsets (zeros). Its matrix is copositive but
-// not copositive-plus, so where Lemke answers the answer must be an exact solution, and where the
-// enumeration of complementary bases finds none Lemke must not claim one. The stack-stored and the
-// heap-stored tableaux must pivot identically (same pivots, same z to the bit).
-// The LCP of a classical impact with Coulomb friction on a contacts (SPEC §3's 2-D friction split
-// into P_T = P_T⁺ − P_T⁻ with the slip multiplier λ): unknowns (P_N, P_T⁺, P_T⁻, λ), G = WᵀW the
-// Delassus matrix of normal and tangential columns, vt the tangential velocities, q_N the normal
+// planar form): unknowns (P_N, P_T⁺, P_T⁻, λ) with P_T = P_T⁺ − P_T⁻ and λ the slip multiplier;
+// G = WᵀW over the normal then the tangential columns, qN the normal velocities, vt the tangential
 // ones, b the bounds' offsets.
 template <class Mat, class Vec>
 void frictional_lcp(const MatrixX& G, int a, double mu, const VectorX& qN, const VectorX& vt,
@@ -204,6 +198,12 @@ void frictional_lcp(const MatrixX& G, int a, double mu, const VectorX& qN, const
   }
 }
 
+// frictional_lcp on one to three contacts, with G = WᵀW from a random W of fewer rows than
+// contact rows (G singular), zero columns, μ up to 10 and degenerate offsets (zeros). Its matrix is
+// copositive but not copositive-plus, so where Lemke answers the answer must be an exact solution,
+// and where the enumeration of complementary bases finds none Lemke must not claim one. The
+// stack-stored and the heap-stored tableaux must pivot identically (same pivots, same z to the
+// bit).
 TEST(Lemke, FrictionalImpactLcpsAreSolvedExactly) {
   std::mt19937 rng(23);
   std::uniform_int_distribution<int> entry(-4, 4), pick(0, 4);
@@ -254,8 +254,8 @@ TEST(Lemke, ManyContactFrictionalLcpsSatisfyTheComplementarityConditions) {
   int pivots = 0;
   for (const int a : {16, 24, 32}) {
     for (int trial = 0; trial < 4; ++trial) {
-      MatrixX W(3,
-                2 * a);  // a flat plate: normals (0, 1, x_i), tangents (1, 0, 0) at q̇ = (x, y, θ)
+      // A flat plate at q̇ = (x, y, θ): normals (0, 1, x_i), tangents (1, 0, s_i), s_i = 0 or small.
+      MatrixX W(3, 2 * a);
       for (int i = 0; i < a; ++i) {
         W.col(i) << 0.0, 1.0, -1.0 + 2.0 * i / (a - 1);
         W.col(a + i) << 1.0, 0.0, trial % 2 ? 0.1 * unit(rng) : 0.0;
