@@ -183,8 +183,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   int worst_contact = -1;
   double worst_contact_value = 0.0;
   for (int i = 0; i < c; ++i) {
-    const double zN = 0.5 * (r.D_NA(i) + r.D_NE(i));
-    const double zT = 0.5 * (r.D_TA(i) + r.D_TE(i));
+    // Halved before the sum: velocities near the largest double (an obstacle's 1e308) have a
+    // finite mean whose sum overflows, and 0·∞ would make a separating contact's energy NaN.
+    const double zN = 0.5 * r.D_NA(i) + 0.5 * r.D_NE(i);
+    const double zT = 0.5 * r.D_TA(i) + 0.5 * r.D_TE(i);
     const double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
     rep.per_contact(i) = pc;
     if (pc < worst_contact_value) {

@@ -86,5 +86,45 @@ TEST(ClassicalRobustness, MoreThanThreeContactsUseLemkeAlone) {
   EXPECT_GT(beyond, 10);  // the sample does go beyond the enumeration's reach
 }
 
+// Two point masses, each on its own obstacle; the second obstacle moves away at 1e308 (near the
+// largest double), so that contact's velocities before and after are both 1e308: their mean is
+// finite, their sum is not. The report must stay finite (a separating contact adds no energy, not
+// 0·∞ = NaN), under every law, with an answer or without one.
+TEST(ClassicalRobustness, VelocitiesNearTheLargestDoubleGiveAFiniteReport) {
+  ImpactProblem p;
+  p.M = MatrixX::Identity(4, 4);
+  p.W_N = MatrixX::Zero(4, 2);
+  p.W_T = MatrixX::Zero(4, 2);
+  p.W_N(0, 0) = p.W_T(1, 0) = p.W_N(2, 1) = p.W_T(3, 1) = 1.0;
+  p.qdot_A = VectorX{{-1.0, 0.5, -1.0, 0.0}};
+  p.w_T = VectorX::Zero(2);
+  for (const double w : {1e308, -1e308}) {
+    // w = −1e308: the second mass meets an obstacle approaching at 1e308; its percussion is
+    // beyond double precision, which must be reported as a failure with a finite report.
+    p.w_N = VectorX{{0.0, w}};
+    for (const ImpactLaw& law :
+         {ImpactLaw::newton(0.5), ImpactLaw::poisson(0.5), ImpactLaw::newton_coulomb(0.5, 0.3),
+          ImpactLaw::poisson_coulomb(0.5, 0.3)}) {
+      const ImpactResult r = solve_impact(p, law);
+      const std::string what = law.describe() + " w = " + std::to_string(w);
+      const auto& a = r.admissibility;
+      EXPECT_TRUE(std::isfinite(a.total)) << what;
+      EXPECT_TRUE(a.per_contact.allFinite()) << what;
+      EXPECT_TRUE(std::isfinite(a.dissipation)) << what;
+      EXPECT_TRUE(std::isfinite(a.reaction)) << what;
+      if (w > 0) {
+        ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
+        // The first mass alone: P_N = (1 + e)·1, and P_T = −μP_N slides (|D_TA| = 0.5 > μ P_N).
+        EXPECT_NEAR(r.P_N(0), 1.5, 1e-15) << what;
+        EXPECT_EQ(r.P_N(1), 0.0) << what;
+        EXPECT_TRUE(a.admissible) << what;
+        EXPECT_DOUBLE_EQ(a.per_contact(1), 0.0) << what;
+      } else {
+        EXPECT_FALSE(r.ok()) << what;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fremond
