@@ -347,6 +347,40 @@ VectorX contact_velocities(const ImpactProblem& p, const ImpactResult& r) {
   return D;
 }
 
+// Two point masses, each on its own obstacle, whose velocities differ by up to 16 orders of
+// magnitude (the core issue's range, 1e-10 to 1e6): the first (mass 2) approaches at v with a
+// tangential 0.2 v and sticks, the second (mass 0.5) approaches at 1 and slides at D_TA. Decoupled,
+// each contact has its one-contact answer by hand, under Newton and Poisson alike (a contact that
+// sticks in compression stays stuck; one that slides keeps sliding):
+//     stick: P_N = (1 + e) m v, P_T = −0.2 m v;   slide: P_N = (1 + e) m, P_T = −μ P_N sign(D_TA).
+// Every percussion to 1e-13 of itself: the small contact is not rounding beside the large one.
+TEST(ClassicalCoulomb, ContactsOfVeryDifferentScalesEachGetTheirOwnAnswer) {
+  const double e = 0.5, mu = 0.3, m1 = 2.0, m2 = 0.5;
+  for (const double v : {1e-10, 1e-6, 1e-3, 1.0})
+    for (const double slide : {-1.0, 1e3, 1e6}) {
+      ImpactProblem p;
+      p.M = VectorX{{m1, m1, m2, m2}}.asDiagonal();
+      p.W_N = MatrixX::Zero(4, 2);
+      p.W_T = MatrixX::Zero(4, 2);
+      p.W_N(0, 0) = p.W_T(1, 0) = p.W_N(2, 1) = p.W_T(3, 1) = 1.0;
+      p.qdot_A = VectorX{{-v, 0.2 * v, -1.0, slide}};
+      const double expected_PN[] = {(1 + e) * m1 * v, (1 + e) * m2};
+      const double expected_PT[] = {-0.2 * m1 * v, -mu * (1 + e) * m2 * (slide > 0 ? 1 : -1)};
+      for (const ImpactLaw& law :
+           {ImpactLaw::newton_coulomb(e, mu), ImpactLaw::poisson_coulomb(e, mu)}) {
+        const ImpactResult r = solve_impact(p, law);
+        const std::string what =
+            law.describe() + " v = " + std::to_string(v) + " D_TA = " + std::to_string(slide);
+        ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_NEAR(r.P_N(i), expected_PN[i], 1e-13 * std::fabs(expected_PN[i])) << what;
+          EXPECT_NEAR(r.P_T(i), expected_PT[i], 1e-13 * std::fabs(expected_PT[i])) << what;
+        }
+        EXPECT_TRUE(r.admissibility.admissible) << what;
+      }
+    }
+}
+
 TEST(ClassicalEnumeration, FindsEverySolutionAndAgreesWithLemkeWhenUnique) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> mus(0.0, 4.0);
