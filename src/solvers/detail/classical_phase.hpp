@@ -363,11 +363,11 @@ bool frictionless(const Phase<MaxC>& ph) {
 /// percussion. Lemke's tolerances are relative to the largest right-hand side, and its artificial
 /// variable z₀ adds that size to every row: a contact approaching at 1e-10 beside one sliding at
 /// 1e6 lost its velocity to that rounding (P_N = 0 returned, D_NE = −1e-10 left in the answer; at
-/// 1e-6 beside 1e3, 5e-8 of P_N), and so did a contact's normal row beside its own tangential row
-/// sliding at 1e6 (8e-12 of P_N). Each row divided by its scale, and each unknown by its own, give
-/// the same LCP with data of size 1 (w' = D w, z = S z'); the answer is scaled back. False (nothing
-/// to do) when the scales are within a factor 16: the problem is solved as it is, its pivots bit
-/// for bit.
+/// 1e-6 beside 1e3, 4e-8 of P_N and 2e-7 of P_T), and so did a contact's normal row beside its own
+/// tangential row sliding at 1e6 (8e-12 of P_N). Each row divided by its scale, and each unknown by
+/// its own, give the same LCP with data of size 1 (w' = D w, z = S z'); the answer is scaled back.
+/// False (nothing to do) when the scales are within a factor 16: the problem is solved as it is,
+/// its pivots bit for bit.
 ///
 /// The percussions' sizes from the data: P_N,j ≈ |q_N,j| / G_jj, and P_T,j ≈ |q_T,j| / G_jj, but
 /// no more than the cone allows, μ_j P_N,j + b0_j. A row's velocity is at least its terms' size
