@@ -370,10 +370,14 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   // Lemke's pivots accumulate rounding: on an ill-conditioned problem (cond(M) = 1e9 and μ = 300,
   // say) its answer can miss the law's tolerance where the linear system of the same contact
   // mode, solved directly, meets it. The enumeration's answer with the same velocities (to 1e-9)
-  // was merged into Lemke's, so where the enumeration applies it gets its own try. Only on this
-  // failure path, and taken only when it converges.
+  // was merged into Lemke's, so where the enumeration applies it gets its own try. That holds for
+  // Lemke in either of Poisson's phases: a compression answer by Lemke, its expansion by the
+  // enumeration (the method then named) can stall where the enumeration of both phases meets the
+  // law (poisson_coulomb, three contacts on two dofs, cond(M) = 1.4e6 and μ = 1e8: 1.5e-4 against
+  // 1.4e-11). Only on this failure path, and taken only when it converges.
   if (out.solver.status == SolverStatus::stalled && options.method == SolverMethod::automatic &&
-      lo.method == SolverMethod::lemke && cs.active <= classical::kMaxEnumerated) {
+      (lo.method == SolverMethod::lemke || lo.pivots > 0) &&
+      cs.active <= classical::kMaxEnumerated) {
     LawOutcome<C> le;
     solve_law(pb, cs, law, classical::kMaxEnumerated, le, SolverMethod::mode_enumeration);
     if (le.solutions.size == 0) return;
