@@ -26,9 +26,10 @@
 // method may fail, but must say so). On every --reference-every-th case the reference checks that
 // are cheap (Frémond on one contact with any tangential law; every classical law, by its contact
 // modes, where none is singular) compare the velocities after impact (and Poisson's after
-// compression), and a `no_solution` with the reference's; every 10th of those also Frémond
-// without Coulomb on several contacts (about a second in quad precision). The summary gives the
-// worst disagreement by shape of data.
+// compression), and a `no_solution` with the reference's (Frémond's on several contacts: the
+// feasibility of D_NE ≥ 0, by the reference's Newton modes with e = 0); every 10th of those also
+// Frémond without Coulomb on several contacts (about a second in quad precision). The summary
+// gives the worst disagreement by shape of data.
 //
 // --known FILE: failures that are known library issues (known_issues.hpp; the file
 // tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
@@ -326,6 +327,27 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
         return;
       }
       sols = found.solutions;
+    } else if (law.type == LawType::fremond && r.solver.status == SolverStatus::no_solution &&
+               !(law.tangential == TangentialLaw::coulomb && r.takes_part.count() == 1)) {
+      // Frémond's law says no_solution where D_NE ≥ 0 is infeasible on the contacts that take
+      // part (and, with Coulomb on one contact taking part, where its modes have none: checked
+      // below where the problem has one contact): the same inequalities as Newton's law with
+      // e = 0 on the normal rows, whose existence the reference's modes decide.
+      ref::Problem qn = q;
+      qn.W_T.clear();
+      qn.w_T.clear();
+      const auto found =
+          ref::classical_modes(qn, ref::ClassicalLaw::newton, ref::QVec(c, ref::quad(0)), {});
+      if (!found.existence_known) {
+        out.line("R skipped 0\tfeasibility of D_NE >= 0 not decided by the reference");
+      } else if (found.exists) {
+        out.line(
+            "R mismatch 0\tthe library says no_solution, but D_NE >= 0 is feasible (the "
+            "reference's Newton law with e = 0 on the normal rows has a solution)");
+      } else {
+        out.line("R checked 0\tno solution on either side");
+      }
+      return;
     } else if (law.type == LawType::fremond) {
       std::vector<ref::PowerLaw> normal;
       std::vector<ref::TangentialLaw> tangential;

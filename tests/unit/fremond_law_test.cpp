@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "fremond/fremond.hpp"
 #include "support/test_problems.hpp"
@@ -211,6 +213,52 @@ TEST(FremondBar, PainleveCaseReportsEverySolution) {
     }
   }
   EXPECT_GT(cases_with_several + cases_without, 0) << "the sweep must reach the Painlevé regime";
+}
+
+// A body between two obstacles that close in on it: q = (x, y), contact 0 is a wall moving right
+// (normal −x, D_N = −ẋ + w₀), contact 1 one moving left (normal +x, D_N = ẋ + w₁), w = (−1, −1).
+// Both take part (D_NA = (−1.5, −0.5)), and D_NE ≥ 0 asks ẋ_E ≤ −1 and ẋ_E ≥ 1: by Farkas, y = (1,
+// 1) gives W_N y = 0 and y·w_N = −2 < 0, so no velocity after the impact keeps both from
+// penetrating, and Frémond's reaction (SPEC §2) admits no answer, whatever the potentials. Every
+// method used to end "stalled" or "failed" after its budget; the law now says no_solution and
+// returns the state before the impact. Where the walls move together (w = (1, −1), ẋ_A = 1: both
+// touching, D_NA = 0) the single feasible velocity ẋ_E = 1 is the answer, with no percussion.
+TEST(FremondLaw, ObstaclesClosingInLeaveNoSolution) {
+  ImpactProblem pb;
+  pb.M = Eigen::Vector2d(2.0, 2.0).asDiagonal();
+  pb.W_N.resize(2, 2);
+  pb.W_N << -1.0, 1.0, 0.0, 0.0;
+  pb.W_T.resize(2, 2);
+  pb.W_T << 0.0, 0.0, 1.0, 1.0;
+  pb.w_N = Eigen::Vector2d(-1.0, -1.0);
+  pb.qdot_A = Eigen::Vector2d(0.5, 0.3);
+  const std::vector<ImpactLaw> laws{
+      ImpactLaw::fremond(PowerPotential(10.0, 3.0)),
+      ImpactLaw::fremond(PowerPotential(10.0, 2.0), DeadZonePowerPotential(1.5, 2.0, 0.2)),
+      ImpactLaw::fremond_coulomb(PowerPotential(10.0, 3.0), 0.5),
+  };
+  for (const auto& law : laws) {
+    for (auto m : {SolverMethod::automatic, SolverMethod::semismooth_newton, SolverMethod::proximal,
+                   SolverMethod::nlopt}) {
+      SCOPED_TRACE(law.describe() + " " + std::string(to_string(m)));
+      const auto r = solve_impact(pb, law, with_method(m));
+      EXPECT_EQ(r.solver.status, SolverStatus::no_solution) << r.solver.message;
+      EXPECT_NE(r.solver.message.find("obstacles close in"), std::string::npos);
+      EXPECT_EQ(r.qdot_E, pb.qdot_A);
+      EXPECT_EQ(r.P_N, Eigen::Vector2d::Zero());
+      EXPECT_EQ(r.P_T, Eigen::Vector2d::Zero());
+      EXPECT_FALSE(r.unique);
+      EXPECT_TRUE(solve_impact_all(pb, law).empty());
+    }
+    // The walls moving together: feasible at one velocity, reached with no percussion.
+    ImpactProblem together = pb;
+    together.w_N = Eigen::Vector2d(1.0, -1.0);
+    together.qdot_A = Eigen::Vector2d(1.0, 0.0);
+    const auto r = solve_impact(together, law);
+    ASSERT_TRUE(r.ok()) << law.describe() << ": " << r.solver.message;
+    EXPECT_NEAR(r.qdot_E(0), 1.0, 1e-15);
+    EXPECT_NEAR(r.qdot_E(1), 0.0, 1e-15);
+  }
 }
 
 // Thousands of random problems (n ≤ 6, up to 3 contacts): every result converges and satisfies
