@@ -6,7 +6,8 @@
 // Coulomb's b|z_T| is non-smooth: it enters through epigraph variables t ≥ |z_T| with b = μ|P_N|
 // updated in an outer fixed point (the law is quasi-variational). The percussion follows from the
 // velocities: P_j = −φ'(z_j) on rows where φ is single-valued, and the remaining rows (active
-// reactions, Coulomb) by least squares on W P = 2 M u.
+// reactions, Coulomb) by least squares on W P = 2 M u (without Coulomb, where that family has
+// several members, the one whose reactions are ≥ 0, by an LCP).
 //
 // A library call must return, and return nothing that is not finite:
 //  - SLSQP only, also with Coulomb. MMA (and CCSAQ, which shares its inner loop) solve a dual
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "detail/fremond.hpp"
+#include "fremond/solvers/lemke.hpp"
 
 namespace fremond::detail {
 
@@ -292,9 +294,42 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
       const VectorX sol = Wf.completeOrthogonalDecomposition().solve(rhs - W * known);
       for (std::size_t i = 0; i < free_rows.size(); ++i) Pout(free_rows[i]) = sol(i);
     }
-    if (!resolved(Pout)) return std::numeric_limits<double>::infinity();
-    typename FremondRowsT<N, C>::Rows Pr = Pout, zr, R;
-    return rows.residual(Pr, zr, R);
+    auto law_residual = [&](const VectorX& Pc) {
+      if (!resolved(Pc)) return std::numeric_limits<double>::infinity();
+      typename FremondRowsT<N, C>::Rows Pr = Pc, zr, R;
+      return rows.residual(Pr, zr, R);
+    };
+    const double plain = law_residual(Pout);
+    // More contacts at rest (D_NE = 0) than W's rank: the percussions that make 2Mu are a family,
+    // and the law takes the one whose reactions are ≥ 0 (P_j ≥ −φ'(z_j)), which the minimum-norm
+    // one above need not be (three contacts on a body of 2 dofs, stopped at the apex of their
+    // cone: every method failed). Without Coulomb those rows are the only free ones, and that
+    // choice is a nonnegative least-squares problem in the metric of M⁻¹: with P_f = b_f + s,
+    // s ≥ 0 ⊥ G_ff s − W_fᵀM⁻¹(rhs − W·known − W_f b_f) ≥ 0, a symmetric positive semidefinite
+    // LCP, which Lemke solves (a ray: 2Mu is not reached with reactions ≥ 0). Kept where its
+    // residual is the lower.
+    if (rows.coulomb || free_rows.size() < 2 || plain == 0.0) return plain;
+    const int f = static_cast<int>(free_rows.size());
+    MatrixX Wf(n, f);
+    VectorX base(f);
+    for (int i = 0; i < f; ++i) {
+      const int j = free_rows[i];
+      Wf.col(i) = W.col(j);
+      base(i) = -rows.law->normal[contact[j]].subgradient(z(j));
+    }
+    const VectorX b = rhs - W * known - Wf * base;
+    const MatrixX MinvWf = llt.solve(Wf);
+    const MatrixX Gff = Wf.transpose() * MinvWf;
+    const VectorX q = -(MinvWf.transpose() * b);
+    if (!Gff.allFinite() || !q.allFinite()) return plain;
+    const LcpResult lcp = solve_lcp<Dynamic>(0.5 * (Gff + Gff.transpose()), q);
+    if (!lcp.ok()) return plain;
+    VectorX Pn = Pout;
+    for (int i = 0; i < f; ++i) Pn(free_rows[i]) = base(i) + std::max(0.0, lcp.z(i));
+    const double bounded = law_residual(Pn);
+    if (!(bounded < plain)) return plain;
+    Pout = Pn;
+    return bounded;
   };
   int evaluations = 0;
   bool breakdown = false, out_of_time = false, out_of_budget = false, settled = !rows.coulomb;

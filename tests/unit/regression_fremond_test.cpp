@@ -1163,6 +1163,37 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
   check(to_small(file.problem), "small");
 }
 
+/// Three contacts that take part on a body of 2 dofs (cond(M) = 7e6), p = 1.0001 with k = 1.3e4:
+/// the percussions that give the answer's velocities are a family, and NLopt's recovery took the
+/// minimum-norm one, whose reactions are negative; no iterate was usable and every method failed.
+/// The recovery now solves for reactions ≥ 0 (an LCP), and Newton from there converges. No quad
+/// reference converges here; the answer is held to the law itself: every contact at or beyond
+/// rest, every reaction ≥ 0, the stress invariants (residual within its bound, SPEC §4), and the
+/// same velocities through the stack-stored problem.
+TEST(RegressionFremond, MoreContactsAtRestThanDofsGetNonNegativeReactions) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[5253.6091282278412, -2909.2752077921205], [-2909.2752077921205, 1611.0618736470387]],
+    "W_N": [[-0.12214791208122289, -0.18227276148181015, -0.11262499981197982, 0.80275983876977208],
+            [-0.16473883918710674, -0.387740066583115, 0.43899162642914336, 0.13238271288840808]],
+    "qdot_A": [-0.033236910167844524, 0.041815720710960062],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": 13132.406933762792, "p": 1.0001094062053206}}})",
+                                           PotentialRegistry::with_builtins());
+  const auto r = solve_impact(file.problem, file.law);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
+  const double v = r.D_NA.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 4; ++i) {
+    if (!r.takes_part(i)) continue;
+    EXPECT_GE(r.D_NE(i), -1e-9 * v) << i;
+    EXPECT_GE(r.P_N_reaction(i), 0.0) << i;
+  }
+  const auto rs = solve_impact(to_small(file.problem), file.law);
+  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+  EXPECT_LE((rs.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(),
+            1e-9 * file.problem.qdot_A.cwiseAbs().maxCoeff());
+}
+
 /// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6) hit at 1e6 m/s: G has condition
 /// 3e6, the percussions are 1e6 and the terms G_jk P_k of z = D_A + GP/2 are 1e12 that cancel to
 /// velocities of 1e6. Newton's answer stopped at that form's rounding floor (criterion `rounding`)
