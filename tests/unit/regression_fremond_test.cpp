@@ -15,6 +15,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "fremond/fremond.hpp"
@@ -1163,35 +1164,49 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
   check(to_small(file.problem), "small");
 }
 
-/// Three contacts that take part on a body of 2 dofs (cond(M) = 7e6), p = 1.0001 with k = 1.3e4:
-/// the percussions that give the answer's velocities are a family, and NLopt's recovery took the
-/// minimum-norm one, whose reactions are negative; no iterate was usable and every method failed.
-/// The recovery now solves for reactions ≥ 0 (an LCP), and Newton from there converges. No quad
-/// reference converges here; the answer is held to the law itself: every contact at or beyond
-/// rest, every reaction ≥ 0, the stress invariants (residual within its bound, SPEC §4), and the
-/// same velocities through the stack-stored problem.
-TEST(RegressionFremond, MoreContactsAtRestThanDofsGetNonNegativeReactions) {
-  const auto file = io::parse_problem_file(R"({
+/// Three contacts that take part on a body of 2 dofs (no moving obstacle): the percussions that
+/// give the answer's velocities are a family, and every method failed on both problems below.
+/// (a) cond(M) = 7e6, p = 1.0001 with k = 1.3e4: φ_N' jumps from 0 to nearly k within |z| of
+/// 1e-12, so every contact comes back reversed, z = 0 to that width: q̇_E = −q̇_A (which gives
+/// D_E = −D_A on every row at once). NLopt's recovery took the minimum-norm member of the family,
+/// with negative reactions; it now solves for reactions ≥ 0 (an LCP). (b) cond(M) = 3e5, p = 4.4
+/// with velocities of 2e-5, where φ_N' is 1e-13 of the percussions: the reactions stop the body
+/// at the apex of its contacts' cone, q̇_E = 0 (−M q̇_A lies in the cone of the normals). The
+/// percussions' terms cancel by 1e5, and every NLopt iterate was refused as unresolved at 1e-11 of
+/// the velocities (now 1e-8). Newton from NLopt's answer now converges on both; checked against
+/// those closed forms, the stress invariants (residual within its bound, SPEC §4), reactions ≥ 0,
+/// and through the stack-stored problem.
+TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
+  const std::pair<const char*, double> cases[] = {{R"({
     "M": [[5253.6091282278412, -2909.2752077921205], [-2909.2752077921205, 1611.0618736470387]],
     "W_N": [[-0.12214791208122289, -0.18227276148181015, -0.11262499981197982, 0.80275983876977208],
             [-0.16473883918710674, -0.387740066583115, 0.43899162642914336, 0.13238271288840808]],
     "qdot_A": [-0.033236910167844524, 0.041815720710960062],
     "law": {"type": "fremond",
             "normal": {"potential": "power", "k": 13132.406933762792, "p": 1.0001094062053206}}})",
-                                           PotentialRegistry::with_builtins());
-  const auto r = solve_impact(file.problem, file.law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
-  const double v = r.D_NA.cwiseAbs().maxCoeff();
-  for (int i = 0; i < 4; ++i) {
-    if (!r.takes_part(i)) continue;
-    EXPECT_GE(r.D_NE(i), -1e-9 * v) << i;
-    EXPECT_GE(r.P_N_reaction(i), 0.0) << i;
+                                                   -1.0},
+                                                  {R"({
+    "M": [[2917.8016050419392, 298.4093389037638], [298.4093389037638, 30.528573347873625]],
+    "W_N": [[0.42904765640184106, 0.89227851462704777, -0.33714429506498422, -0.76214171037316836],
+            [-0.18835997174154062, 0.31827607800422597, -0.93993777421823743, -0.32674496352375493]],
+    "qdot_A": [-2.0427573334316176e-05, 1.8655891142688904e-05],
+    "law": {"type": "fremond",
+            "normal": {"potential": "power", "k": 36753.903373172041, "p": 4.4035535725014761}}})",
+                                                   0.0}};
+  for (const auto& [text, ratio] : cases) {
+    const auto file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
+    SCOPED_TRACE(file.law.describe());
+    const Eigen::VectorXd expected = ratio * file.problem.qdot_A;  // q̇_E in closed form
+    const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
+    const auto r = solve_impact(file.problem, file.law);
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
+    EXPECT_LE((r.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
+    for (int i = 0; i < 4; ++i) EXPECT_GE(r.P_N_reaction(i), 0.0) << i;
+    const auto rs = solve_impact(to_small(file.problem), file.law);
+    ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+    EXPECT_LE((rs.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
   }
-  const auto rs = solve_impact(to_small(file.problem), file.law);
-  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
-  EXPECT_LE((rs.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(),
-            1e-9 * file.problem.qdot_A.cwiseAbs().maxCoeff());
 }
 
 /// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6) hit at 1e6 m/s: G has condition
