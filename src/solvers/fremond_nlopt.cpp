@@ -305,8 +305,8 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     const double plain = law_residual(Pout);
     // More contacts at rest (D_NE = 0) than W's rank: the percussions that make 2Mu are a family,
     // and the law takes the one whose reactions are ≥ 0 (P_j ≥ −φ'(z_j)), which the minimum-norm
-    // one above need not be (three contacts on a body of 2 dofs, stopped at the apex of their
-    // cone: every method failed). Without Coulomb those rows are the only free ones, and that
+    // one above need not be (three contacts on a body of 2 dofs with p = 1.0001: no iterate was
+    // usable and every method failed). Without Coulomb those rows are the only free ones, and that
     // choice is a nonnegative least-squares problem in the metric of M⁻¹: with P_f = b_f + s,
     // s ≥ 0 ⊥ G_ff s − W_fᵀM⁻¹(rhs − W·known − W_f b_f) ≥ 0, a symmetric positive semidefinite
     // LCP, which Lemke solves (a ray: 2Mu is not reached with reactions ≥ 0). Kept where its

@@ -1169,7 +1169,7 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
 /// (a) cond(M) = 7e6, p = 1.0001 with k = 1.3e4: φ_N' jumps from 0 to nearly k within |z| of
 /// 1e-12, so every contact comes back reversed, z = 0 to that width: q̇_E = −q̇_A (which gives
 /// D_E = −D_A on every row at once). NLopt's recovery took the minimum-norm member of the family,
-/// with negative reactions; it now solves for reactions ≥ 0 (an LCP). (b) cond(M) = 3e5, p = 4.4
+/// which need not have reactions ≥ 0; it now solves for them (an LCP). (b) cond(M) = 3e5, p = 4.4
 /// with velocities of 2e-5, where φ_N' is 1e-13 of the percussions: the reactions stop the body
 /// at the apex of its contacts' cone, q̇_E = 0 (−M q̇_A lies in the cone of the normals). The
 /// percussions' terms cancel by 1e5, and every NLopt iterate was refused as unresolved at 1e-11 of
