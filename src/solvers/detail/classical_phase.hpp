@@ -492,7 +492,8 @@ LcpStatus lemke_phase_in(const Phase<MaxC>& ph, const LemkeOptions& opt, bool sc
 /// the scaled units is tried again in the problem's. Lemke forced on stress poisson_coulomb seed 23
 /// (3,000 problems), against the unscaled method alone: 15 rays fewer, 2 more; of the automatic
 /// choice, 3 answers `stalled` that had converged (μ = 1e8 or G singular: several answers, and the
-/// path now reaches a farther one), none the other way.
+/// path now reaches a farther one), none the other way; one of them (#316) converges again through
+/// the enumeration's retry (classical.cpp).
 template <int MaxC>
 LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt, typename Phase<MaxC>::Rows& u,
                       int& pivots) {
