@@ -22,28 +22,14 @@
 
 namespace fremond::detail {
 
-namespace {
-
-using classical::LawOutcome;
-using classical::LawSolution;
-using classical::Phase;
-using classical::solve_law;
-
-/// The largest part of the velocities that the rounding of a refined answer's percussions may
-/// account for (classical_residual's percussion_cap, for the answer's acceptance only).
-constexpr double kRoundedPercussionCap = 1e-8;
-
-bool is_poisson(const ImpactLaw& law) {
-  return law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
-}
-
 // Writes the percussions P (and Poisson's compression P_C) of the rows that take part into `out`:
 // velocities, percussions, phases.
 template <int N, int C>
-void write_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                  const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
-                  const typename ContactSpaceT<N, C>::Rows& P_C, ImpactResultT<N, C>& out) {
-  const bool poisson = is_poisson(law);
+void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                            const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
+                            const typename ContactSpaceT<N, C>::Rows& P_C,
+                            ImpactResultT<N, C>& out) {
+  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
   scatter_solution(pb, cs, P, out);
   out.has_phases = poisson;
   if (poisson) {
@@ -64,6 +50,21 @@ void write_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
         out.D_TC(i) = contact_velocity(pb.W_T.col(i), qdot_C, pb.w_T.size() ? pb.w_T(i) : 0.0);
     }
   }
+}
+
+namespace {
+
+using classical::LawOutcome;
+using classical::LawSolution;
+using classical::Phase;
+using classical::solve_law;
+
+/// The largest part of the velocities that the rounding of a refined answer's percussions may
+/// account for (classical_residual's percussion_cap, for the answer's acceptance only).
+constexpr double kRoundedPercussionCap = 1e-8;
+
+bool is_poisson(const ImpactLaw& law) {
+  return law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
 }
 
 // Refines the answer's percussions P (and Poisson's compression P_C) in its contact mode
@@ -100,7 +101,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                  const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
                  int pick, ImpactResultT<N, C>& out) {
   const LawSolution<C>& s = lo.solutions[pick];
-  write_answer(pb, cs, law, s.P, s.P_C, out);
+  write_classical_answer(pb, cs, law, s.P, s.P_C, out);
   double residual = classical_residual(pb, law, out);
   // Within the tolerance, or within the rounding of the contact velocities' own terms (criterion
   // `rounding`: a grazing contact of a spinning body, whose D_NA = −6e-4 is summed from terms of
@@ -121,7 +122,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     if (refined != classical::Refinement::singular) {
       const bool rounded = refined == classical::Refinement::converged;
       ImpactResultT<N, C> trial;
-      write_answer(pb, cs, law, P, P_C, trial);
+      write_classical_answer(pb, cs, law, P, P_C, trial);
       double trial_beyond = 0.0;
       const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, rounded);
       bool keep = trial_residual < residual || (rounded && trial_beyond <= options.tolerance);
@@ -148,7 +149,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
         }
       }
       if (keep) {
-        write_answer(pb, cs, law, P, P_C, out);
+        write_classical_answer(pb, cs, law, P, P_C, out);
         residual = trial_residual;
         beyond_rounding = trial_beyond;
       }
@@ -430,9 +431,13 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                        \
-  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, \
-                                const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&);
+#define FREMOND_INSTANTIATE(N, C)                                                              \
+  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
+                                const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
+  template void write_classical_answer(                                                        \
+      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const ImpactLaw&,               \
+      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
+      ImpactResultT<N, C>&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

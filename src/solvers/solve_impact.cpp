@@ -3,6 +3,7 @@
 
 #include "../admissibility/detail/admissibility.hpp"
 #include "detail/fremond.hpp"
+#include "detail/independent_groups.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
@@ -22,11 +23,10 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
       pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
       cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
-  if (law.type == LawType::fremond) {
-    detail::solve_fremond(pb, cs, law, options, out);
-  } else {
-    detail::solve_classical(pb, cs, law, options, out);
-  }
+  // Independent groups of contacts (two bodies in one problem) are solved each to its own
+  // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries.
+  if (!detail::solve_by_groups(pb, cs, law, options, out))
+    detail::solve_law_stage(pb, cs, law, options, out);
   VecT<C> percussion;
   const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
   out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,

@@ -181,6 +181,20 @@ TEST(NoAllocation, TheCounterSeesTheLibrarysAllocations) {
   EXPECT_GE(allocations([&] { d = to_dynamic(small); }, &where), 4);
 }
 
+/// Two point masses in one problem, one contact each, at velocities 1e9 apart: independent
+/// groups of contacts, solved one by one (independent_groups.hpp).
+SmallImpactProblem two_point_masses(bool with_friction) {
+  SmallImpactProblem p;
+  p.M = SmallImpactProblem::Mat::Identity(4, 4);
+  p.W_N = SmallImpactProblem::Jac::Zero(4, 2);
+  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
+  p.W_T = SmallImpactProblem::Jac::Zero(4, with_friction ? 2 : 0);
+  if (with_friction) p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
+  p.qdot_A = SmallImpactProblem::Vec(4);
+  p.qdot_A << 2.0, -3.0, 1e-9, -2e-9;
+  return p;
+}
+
 struct Case {
   std::string name;
   SmallImpactProblem problem;
@@ -203,6 +217,9 @@ std::vector<Case> fremond_cases() {
   v.push_back({"flat bar p3", flat_bar_two_contacts(false), p3});
   v.push_back({"flat bar p3 viscous", flat_bar_two_contacts(true), viscous});
   v.push_back({"flat bar p3 coulomb", flat_bar_two_contacts(true), coulomb});
+  v.push_back({"two point masses p3", two_point_masses(false), p3});
+  v.push_back({"two point masses viscous", two_point_masses(true), viscous});
+  v.push_back({"two point masses coulomb", two_point_masses(true), coulomb});
   for (int i = 0; i < 4; ++i) {
     v.push_back({"random " + std::to_string(i) + " p3", random_spd_problem(i, false), p3});
     v.push_back({"random " + std::to_string(i) + " viscous", random_spd_problem(i, true), viscous});
@@ -244,7 +261,8 @@ TEST(NoAllocation, ClassicalLawsSmallProblem) {
   std::vector<std::pair<std::string, SmallImpactProblem>> problems{
       {"bar", bar_first_impact(true)},
       {"point mass", point_mass(1.0, true)},
-      {"flat bar", flat_bar_two_contacts(true)}};
+      {"flat bar", flat_bar_two_contacts(true)},
+      {"two point masses", two_point_masses(true)}};
   for (int i = 0; i < 4; ++i)
     problems.push_back({"random " + std::to_string(i), random_spd_problem(i, true)});
   for (const auto& [pname, p] : problems)

@@ -1,0 +1,148 @@
+// Independent groups of contacts (src/solvers/detail/independent_groups.hpp): a problem made of
+// two bodies that do not touch each other separates, and each body must get the answer of its own
+// problem, to its own velocity scale, whatever the other body's (SPEC §1-2: the laws read
+// D_E = D_A + G P row by row, and G has no entry between the bodies).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fremond/fremond.hpp"
+
+namespace fremond {
+namespace {
+
+/// A point mass on the ground y = 0 in the plane, q = (x, y): D_NA = ẏ, D_TA = ẋ.
+struct Body {
+  double m, xdot, ydot;
+};
+
+ImpactProblem one_body(const Body& b) {
+  ImpactProblem p;
+  p.M = Eigen::Matrix2d::Identity() * b.m;
+  p.W_N = Eigen::Vector2d(0.0, 1.0);
+  p.W_T = Eigen::Vector2d(1.0, 0.0);
+  p.qdot_A = Eigen::Vector2d(b.xdot, b.ydot);
+  return p;
+}
+
+/// Both bodies in one problem, q = (x₁, y₁, x₂, y₂): M block-diagonal, one contact each.
+ImpactProblem two_bodies(const Body& a, const Body& b) {
+  ImpactProblem p;
+  p.M = Eigen::Vector4d(a.m, a.m, b.m, b.m).asDiagonal();
+  p.W_N = Eigen::MatrixXd::Zero(4, 2);
+  p.W_T = Eigen::MatrixXd::Zero(4, 2);
+  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
+  p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
+  p.qdot_A = Eigen::Vector4d(a.xdot, a.ydot, b.xdot, b.ydot);
+  return p;
+}
+
+// A body approaching at 1.5e5 m/s beside one at 3.7e-10 m/s, and the slow one sliding.
+const Body kFast{2.0, 4.0e4, -1.5e5};
+const Body kSlow{0.3, 2.0e-9, -3.7e-10};
+
+struct NamedLaw {
+  std::string name;
+  ImpactLaw law;
+};
+
+std::vector<NamedLaw> laws() {
+  std::vector<NamedLaw> v;
+  v.push_back({"newton", ImpactLaw::newton(0.6)});
+  v.push_back({"poisson", ImpactLaw::poisson(0.6)});
+  v.push_back({"newton_coulomb", ImpactLaw::newton_coulomb(0.6, 0.4)});
+  v.push_back({"poisson_coulomb", ImpactLaw::poisson_coulomb(0.6, 0.4)});
+  v.push_back({"fremond", ImpactLaw::fremond(PowerPotential(3.0, 2.0))});
+  // The dead zone's radius at the slow body's scale: the fast one slides far beyond it.
+  v.push_back({"fremond_viscous", ImpactLaw::fremond(PowerPotential(3.0, 2.0),
+                                                     DeadZonePowerPotential(0.5, 2.0, 1e-10))});
+  v.push_back({"fremond_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(3.0, 2.0), 0.4)});
+  return v;
+}
+
+TEST(IndependentGroups, EachBodyGetsTheAnswerOfItsOwnProblem) {
+  for (const auto& [name, law] : laws()) {
+    SCOPED_TRACE(name);
+    const ImpactResult both = solve_impact(two_bodies(kFast, kSlow), law);
+    const ImpactResult fast = solve_impact(one_body(kFast), law);
+    const ImpactResult slow = solve_impact(one_body(kSlow), law);
+    ASSERT_TRUE(fast.ok() && slow.ok()) << fast.solver.message << " / " << slow.solver.message;
+    ASSERT_TRUE(both.ok()) << both.solver.message;
+    EXPECT_TRUE(both.admissibility.admissible);
+    for (int i = 0; i < 2; ++i) {
+      const double s_fast = std::fabs(kFast.ydot), s_slow = std::fabs(kSlow.ydot);
+      EXPECT_NEAR(both.qdot_E(i), fast.qdot_E(i), 1e-13 * s_fast) << i;
+      EXPECT_NEAR(both.qdot_E(2 + i), slow.qdot_E(i), 1e-13 * s_slow) << i;
+    }
+    EXPECT_NEAR(both.P_N(1), slow.P_N(0), 1e-13 * std::fabs(slow.P_N(0)));
+    EXPECT_NEAR(both.P_T(1), slow.P_T(0), 1e-13 * std::fabs(slow.P_N(0)));
+    // The slow body does not go on approaching at its own scale.
+    EXPECT_GE(both.D_NE(1), -1e-13 * std::fabs(kSlow.ydot));
+    EXPECT_EQ(both.unique, fast.unique && slow.unique);
+    EXPECT_EQ(both.has_phases, fast.has_phases);
+  }
+}
+
+TEST(IndependentGroups, SlowBodyBesideAFastOneByHand) {
+  // Newton + Coulomb, G = I/m per contact: P_N = −(1 + e) m D_NA. The slow body slides
+  // (m|D_TA| = 6e-10 > μ P_N = 0.4 · 1.6 · 0.3 · 3.7e-10 = 7.1e-11): P_T = −μ P_N and
+  // D_TE = D_TA + P_T/m. The fast one sticks (m|D_TA| = 8e4 ≤ μ P_N = 1.92e5): P_T = −m D_TA.
+  const double e = 0.6, mu = 0.4;
+  const ImpactResult r = solve_impact(two_bodies(kFast, kSlow), ImpactLaw::newton_coulomb(e, mu));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  const double PN_slow = -(1 + e) * kSlow.m * kSlow.ydot;
+  ASSERT_GT(kSlow.m * std::fabs(kSlow.xdot), mu * PN_slow);
+  EXPECT_NEAR(r.P_N(1), PN_slow, 1e-14 * PN_slow);
+  EXPECT_NEAR(r.P_T(1), -mu * PN_slow, 1e-14 * PN_slow);
+  EXPECT_NEAR(r.D_NE(1), -e * kSlow.ydot, 1e-14 * std::fabs(kSlow.ydot));
+  EXPECT_NEAR(r.D_TE(1), kSlow.xdot - mu * PN_slow / kSlow.m, 1e-14 * std::fabs(kSlow.xdot));
+  const double PN_fast = -(1 + e) * kFast.m * kFast.ydot;
+  EXPECT_NEAR(r.P_N(0), PN_fast, 1e-14 * PN_fast);
+  EXPECT_NEAR(r.P_T(0), -kFast.m * kFast.xdot, 1e-14 * PN_fast);
+  EXPECT_TRUE(r.unique);
+}
+
+TEST(IndependentGroups, AFrictionlessCornerSeparatesItsTwoWalls) {
+  // One point mass against the floor (normal y) and a wall (normal x): G = I/m is diagonal, so
+  // each wall is its own group though both act on the same body. Floor approached at 1e-9, wall
+  // at 1e3: Newton's law gives D_NE = −e D_NA on each, each to its own scale.
+  ImpactProblem p;
+  p.M = Eigen::Matrix2d::Identity() * 0.7;
+  p.W_N.resize(2, 2);
+  p.W_N << 1.0, 0.0, 0.0, 1.0;
+  p.W_T.resize(2, 0);
+  p.qdot_A = Eigen::Vector2d(-1e3, -1e-9);
+  for (const double e : {0.0, 0.5, 1.0}) {
+    const ImpactResult r = solve_impact(p, ImpactLaw::newton(e));
+    ASSERT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_NEAR(r.qdot_E(0), e * 1e3, 1e-15 * 1e3) << e;
+    EXPECT_NEAR(r.qdot_E(1), e * 1e-9, 1e-15 * 1e-9) << e;
+    EXPECT_NEAR(r.P_N(1), (1 + e) * 0.7e-9, 1e-15 * 0.7e-9) << e;
+    EXPECT_TRUE(r.unique);
+    EXPECT_TRUE(r.admissibility.admissible);
+  }
+}
+
+TEST(IndependentGroups, CoupledContactsAreSolvedTogether) {
+  // The flat bar on both ends: G couples the ends, one group, Newton's frictionless law on two
+  // contacts. With e = 0 both ends come to rest: the bar's ẏ and θ̇ after are 0.
+  ImpactProblem p;
+  p.M = Eigen::Vector3d(1.0, 1.0, 1.0 / 12.0).asDiagonal();
+  p.W_N.resize(3, 2);
+  p.W_N << 0.0, 0.0, 1.0, 1.0, 0.5, -0.5;
+  p.W_T.resize(3, 0);
+  p.qdot_A = Eigen::Vector3d(2.0, -3.0, 1.0);
+  const ImpactResult r = solve_impact(p, ImpactLaw::newton(0.0));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.qdot_E(1), 0.0, 1e-14);
+  EXPECT_NEAR(r.qdot_E(2), 0.0, 1e-14);
+  EXPECT_NEAR(r.qdot_E(0), 2.0, 0.0);
+  // ΣP_N = m·3 and the torque balance 0.5 (P₀ − P₁) = J θ̇_A = 1/12.
+  EXPECT_NEAR(r.P_N(0) + r.P_N(1), 3.0, 1e-14);
+  EXPECT_NEAR(0.5 * (r.P_N(0) - r.P_N(1)), -1.0 / 12.0, 1e-14);
+}
+
+}  // namespace
+}  // namespace fremond
