@@ -44,9 +44,11 @@ std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const Impact
   validate(pb);
   law.validate(pb.contacts());
   options.validate();
-  std::vector<ImpactResult> all = law.type == LawType::fremond
-                                      ? detail::solve_fremond_all(pb, law, options)
-                                      : detail::solve_classical_all(pb, law, options);
+  // Independent groups of contacts: the product of the groups' lists (independent_groups.hpp).
+  std::vector<ImpactResult> all;
+  if (!detail::solve_all_by_groups(pb, law, options, all))
+    all = law.type == LawType::fremond ? detail::solve_fremond_all(pb, law, options)
+                                       : detail::solve_classical_all(pb, law, options);
   for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
   return all;
 }

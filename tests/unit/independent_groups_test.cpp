@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -123,6 +124,51 @@ TEST(IndependentGroups, AFrictionlessCornerSeparatesItsTwoWalls) {
     EXPECT_TRUE(r.unique);
     EXPECT_TRUE(r.admissibility.admissible);
   }
+}
+
+TEST(IndependentGroups, EverySolutionIsOneOfEachBodysSolutions) {
+  // Two bars (m = 1, l = 0.5, J = 1/12) touching at their lower end at θ = π/4 with D_NA = 0 and
+  // sliding back, q̇_A = (−v, 0, 0): under Newton + Coulomb with μ = 2 each has two solutions, the
+  // open contact and sticking with P = v (1.5, 2.5)/4 (ClassicalCoulomb.GrazingBar…), which loses
+  // ½ P_T D_TA = 0.3125 v² (SPEC §1, eq. 9). At v = 1 and v = 1e-9 the problem has the four
+  // pairs, most dissipative first, and solve_impact returns the first.
+  const double l = 0.5, c = l * std::cos(std::numbers::pi / 4), v[2] = {1.0, 1e-9};
+  ImpactProblem p;
+  p.M =
+      Eigen::VectorXd((Eigen::VectorXd(6) << 1.0, 1.0, 1.0 / 12.0, 1.0, 1.0, 1.0 / 12.0).finished())
+          .asDiagonal();
+  p.W_N = Eigen::MatrixXd::Zero(6, 2);
+  p.W_T = Eigen::MatrixXd::Zero(6, 2);
+  p.qdot_A = Eigen::VectorXd::Zero(6);
+  for (int b = 0; b < 2; ++b) {
+    p.W_N.col(b).segment(3 * b, 3) << 0.0, 1.0, -c;
+    p.W_T.col(b).segment(3 * b, 3) << 1.0, 0.0, c;
+    p.qdot_A(3 * b) = -v[b];
+  }
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.5, 2.0);
+  const std::vector<ImpactResult> all = solve_impact_all(p, law);
+  ASSERT_EQ(all.size(), 4u);
+  // (stick, stick), (stick, open), (open, stick), (open, open).
+  const bool sticks[4][2] = {{true, true}, {true, false}, {false, true}, {false, false}};
+  for (int s = 0; s < 4; ++s) {
+    SCOPED_TRACE(s);
+    const ImpactResult& r = all[s];
+    EXPECT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_FALSE(r.unique);
+    EXPECT_EQ(r.solutions_found, 4);
+    double energy = 0.0;
+    for (int b = 0; b < 2; ++b) {
+      const double PN = sticks[s][b] ? 0.375 * v[b] : 0.0, PT = sticks[s][b] ? 0.625 * v[b] : 0.0;
+      EXPECT_NEAR(r.P_N(b), PN, 1e-15 * v[b]) << b;
+      EXPECT_NEAR(r.P_T(b), PT, 1e-15 * v[b]) << b;
+      energy -= sticks[s][b] ? 0.3125 * v[b] * v[b] : 0.0;
+    }
+    EXPECT_NEAR(r.energy_change, energy, 1e-15);
+  }
+  const ImpactResult one = solve_impact(p, law);
+  ASSERT_TRUE(one.ok());
+  EXPECT_FALSE(one.unique);
+  for (int b = 0; b < 2; ++b) EXPECT_NEAR(one.P_T(b), 0.625 * v[b], 1e-15 * v[b]) << b;
 }
 
 TEST(IndependentGroups, CoupledContactsAreSolvedTogether) {

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "fremond.hpp"
 #include "fremond/solvers/detail/classical.hpp"
@@ -62,42 +63,124 @@ void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     solve_classical(pb, cs, law, options, out);
 }
 
+/// Whether the law has tangential rows in contact space (Frémond's with any tangential law, the
+/// classical laws with Coulomb), as solve_impact builds it.
+inline bool tangential_rows(const ImpactLaw& law) {
+  return law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction();
+}
+
+/// `sub` = the problem with the contacts of every group but g lifted off: D_NA = −D_NA + v_scale
+/// > 0 (it was ≤ 0) through w_N, so that g's contacts alone take part and every contact keeps its
+/// index (and its parameters in the law). False where the lifted w_N overflows.
+template <int N, int C, class Group>
+bool lift_other_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                       const Group& group, int g, ImpactProblemT<N, C>& sub) {
+  if (sub.w_N.size() == 0) sub.w_N = VecT<C>::Zero(cs.contacts);
+  for (int k = 0; k < cs.active; ++k) {
+    const int i = cs.index(k);
+    const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
+    sub.w_N(i) = group(k) == g ? w : w - 2.0 * cs.D_N(i) + cs.v_scale;
+    if (!std::isfinite(sub.w_N(i))) return false;
+  }
+  return true;
+}
+
+/// Gathers the groups' answers (each a result of the whole problem's size, its own contacts filled)
+/// into one result of the whole problem.
+template <int N, int C>
+class GroupMerge {
+ public:
+  using Rows = typename ContactSpaceT<N, C>::Rows;
+
+  explicit GroupMerge(const ContactSpaceT<N, C>& cs)
+      : cs_(cs),
+        P_(Rows::Zero(cs.rows())),
+        P_C_(Rows::Zero(cs.rows())),
+        reaction_(VecT<C>::Zero(cs.contacts)) {}
+
+  /// Takes group g's answer r for its contacts (group(k) == g) and its solver report.
+  template <class Group>
+  void add(const Group& group, int g, const ImpactResultT<N, C>& r) {
+    const int a = cs_.active, c = cs_.contacts;
+    for (int k = 0; k < a; ++k) {
+      if (group(k) != g) continue;
+      const int i = cs_.index(k);
+      P_(k) = r.P_N(i);
+      if (cs_.tangential) P_(a + k) = r.P_T(i);
+      if (r.P_N_reaction.size() == c) reaction_(i) = r.P_N_reaction(i);
+      if (r.has_phases) {
+        P_C_(k) = r.P_NC(i);
+        if (cs_.tangential) P_C_(a + k) = r.P_TC(i);
+      }
+    }
+    // The report kept is the first group's not converged, else the one that worked most.
+    const bool converged = r.solver.status == SolverStatus::converged;
+    if (!have_ || (report_.status == SolverStatus::converged &&
+                   (!converged || r.solver.iterations + r.solver.fallbacks >
+                                      report_.iterations + report_.fallbacks)))
+      report_ = r.solver;
+    have_ = true;
+    iterations_ += r.solver.iterations;
+    fallbacks_ = std::max(fallbacks_, r.solver.fallbacks);
+    if (!(r.solver.residual <= residual_)) residual_ = r.solver.residual;  // NaN too
+    rounding_ = rounding_ || (converged && r.solver.criterion == StopCriterion::rounding);
+    unique_ = unique_ && r.unique;
+    solutions_ = r.solutions_found > 0 ? std::min(solutions_ * r.solutions_found, 1 << 20) : 0;
+  }
+
+  /// Writes the whole answer into `out`: velocities and contact velocities from the gathered
+  /// percussions (as every method writes its own), the report of the groups. False, with `out`
+  /// untouched, where the velocities or the energy are not finite.
+  bool write(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, ImpactResultT<N, C>& out) const {
+    ImpactResultT<N, C> merged;
+    if (law.type == LawType::fremond) {
+      scatter_solution(pb, cs_, P_, merged);
+      merged.P_N_reaction = reaction_;
+    } else {
+      write_classical_answer(pb, cs_, law, P_, P_C_, merged);
+    }
+    if (!(merged.qdot_E.allFinite() && std::isfinite(merged.energy_change))) return false;
+    merged.solver = report_;
+    merged.solver.iterations = iterations_;
+    merged.solver.fallbacks = fallbacks_;
+    merged.solver.residual = residual_;
+    if (merged.solver.status == SolverStatus::converged && rounding_)
+      merged.solver.criterion = StopCriterion::rounding;
+    merged.unique = unique_;
+    merged.solutions_found = solutions_;
+    out = merged;
+    return true;
+  }
+
+ private:
+  const ContactSpaceT<N, C>& cs_;
+  Rows P_, P_C_;
+  VecT<C> reaction_;
+  SolverReport report_;
+  bool have_ = false, rounding_ = false, unique_ = true;
+  int iterations_ = 0, fallbacks_ = 0, solutions_ = 1;
+  double residual_ = 0.0;
+};
+
 /// Solves the law group by group where cs's contacts fall into two or more independent groups;
 /// false (nothing written) where they do not, or where a group ends without an answer to merge
 /// (no_solution, unsupported: the whole problem is then solved as one, whose report says so).
 template <int N, int C>
 bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  using Rows = typename ContactSpaceT<N, C>::Rows;
   if (cs.active < 2) return false;
   Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, C, 1> group;
   const int groups = independent_groups(cs, group);
   if (groups < 2) return false;
-  const int a = cs.active, c = cs.contacts;
-  const bool fremond = law.type == LawType::fremond;
-  const bool tangential_rows = fremond ? law.tangential != TangentialLaw::none : law.has_friction();
   ImpactProblemT<N, C> sub = pb;
-  if (sub.w_N.size() == 0) sub.w_N = VecT<C>::Zero(c);
-  Rows P = Rows::Zero(cs.rows()), P_C = Rows::Zero(cs.rows());
-  VecT<C> reaction = VecT<C>::Zero(c);
-  SolverReport report;
-  int hardest = -1;  // the group whose report is kept: the first not converged, else most work
-  int iterations = 0, fallbacks = 0, solutions = 1;
-  double residual = 0.0;
-  bool rounding = false, unique = true, phases = false;
   ContactSpaceT<N, C> gcs;
   ImpactResultT<N, C> r;
+  GroupMerge<N, C> merge(cs);
   for (int g = 0; g < groups; ++g) {
-    // The other groups' contacts lifted off: D_NA = −D_NA + v_scale > 0 (it was ≤ 0).
-    for (int k = 0; k < a; ++k) {
-      const int i = cs.index(k);
-      const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
-      sub.w_N(i) = group(k) == g ? w : w - 2.0 * cs.D_N(i) + cs.v_scale;
-      if (!std::isfinite(sub.w_N(i))) return false;
-    }
-    build_contact_space(sub, tangential_rows, gcs);
+    if (!lift_other_groups(pb, cs, group, g, sub)) return false;
+    build_contact_space(sub, tangential_rows(law), gcs);
     int members = 0;
-    for (int k = 0; k < a; ++k) members += group(k) == g;
+    for (int k = 0; k < cs.active; ++k) members += group(k) == g;
     if (gcs.active != members) return false;  // rounding moved a contact across D_NA = 0
     r = ImpactResultT<N, C>{};
     solve_law_stage(sub, gcs, law, options, r);
@@ -105,51 +188,58 @@ bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
         s == SolverStatus::not_run)
       return false;
-    for (int k = 0; k < a; ++k) {
-      if (group(k) != g) continue;
-      const int i = cs.index(k);
-      P(k) = r.P_N(i);
-      if (cs.tangential) P(a + k) = r.P_T(i);
-      if (r.P_N_reaction.size() == c) reaction(i) = r.P_N_reaction(i);
-      if (r.has_phases) {
-        P_C(k) = r.P_NC(i);
-        if (cs.tangential) P_C(a + k) = r.P_TC(i);
-      }
-    }
-    phases = phases || r.has_phases;
-    const bool converged = s == SolverStatus::converged;
-    const bool harder = hardest < 0 || (report.status == SolverStatus::converged &&
-                                        (!converged || r.solver.iterations + r.solver.fallbacks >
-                                                           report.iterations + report.fallbacks));
-    if (harder) {
-      report = r.solver;
-      hardest = g;
-    }
-    iterations += r.solver.iterations;
-    fallbacks = std::max(fallbacks, r.solver.fallbacks);
-    if (!(r.solver.residual <= residual)) residual = r.solver.residual;  // NaN too
-    rounding = rounding || (converged && r.solver.criterion == StopCriterion::rounding);
-    unique = unique && r.unique;
-    solutions = r.solutions_found > 0 ? std::min(solutions * r.solutions_found, 1 << 20) : 0;
+    merge.add(group, g, r);
   }
-  ImpactResultT<N, C> merged;
-  if (fremond) {
-    scatter_solution(pb, cs, P, merged);
-    merged.P_N_reaction = reaction;
-  } else {
-    write_classical_answer(pb, cs, law, P, P_C, merged);
-    merged.has_phases = phases;
+  return merge.write(pb, law, out);
+}
+
+/// solve_impact_all by groups: every solution is one of each group's, so the list is the product
+/// of the groups' lists (most dissipative first, as each law's own list). False (nothing written)
+/// where the contacts form one group, where a group's list is empty or holds an answer that is not
+/// converged (the whole problem's list then says so), or where the product exceeds 256.
+inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
+                                const SolverOptions& options, std::vector<ImpactResult>& all) {
+  ContactSpaceT<Dynamic, Dynamic> cs;
+  build_contact_space(pb, tangential_rows(law), cs);
+  if (cs.active < 2) return false;
+  Eigen::VectorXi group;
+  const int groups = independent_groups(cs, group);
+  if (groups < 2) return false;
+  ImpactProblem sub = pb;
+  ContactSpaceT<Dynamic, Dynamic> gcs;
+  std::vector<std::vector<ImpactResult>> lists(groups);
+  long total = 1;
+  for (int g = 0; g < groups; ++g) {
+    if (!lift_other_groups(pb, cs, group, g, sub)) return false;
+    build_contact_space(sub, tangential_rows(law), gcs);
+    int members = 0;
+    for (int k = 0; k < cs.active; ++k) members += group(k) == g;
+    if (gcs.active != members) return false;
+    lists[g] = law.type == LawType::fremond ? solve_fremond_all(sub, law, options)
+                                            : solve_classical_all(sub, law, options);
+    if (lists[g].empty()) return false;
+    for (const ImpactResult& r : lists[g])
+      if (r.solver.status != SolverStatus::converged) return false;
+    total *= static_cast<long>(lists[g].size());
+    if (total > 256) return false;
   }
-  if (!(merged.qdot_E.allFinite() && std::isfinite(merged.energy_change))) return false;
-  merged.solver = report;
-  merged.solver.iterations = iterations;
-  merged.solver.fallbacks = fallbacks;
-  merged.solver.residual = residual;
-  if (merged.solver.status == SolverStatus::converged && rounding)
-    merged.solver.criterion = StopCriterion::rounding;
-  merged.unique = unique;
-  merged.solutions_found = solutions;
-  out = merged;
+  std::vector<ImpactResult> found;
+  std::vector<std::size_t> pick(groups, 0);
+  while (true) {
+    GroupMerge<Dynamic, Dynamic> merge(cs);
+    for (int g = 0; g < groups; ++g) merge.add(group, g, lists[g][pick[g]]);
+    ImpactResult& r = found.emplace_back();
+    if (!merge.write(pb, law, r)) return false;
+    r.unique = r.unique && total == 1;
+    r.solutions_found = static_cast<int>(total);
+    int g = 0;
+    while (g < groups && ++pick[g] == lists[g].size()) pick[g++] = 0;
+    if (g == groups) break;
+  }
+  std::stable_sort(found.begin(), found.end(), [](const ImpactResult& x, const ImpactResult& y) {
+    return x.energy_change < y.energy_change;
+  });
+  all = std::move(found);
   return true;
 }
 
