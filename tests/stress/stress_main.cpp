@@ -28,8 +28,10 @@
 // modes, where none is singular) compare the velocities after impact (and Poisson's after
 // compression), and a `no_solution` with the reference's (Frémond's on several contacts: the
 // feasibility of D_NE ≥ 0, by the reference's Newton modes with e = 0); every 10th of those also
-// Frémond without Coulomb on several contacts (about a second in quad precision). The summary
-// gives the worst disagreement by shape of data.
+// Frémond without Coulomb on several contacts (about a second in quad precision). Every 10th case
+// is also solved beside a copy of itself at 1e-9 of its velocities, in one block-diagonal problem
+// (groups_check: each copy must get its own problem's answer). The summary gives the worst
+// disagreement by shape of data.
 //
 // --known FILE: failures that are known library issues (known_issues.hpp; the file
 // tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
@@ -447,6 +449,81 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
            (problem.empty() ? agreed : problem));
 }
 
+// Independent groups (src/solvers/detail/independent_groups.hpp): the case's problem beside a copy
+// of itself whose velocities are 1e-9 of its own, in one block-diagonal problem, must give each
+// copy the answer of its own problem, to its own scale (the law's parameters repeated for the
+// copy's contacts). Compared where both answers converged and the copy's own answer is unique.
+ImpactLaw doubled(const ImpactLaw& law) {
+  ImpactLaw out = law;
+  auto twice = [](PerContact& p) {
+    if (p.values.size() > 1) p.values.insert(p.values.end(), p.values.begin(), p.values.end());
+  };
+  twice(out.e);
+  twice(out.mu);
+  auto twice_potentials = [](PerContactPotential& p) {
+    const std::size_t n = p.potentials.size();
+    if (n > 1)
+      for (std::size_t i = 0; i < n; ++i) p.potentials.emplace_back(p.potentials[i]->clone());
+  };
+  twice_potentials(out.normal);
+  twice_potentials(out.tangential_potential);
+  return out;
+}
+
+void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactResult& r, Sink& out) {
+  constexpr double kScale = 1e-9;
+  const int n = pb.dofs(), c = pb.contacts(), ct = static_cast<int>(pb.W_T.cols());
+  ImpactProblem slow = pb;
+  slow.qdot_A *= kScale;
+  slow.w_N *= kScale;
+  slow.w_T *= kScale;
+  ImpactProblem both;
+  both.M = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  both.M.topLeftCorner(n, n) = pb.M;
+  both.M.bottomRightCorner(n, n) = pb.M;
+  both.W_N = Eigen::MatrixXd::Zero(2 * n, 2 * c);
+  both.W_N.topLeftCorner(n, c) = pb.W_N;
+  both.W_N.bottomRightCorner(n, c) = pb.W_N;
+  both.W_T = Eigen::MatrixXd::Zero(2 * n, 2 * ct);
+  both.W_T.topLeftCorner(n, ct) = pb.W_T;
+  both.W_T.bottomRightCorner(n, ct) = pb.W_T;
+  auto stack = [](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+    Eigen::VectorXd z(x.size() + y.size());
+    z << x, y;
+    return z;
+  };
+  if (pb.w_N.size()) both.w_N = stack(pb.w_N, slow.w_N);
+  if (pb.w_T.size()) both.w_T = stack(pb.w_T, slow.w_T);
+  both.qdot_A = stack(pb.qdot_A, slow.qdot_A);
+  ImpactResult rb, rs;
+  try {
+    const ImpactLaw law2 = doubled(law);
+    rb = solve_impact(both, law2);
+    rs = solve_impact(slow, law);
+  } catch (const std::exception&) {
+    return;  // the copy's data out of range (an overflow scaled): nothing to compare
+  }
+  if (!rb.ok()) return;
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(pb.M), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  const double cond = ev(0) > 0 ? ev(ev.size() - 1) / ev(0) : 1e16;
+  const double allowed = std::max(1e-8, 1e3 * std::numeric_limits<double>::epsilon() * cond);
+  for (int b = 0; b < 2; ++b) {
+    const ImpactResult& part = b == 0 ? r : rs;
+    if (!part.ok() || !part.unique) continue;
+    const Eigen::VectorXd mine = rb.qdot_E.segment(b * n, n);
+    const double scale = std::max(part.qdot_E.cwiseAbs().maxCoeff(),
+                                  (b == 0 ? pb : slow).qdot_A.cwiseAbs().maxCoeff());
+    if (!(scale > 0.0)) continue;
+    const double err = (mine - part.qdot_E).cwiseAbs().maxCoeff() / scale;
+    if (!(err <= allowed))
+      out.line("B - groups\tindependent groups: the " + std::string(b == 0 ? "first" : "slow") +
+               " copy's velocities differ from those of its own problem by " + fmt(err) +
+               " of its scale");
+  }
+}
+
 std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
   if (law.type == LawType::fremond && law.tangential == TangentialLaw::coulomb)
     return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt,
@@ -468,6 +545,10 @@ void run_case(const StressCase& sc, long k, const Args& a, Sink& out) {
       o.method = m;
       solve_and_check(sc.problem, sc.law, o, "--method " + std::string(to_string(m)), out);
     }
+  if (k % 10 == 3 && r.ok()) {
+    out.line("T groups");
+    groups_check(sc.problem, sc.law, r, out);
+  }
   if (a.reference_every && k % a.reference_every == 0) {
     // Not a solve of the library: a case killed here is the quad reference's slowness.
     out.line("T reference");
