@@ -18,10 +18,7 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   options.validate();
   ImpactResultT<N, C> out;
   detail::ContactSpaceT<N, C> cs;
-  // Frémond's law has tangential rows whenever it has a tangential law (it may be "none").
-  build_contact_space(
-      pb, law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
-      cs);
+  build_contact_space(pb, detail::tangential_rows(law), cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
   // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries.

@@ -16,7 +16,6 @@ void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                      const ContactSpaceT<MaxDofs, MaxContacts>& cs, const ImpactLaw& law,
                      const SolverOptions& options, ImpactResultT<MaxDofs, MaxContacts>& out);
 
-/// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
 /// Writes the percussions P (and Poisson's compression P_C) of the rows that take part (`cs`'s
 /// row order) into `out`: velocities, percussions, contact velocities and, for Poisson, the phases.
 template <int MaxDofs, int MaxContacts>
@@ -26,6 +25,7 @@ void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                             const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P_C,
                             ImpactResultT<MaxDofs, MaxContacts>& out);
 
+/// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
 std::vector<ImpactResult> solve_classical_all(const ImpactProblem& problem, const ImpactLaw& law,
                                               const SolverOptions& options);
 
