@@ -21,8 +21,9 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   build_contact_space(pb, detail::tangential_rows(law), cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
-  // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries.
-  if (!detail::solve_by_groups(pb, cs, law, options, out))
+  // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
+  // and one contact does not even make the call (its frame holds three problems' storage).
+  if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out))
     detail::solve_law_stage(pb, cs, law, options, out);
   VecT<C> percussion;
   const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
