@@ -26,9 +26,8 @@ namespace fremond::detail {
 /// Labels the contacts that take part (cs's active order) by group: contacts k and l share a
 /// group when an entry of G between a row of k and a row of l is not exactly zero. Returns the
 /// number of groups; labels are 0, 1, … in order of first appearance.
-template <int N, int C>
-int independent_groups(const ContactSpaceT<N, C>& cs,
-                       Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, C, 1>& group) {
+template <int N, int C, class Labels>
+int independent_groups(const ContactSpaceT<N, C>& cs, Labels& group) {
   const int a = cs.active, r = cs.rows();
   group.resize(a);
   for (int k = 0; k < a; ++k) group(k) = k;
@@ -44,13 +43,27 @@ int independent_groups(const ContactSpaceT<N, C>& cs,
       }
   // Roots are the smallest index of their group: relabel in order of first appearance.
   int count = 0;
-  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, C, 1> label(a);
+  Labels label(a);
   for (int k = 0; k < a; ++k) {
     const int x = root(k);
     label(k) = x == k ? count++ : label(x);
   }
   group = label;
   return count;
+}
+
+/// True when every contact that takes part is coupled by G to the first one (one group, the
+/// common case of one rigid body), decided without labelling anything.
+template <int N, int C>
+bool coupled_to_first(const ContactSpaceT<N, C>& cs) {
+  const int a = cs.active;
+  for (int k = 1; k < a; ++k) {
+    bool coupled = cs.G(0, k) != 0.0;
+    if (cs.tangential)
+      coupled = coupled || cs.G(0, a + k) != 0.0 || cs.G(a, k) != 0.0 || cs.G(a, a + k) != 0.0;
+    if (!coupled) return false;
+  }
+  return true;
 }
 
 /// The law stage (SPEC §2) on one contact space: Frémond's chain or the classical laws.
@@ -162,16 +175,17 @@ class GroupMerge {
   double residual_ = 0.0;
 };
 
-/// Solves the law group by group where cs's contacts fall into two or more independent groups;
-/// false (nothing written) where they do not, or where a group ends without an answer to merge
-/// (no_solution, unsupported: the whole problem is then solved as one, whose report says so).
+template <int C>
+using GroupLabels = Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, C, 1>;
+
+/// solve_by_groups' work once there are two groups or more: each solved alone, then merged. Out
+/// of line: its frame holds three problems' storage, which a problem that does not split (the
+/// common case) should not pay for (240 instructions a solve on the flat bar).
 template <int N, int C>
-bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  if (cs.active < 2) return false;
-  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, C, 1> group;
-  const int groups = independent_groups(cs, group);
-  if (groups < 2) return false;
+[[gnu::noinline]] bool solve_each_group(const ImpactProblemT<N, C>& pb,
+                                        const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+                                        const SolverOptions& options, const GroupLabels<C>& group,
+                                        int groups, ImpactResultT<N, C>& out) {
   ImpactProblemT<N, C> sub = pb;
   ContactSpaceT<N, C> gcs;
   ImpactResultT<N, C> r;
@@ -193,6 +207,18 @@ bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   return merge.write(pb, law, out);
 }
 
+/// Solves the law group by group where cs's contacts fall into two or more independent groups;
+/// false (nothing written) where they do not, or where a group ends without an answer to merge
+/// (no_solution, unsupported: the whole problem is then solved as one, whose report says so).
+template <int N, int C>
+bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+  if (cs.active < 2 || coupled_to_first(cs)) return false;
+  GroupLabels<C> group;
+  const int groups = independent_groups(cs, group);
+  return groups >= 2 && solve_each_group(pb, cs, law, options, group, groups, out);
+}
+
 /// solve_impact_all by groups: every solution is one of each group's, so the list is the product
 /// of the groups' lists (most dissipative first, as each law's own list). False (nothing written)
 /// where the contacts form one group, where a group's list is empty or holds an answer that is not
@@ -201,7 +227,7 @@ inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
                                 const SolverOptions& options, std::vector<ImpactResult>& all) {
   ContactSpaceT<Dynamic, Dynamic> cs;
   build_contact_space(pb, tangential_rows(law), cs);
-  if (cs.active < 2) return false;
+  if (cs.active < 2 || coupled_to_first(cs)) return false;
   Eigen::VectorXi group;
   const int groups = independent_groups(cs, group);
   if (groups < 2) return false;
