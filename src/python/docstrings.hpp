@@ -152,7 +152,8 @@ solve_impact(problem, law, options=SolverOptions()) -> ImpactResult
 
 Solves one impact with any law: validate, closed form, Newton, proximal, NLopt, then the
 admissibility certificate. Raises ValueError for an invalid problem, law or options; a solver that
-does not converge says so in result.solver.status.
+does not converge says so in result.solver.status. Contacts that G = W^T M^-1 W does not couple
+(two bodies in one problem) are solved group by group, each to its own velocity scale.
 )doc";
 inline constexpr const char* kSolveImpactAll =
     "Every solution found (mode enumeration for laws with friction on small problems); an empty "

@@ -15,7 +15,7 @@ struct SolverReport {
   SolverStatus status = SolverStatus::not_run;
   StopCriterion criterion = StopCriterion::none;
   std::string_view message = "not run";  ///< a static explanation (no allocation).
-  int iterations = 0;
+  int iterations = 0;  ///< summed over independent groups of contacts (solve_impact.hpp).
   double residual = std::numeric_limits<double>::quiet_NaN();  ///< the law's scaled residual.
   int native_code = 0;  ///< the fallback's own return code (NLopt's nlopt_result), else 0.
   int fallbacks = 0;    ///< how many methods were tried before this one.

@@ -14,6 +14,12 @@ namespace fremond {
 /// does not converge says so in result.solver.status (never an exception). For small problems
 /// (SmallImpactProblem) the solve allocates nothing on the heap, except for potentials whose prox
 /// is computed through the NLopt fallback.
+///
+/// Contacts that G = WᵀM⁻¹W does not couple (two bodies in one problem) form independent groups,
+/// each solved as a problem of its own, to its own velocity scale (SPEC §1-2: the laws separate).
+/// The report is then the hardest group's (the first not converged, else the one that worked
+/// most): its method, status and message; `iterations` is summed over the groups, `residual` is
+/// the largest group residual, each relative to its group's velocities.
 template <int MaxDofs, int MaxContacts>
 ImpactResultT<MaxDofs, MaxContacts> solve_impact(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
@@ -22,6 +28,7 @@ ImpactResultT<MaxDofs, MaxContacts> solve_impact(
 /// Every solution found: for laws with friction on up to 4 contacts (and Frémond + Coulomb on one
 /// contact, exactly) by enumerating contact modes; otherwise the single answer of solve_impact.
 /// Each result has `unique` and `solutions_found` set. An empty list means no solution exists.
+/// Independent groups of contacts (see solve_impact) give the product of the groups' lists.
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& problem, const ImpactLaw& law,
                                            const SolverOptions& options = {});
 
