@@ -84,18 +84,23 @@ inline bool tangential_rows(const ImpactLaw& law) {
 
 /// `sub` = the problem with the contacts of every group but g lifted off: D_NA = −D_NA + v_scale
 /// > 0 (it was ≤ 0) through w_N, so that g's contacts alone take part and every contact keeps its
-/// index (and its parameters in the law). False where the lifted w_N overflows.
+/// index (and its parameters in the law); `gcs` its contact space. False where the lifted w_N
+/// overflows, or where rounding moved a contact across D_NA = 0 (gcs then lacks or has one more).
 template <int N, int C, class Group>
-bool lift_other_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                       const Group& group, int g, ImpactProblemT<N, C>& sub) {
+bool group_problem(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                   const ImpactLaw& law, const Group& group, int g, ImpactProblemT<N, C>& sub,
+                   ContactSpaceT<N, C>& gcs) {
   if (sub.w_N.size() == 0) sub.w_N = VecT<C>::Zero(cs.contacts);
+  int members = 0;
   for (int k = 0; k < cs.active; ++k) {
     const int i = cs.index(k);
     const double w = pb.w_N.size() ? pb.w_N(i) : 0.0;
+    members += group(k) == g;
     sub.w_N(i) = group(k) == g ? w : w - 2.0 * cs.D_N(i) + cs.v_scale;
     if (!std::isfinite(sub.w_N(i))) return false;
   }
-  return true;
+  build_contact_space(sub, tangential_rows(law), gcs);
+  return gcs.active == members;
 }
 
 /// Gathers the groups' answers (each a result of the whole problem's size, its own contacts filled)
@@ -191,11 +196,7 @@ template <int N, int C>
   ImpactResultT<N, C> r;
   GroupMerge<N, C> merge(cs);
   for (int g = 0; g < groups; ++g) {
-    if (!lift_other_groups(pb, cs, group, g, sub)) return false;
-    build_contact_space(sub, tangential_rows(law), gcs);
-    int members = 0;
-    for (int k = 0; k < cs.active; ++k) members += group(k) == g;
-    if (gcs.active != members) return false;  // rounding moved a contact across D_NA = 0
+    if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     r = ImpactResultT<N, C>{};
     solve_law_stage(sub, gcs, law, options, r);
     const SolverStatus s = r.solver.status;
@@ -236,11 +237,7 @@ inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
   std::vector<std::vector<ImpactResult>> lists(groups);
   long total = 1;
   for (int g = 0; g < groups; ++g) {
-    if (!lift_other_groups(pb, cs, group, g, sub)) return false;
-    build_contact_space(sub, tangential_rows(law), gcs);
-    int members = 0;
-    for (int k = 0; k < cs.active; ++k) members += group(k) == g;
-    if (gcs.active != members) return false;
+    if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     lists[g] = law.type == LawType::fremond ? solve_fremond_all(sub, law, options)
                                             : solve_classical_all(sub, law, options);
     if (lists[g].empty()) return false;
