@@ -64,6 +64,48 @@ struct ModeOffsets {
 /// that stopped shrinking before reaching rounding, or P the mode's exact solution to rounding.
 enum class Refinement { singular, stalled, converged };
 
+/// A contact mode read from an answer: which equation each row holds (0 = its velocity, 1 = a
+/// percussion relation) and, for a sliding tangential row, the sign s of t = s β.
+template <int N, int C>
+struct Mode {
+  static constexpr int kMax = ContactSpaceT<N, C>::kMaxRows;
+  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMax, 1> kind;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> slide;  ///< 0 except on sliding rows
+  /// μ of the contact of active contact k (0 without friction).
+  static double mu(const ContactSpaceT<N, C>& cs, const ImpactLaw& law, int k) {
+    return cs.tangential && law.has_friction() ? law.mu[cs.index(k)] : 0.0;
+  }
+};
+
+/// The mode of the answer P, whose row velocities are D (accurate_row_velocities). Each row's mode
+/// is the one its answer satisfies more clearly, in velocity units: closed where G_kk x_k exceeds
+/// |w_k| (x = 1e-17 left by rounding beside w = 2e-3 is an open row), sticking where the bound's
+/// slack G_jj (β − |t|) exceeds |v_j|.
+template <int N, int C>
+Mode<N, C> read_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+                     const ModeOffsets<N, C>& off, const typename ContactSpaceT<N, C>::Rows& P,
+                     const typename ContactSpaceT<N, C>::Rows& D) {
+  const int a = cs.active, r = cs.rows();
+  Mode<N, C> mode;
+  mode.kind.resize(r);
+  mode.slide.setZero(r);
+  for (int k = 0; k < a; ++k) {
+    mode.kind(k) = cs.G(k, k) * (P(k) - off.cN(k)) > std::fabs(D(k) + off.target(k)) ? 0 : 1;
+    if (!cs.tangential) continue;
+    const int j = a + k;
+    const double bound = Mode<N, C>::mu(cs, law, k) * (P(k) - off.cB(k)), t = P(j) - off.cT(k);
+    if (!(bound > 0.0)) {
+      mode.kind(j) = 1;  // t = 0
+    } else if (cs.G(j, j) * (bound - std::fabs(t)) > std::fabs(D(j))) {
+      mode.kind(j) = 0;  // stick
+    } else {
+      mode.kind(j) = 1;  // slide: t − s μ (P_N − cB) = 0
+      mode.slide(j) = t > 0.0 ? 1.0 : -1.0;
+    }
+  }
+  return mode;
+}
+
 /// Refines P in place (up to `steps` corrections).
 template <int N, int C>
 Refinement refine_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
@@ -74,41 +116,18 @@ Refinement refine_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const int a = cs.active, r = cs.rows();
   if (r == 0) return Refinement::singular;
-  const bool friction = cs.tangential && law.has_friction();
-  typename SmallLU<kMax>::Mat K = SmallLU<kMax>::Mat::Zero(r, r);
-  // Which equation each row holds: 0 = a velocity (a row of G), 1 = a percussion relation.
-  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMax, 1> kind(r);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> slide(r);  // s for sliding rows
-  // Each row's mode is the one its answer satisfies more clearly, in velocity units: closed where
-  // G_kk x_k exceeds |w_k| (x = 1e-17 left by rounding beside w = 2e-3 is an open row), sticking
-  // where the bound's slack G_jj (β − |t|) exceeds |v_j|.
   Rows D = accurate_row_velocities(pb, cs, P);
-  for (int k = 0; k < a; ++k) {
-    const int i = cs.index(k);
-    if (cs.G(k, k) * (P(k) - off.cN(k)) > std::fabs(D(k) + off.target(k))) {
-      kind(k) = 0;
-      K.row(k) = cs.G.row(k);
-    } else {
-      kind(k) = 1;
-      K(k, k) = 1.0;
-    }
-    if (!cs.tangential) continue;
-    const int j = a + k;
-    const double mu = friction ? law.mu[i] : 0.0;
-    const double bound = mu * (P(k) - off.cB(k)), t = P(j) - off.cT(k);
-    slide(j) = 0.0;
-    if (!(bound > 0.0)) {
-      kind(j) = 1;  // t = 0
-      K(j, j) = 1.0;
-    } else if (cs.G(j, j) * (bound - std::fabs(t)) > std::fabs(D(j))) {
-      kind(j) = 0;  // stick
+  const Mode<N, C> mode = read_mode(cs, law, off, P, D);
+  const auto& kind = mode.kind;
+  const auto& slide = mode.slide;
+  typename SmallLU<kMax>::Mat K = SmallLU<kMax>::Mat::Zero(r, r);
+  for (int j = 0; j < r; ++j) {
+    if (kind(j) == 0) {
       K.row(j) = cs.G.row(j);
-    } else {
-      kind(j) = 1;  // slide: t − s μ (P_N − cB) = 0
-      slide(j) = t > 0.0 ? 1.0 : -1.0;
-      K(j, j) = 1.0;
-      K(j, k) = -slide(j) * mu;
+      continue;
     }
+    K(j, j) = 1.0;
+    if (slide(j) != 0.0) K(j, j - a) = -slide(j) * Mode<N, C>::mu(cs, law, j - a);
   }
   SmallLU<kMax> lu;
   lu.compute(K);
@@ -122,8 +141,8 @@ Refinement refine_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>
     for (int k = 0; k < a; ++k) {
       res(k) = kind(k) == 0 ? -(D(k) + off.target(k)) : off.cN(k) - P(k);
       if (!cs.tangential) continue;
-      const int j = a + k, i = cs.index(k);
-      const double mu = friction ? law.mu[i] : 0.0;
+      const int j = a + k;
+      const double mu = Mode<N, C>::mu(cs, law, k);
       if (kind(j) == 0)
         res(j) = -D(j);
       else
