@@ -19,6 +19,7 @@
 
 #include "detail/classical_law.hpp"
 #include "detail/classical_refine.hpp"
+#include "detail/classical_velocity_mode.hpp"
 
 namespace fremond::detail {
 
@@ -27,10 +28,15 @@ namespace fremond::detail {
 template <int N, int C>
 void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                             const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
-                            const typename ContactSpaceT<N, C>::Rows& P_C,
-                            ImpactResultT<N, C>& out) {
+                            const typename ContactSpaceT<N, C>::Rows& P_C, ImpactResultT<N, C>& out,
+                            const VecT<N>* velocities) {
   const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
-  scatter_solution(pb, cs, P, out);
+  if (velocities) {
+    out.qdot_E = *velocities;
+    scatter_at_velocities(pb, cs, P, out);
+  } else {
+    scatter_solution(pb, cs, P, out);
+  }
   out.has_phases = poisson;
   if (poisson) {
     const int c = cs.contacts, a = cs.active;
@@ -95,6 +101,20 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
   return expansion == Refinement::converged ? compression : expansion;
 }
 
+// Newton's laws: the answer's mode solved for its velocities first where they fix them
+// (classical_velocity_mode.hpp). P and q are the new answer when true.
+template <int N, int C>
+bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                         const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
+  using Rows = typename ContactSpaceT<N, C>::Rows;
+  if (is_poisson(law)) return false;
+  const int a = cs.active;
+  classical::ModeOffsets<N, C> off;
+  off.cN = off.cT = off.cB = off.target = Rows::Zero(a);
+  for (int k = 0; k < a; ++k) off.target(k) = law.e[cs.index(k)] * cs.D_A(k);  // eq. 5
+  return classical::solve_mode_in_velocities(pb, cs, law, off, P, q);
+}
+
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
 template <int N, int C>
 void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
@@ -116,6 +136,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // and is kept when within it, even where its residual is not smaller (the exact mode solution
   // rounded, 1.4e-13 beside the original's 1.1e-13); a mode misread at a stick-slip boundary
   // leaves the law's residual beyond that allowance.
+  typename ContactSpaceT<N, C>::Rows best = s.P;  // the percussions of the answer in `out`
   if (!(beyond_rounding <= options.tolerance)) {
     typename ContactSpaceT<N, C>::Rows P = s.P, P_C = s.P_C;
     const auto refined = refine_answer(pb, cs, law, P, P_C);
@@ -152,7 +173,23 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
         write_classical_answer(pb, cs, law, P, P_C, out);
         residual = trial_residual;
         beyond_rounding = trial_beyond;
+        best = P;
       }
+    }
+  }
+  // Still beyond rounding: where the mode fixes the velocities, they are solved for without M,
+  // and the percussions from them; kept when the law's residual then reads within rounding.
+  VecT<N> q;
+  typename ContactSpaceT<N, C>::Rows P = best;
+  if (!(beyond_rounding <= options.tolerance) && solve_in_velocities(pb, cs, law, P, q)) {
+    ImpactResultT<N, C> trial;
+    write_classical_answer(pb, cs, law, P, s.P_C, trial, &q);
+    double trial_beyond = 0.0;
+    const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
+    if (trial_beyond <= options.tolerance) {
+      write_classical_answer(pb, cs, law, P, s.P_C, out, &q);
+      residual = trial_residual;
+      beyond_rounding = trial_beyond;
     }
   }
   const int found = lo.solutions.size;
@@ -437,7 +474,7 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   template void write_classical_answer(                                                        \
       const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const ImpactLaw&,               \
       const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
-      ImpactResultT<N, C>&);
+      ImpactResultT<N, C>&, const VecT<N>*);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -112,6 +112,49 @@ TEST(IllConditionedMass, FremondWithCoulombMeetsTheReferenceToTheWorkingPrecisio
   }
 }
 
+// Two contacts closing on a two-dof body with cond(M) = 2e9 (stress case newton #48 of seed 41, its
+// separating third contact left out). Both close, so the mode fixes the velocities without M:
+// W_kᵀq̇_E = −e_k D_NA,k. Made from the best double percussions through M⁻¹W, they missed that by
+// 6e-7 of the velocity scale (the answer ended `stalled`); solved for first
+// (classical_velocity_mode.hpp), they are the reference's, and so are the percussions.
+TEST(IllConditionedMass, NewtonWhoseModeFixesTheVelocitiesMeetsTheReference) {
+  ImpactProblem pb;
+  pb.M.resize(2, 2);
+  pb.M << 20020865.219324283, 12189185.166647436, 12189185.166647436, 7421069.6412495691;
+  pb.W_N.resize(2, 2);
+  pb.W_N << -0.82138343776774914, 0.67160663654018937, 0.71750379326275238, -0.15782769523263629;
+  pb.W_T.resize(2, 2);
+  pb.W_T << -0.03729301742693325, -0.30188112988670768, -0.82600760964509301, 0.2954026963744385;
+  pb.qdot_A.resize(2);
+  pb.qdot_A << -4.5863067036418446e-12, -8.0835310028874393e-12;
+  const std::vector<double> e{0.20025873288569646, 0.21829989042951392};
+  const ref::Problem q = ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A);
+  const ImpactLaw laws[] = {ImpactLaw::newton(e), ImpactLaw::newton_coulomb(e, {0.3, 0.3})};
+  for (const ImpactLaw& law : laws) {
+    SCOPED_TRACE(to_string(law.type));
+    const ImpactResult r = solve_impact(pb, law);
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    const ref::QVec qe{quad(e[0]), quad(e[1])};
+    const ref::QVec qmu = law.has_friction() ? ref::QVec{quad(0.3), quad(0.3)} : ref::QVec{};
+    const auto found = ref::classical_modes(q, ref::ClassicalLaw::newton, qe, qmu);
+    ASSERT_EQ(found.solutions.size(), 1u);
+    const ref::Solution& s = found.solutions[0];
+    const double scale = std::max(std::fabs(r.D_NA(0)), std::fabs(r.D_NA(1)));
+    for (int i = 0; i < 2; ++i) {
+      ASSERT_GT(r.P_N(i), 0.0);  // both closed: D_NE = −e D_NA
+      EXPECT_NEAR(r.D_NE(i), -e[i] * r.D_NA(i), 1e-15 * scale) << i;
+      EXPECT_NEAR(r.D_NE(i), ref::to_double(s.D_NE[i]), 1e-15 * scale) << i;
+      EXPECT_NEAR(r.D_TE(i), ref::to_double(s.D_TE[i]), 1e-15 * scale) << i;
+      EXPECT_NEAR(r.qdot_E(i), ref::to_double(s.qdot_E[i]), 1e-15 * scale) << i;
+      const double pn = ref::to_double(s.P_N[i]), pt = ref::to_double(s.P_T[i]);
+      EXPECT_NEAR(r.P_N(i), pn, 1e-14 * pn) << i;
+      EXPECT_NEAR(r.P_T(i), pt, 1e-14 * pn) << i;
+    }
+    EXPECT_LE(law_residual(pb, law, r), 1e-14);
+    EXPECT_TRUE(r.admissibility.admissible);
+  }
+}
+
 // Poisson + Coulomb on three contacts of a 6-dof body with cond(M) = 3e10 (stress case
 // poisson_coulomb #27 of seed 23): one contact takes part, slides through the compression and
 // sticks in the expansion. Reported converged with residual 8.5e-15 while, in exact arithmetic,

@@ -179,15 +179,15 @@ void velocity_after(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   if (x.allFinite()) q = pb.qdot_A + x;
 }
 
-/// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
-/// (size rows()). Contacts that do not take part get zero percussion.
+/// Fills the percussions, contact velocities and energy change of `out` from the active-row
+/// percussions P (size rows()) and the velocities already in out.qdot_E. Contacts that do not take
+/// part get zero percussion.
 template <int MaxDofs, int MaxContacts>
-void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
-                      const ContactSpaceT<MaxDofs, MaxContacts>& cs,
-                      const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
-                      ImpactResultT<MaxDofs, MaxContacts>& out) {
+void scatter_at_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                           const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                           const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
+                           ImpactResultT<MaxDofs, MaxContacts>& out) {
   const int c = cs.contacts;
-  velocity_after(pb, cs, P, out.qdot_E);
   out.P_N.setZero(c);
   out.P_T.setZero(c);
   for (int k = 0; k < cs.active; ++k) {
@@ -227,6 +227,17 @@ void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     const auto dq = (out.qdot_E - pb.qdot_A).eval();
     out.energy_change = 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
   }
+}
+
+/// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
+/// (size rows()). Contacts that do not take part get zero percussion.
+template <int MaxDofs, int MaxContacts>
+void scatter_solution(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                      const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                      const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
+                      ImpactResultT<MaxDofs, MaxContacts>& out) {
+  velocity_after(pb, cs, P, out.qdot_E);
+  scatter_at_velocities(pb, cs, P, out);
 }
 
 }  // namespace fremond::detail
