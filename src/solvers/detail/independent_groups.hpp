@@ -110,10 +110,12 @@ class GroupMerge {
  public:
   using Rows = typename ContactSpaceT<N, C>::Rows;
 
-  explicit GroupMerge(const ContactSpaceT<N, C>& cs)
-      : cs_(cs),
+  GroupMerge(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs)
+      : pb_(pb),
+        cs_(cs),
         P_(Rows::Zero(cs.rows())),
         P_C_(Rows::Zero(cs.rows())),
+        dq_(VecT<N>::Zero(cs.dofs)),
         reaction_(VecT<C>::Zero(cs.contacts)) {}
 
   /// Takes group g's answer r for its contacts (group(k) == g) and its solver report.
@@ -131,6 +133,7 @@ class GroupMerge {
         if (cs_.tangential) P_C_(a + k) = r.P_TC(i);
       }
     }
+    dq_ += r.qdot_E - pb_.qdot_A;
     // The report kept is the first group's not converged, else the one that worked most.
     const bool converged = r.solver.status == SolverStatus::converged;
     if (!have_ || (report_.status == SolverStatus::converged &&
@@ -146,16 +149,19 @@ class GroupMerge {
     solutions_ = r.solutions_found > 0 ? std::min(solutions_ * r.solutions_found, 1 << 20) : 0;
   }
 
-  /// Writes the whole answer into `out`: velocities and contact velocities from the gathered
-  /// percussions (as every method writes its own), the report of the groups. False, with `out`
+  /// Writes the whole answer into `out`: Frémond's velocities from the gathered percussions (as
+  /// its methods write their own); a classical law's as q̇_A plus each group's velocity change,
+  /// since a group whose mode fixes its velocities has them more accurately than its percussions
+  /// make them (classical_velocity_mode.hpp); the report of the groups. False, with `out`
   /// untouched, where the velocities or the energy are not finite.
-  bool write(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, ImpactResultT<N, C>& out) const {
+  bool write(const ImpactLaw& law, ImpactResultT<N, C>& out) const {
     ImpactResultT<N, C> merged;
     if (law.type == LawType::fremond) {
-      scatter_solution(pb, cs_, P_, merged);
+      scatter_solution(pb_, cs_, P_, merged);
       merged.P_N_reaction = reaction_;
     } else {
-      write_classical_answer(pb, cs_, law, P_, P_C_, merged);
+      const VecT<N> q = pb_.qdot_A + dq_;
+      write_classical_answer(pb_, cs_, law, P_, P_C_, merged, &q);
     }
     if (!(merged.qdot_E.allFinite() && std::isfinite(merged.energy_change))) return false;
     merged.solver = report_;
@@ -171,8 +177,10 @@ class GroupMerge {
   }
 
  private:
+  const ImpactProblemT<N, C>& pb_;
   const ContactSpaceT<N, C>& cs_;
   Rows P_, P_C_;
+  VecT<N> dq_;  ///< the sum of the groups' velocity changes
   VecT<C> reaction_;
   SolverReport report_;
   bool have_ = false, rounding_ = false, unique_ = true;
@@ -194,7 +202,7 @@ template <int N, int C>
   ImpactProblemT<N, C> sub = pb;
   ContactSpaceT<N, C> gcs;
   ImpactResultT<N, C> r;
-  GroupMerge<N, C> merge(cs);
+  GroupMerge<N, C> merge(pb, cs);
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     r = ImpactResultT<N, C>{};
@@ -205,7 +213,7 @@ template <int N, int C>
       return false;
     merge.add(group, g, r);
   }
-  return merge.write(pb, law, out);
+  return merge.write(law, out);
 }
 
 /// Solves the law group by group where cs's contacts fall into two or more independent groups;
@@ -249,10 +257,10 @@ inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
   std::vector<ImpactResult> found;
   std::vector<std::size_t> pick(groups, 0);
   while (true) {
-    GroupMerge<Dynamic, Dynamic> merge(cs);
+    GroupMerge<Dynamic, Dynamic> merge(pb, cs);
     for (int g = 0; g < groups; ++g) merge.add(group, g, lists[g][pick[g]]);
     ImpactResult& r = found.emplace_back();
-    if (!merge.write(pb, law, r)) return false;
+    if (!merge.write(law, r)) return false;
     r.unique = r.unique && total == 1;
     r.solutions_found = static_cast<int>(total);
     int g = 0;
