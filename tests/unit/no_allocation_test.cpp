@@ -280,5 +280,29 @@ TEST(NoAllocation, ClassicalLawsSmallProblem) {
       }
 }
 
+// The velocity-space solve of a classical mode (classical_velocity_mode.hpp) runs only where an
+// answer is still beyond rounding: two contacts closing on a two-dof body with cond(M) = 2e9.
+TEST(NoAllocation, ClassicalModeSolvedForItsVelocities) {
+  require_counting();
+  if (::testing::Test::IsSkipped()) return;
+  SmallImpactProblem p;
+  p.M = SmallImpactProblem::Mat(2, 2);
+  p.M << 20020865.219324283, 12189185.166647436, 12189185.166647436, 7421069.6412495691;
+  p.W_N = SmallImpactProblem::Jac(2, 2);
+  p.W_N << -0.82138343776774914, 0.67160663654018937, 0.71750379326275238, -0.15782769523263629;
+  p.W_T = SmallImpactProblem::Jac(2, 2);
+  p.W_T << -0.03729301742693325, -0.30188112988670768, -0.82600760964509301, 0.2954026963744385;
+  p.qdot_A = SmallImpactProblem::Vec(2);
+  p.qdot_A << -4.5863067036418446e-12, -8.0835310028874393e-12;
+  const std::vector<double> e{0.20025873288569646, 0.21829989042951392};
+  for (const ImpactLaw& law : {ImpactLaw::newton(e), ImpactLaw::newton_coulomb(e, {0.3, 0.3})}) {
+    SmallImpactResult r;
+    std::string where;
+    const long n = allocations([&] { r = solve_impact(p, law); }, &where);
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << to_string(law.type);
+    EXPECT_EQ(n, 0) << to_string(law.type) << ": first allocation at\n" << where;
+  }
+}
+
 }  // namespace
 }  // namespace fremond
