@@ -125,128 +125,144 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     q += x;
     return q;
   };
-  // The result's own q̇_E where it balances the percussions, M(q̇_E − q̇_A) = W_N P_N + W_T P_T,
-  // to the rounding of that equation's terms: P and q̇_E are each the exact answer rounded when
-  // the contact mode fixes the velocities (as many velocity equations as degrees of freedom,
-  // classical_velocity_mode.hpp), but on an ill-conditioned M (cond 1e9) the velocities
-  // recomputed from the rounded P are 1e-6 off the law the stored ones meet to 1e-16. Otherwise
-  // (q̇_E and P disagree, or a result without velocities) the velocities are recomputed from P.
-  const VecT<N> qE = balances_percussions(pb, r) ? VecT<N>(r.qdot_E) : velocity(r.P_N, r.P_T);
-  VecT<N> qC(n);
-  if (poisson) qC = velocity(r.P_NC, r.P_TC);
+  // The law at velocities qE (and the floors, into *beyond when asked).
+  auto evaluate = [&](const VecT<N>& qE, double* beyond_rounding) {
+    VecT<N> qC(n);
+    if (poisson) qC = velocity(r.P_NC, r.P_TC);
 
-  // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
-  // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
-  // ε times that, far above ε|D_NA|.
-  // Only where asked for: the stopping test asks only when the residual misses the tolerance.
-  VecT<N> q_abs(n);
-  // With percussions_rounded, Σ_k |G_jk||P_k| (G = WᵀM⁻¹W over every row of the problem): the
-  // percussions are stored in double precision, each to ε|P_k|, and where W_T is nearly parallel
-  // to W_N they are 1e4 times the velocities they make, so even correctly rounded percussions
-  // move the velocities by ε Σ_k |G_jk||P_k|. That part of the floor is capped at 1e-10 of the
-  // velocities, not 1e-6: with cond(G) = 2.5e11 (cond(M) > 1e9) the terms reach 1e-6 of the
-  // velocities, and an answer in the wrong mode (a contact open whose true percussion is 5 % of
-  // the others) met the law that closely, 8e-7 away from the quad reference.
-  const int rows = tangential ? 2 * c : c;
-  MatT<N, times2(C)> MinvW_all;
-  VecT<times2(C)> P_abs;
-  if (beyond_rounding) {
-    q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
-    if (poisson) q_abs += qC.cwiseAbs();
-  }
-  if (beyond_rounding && percussions_rounded) {
-    MinvW_all.resize(n, rows);
-    P_abs.resize(rows);
-    MinvW_all.leftCols(c) = pb.W_N;
-    P_abs.head(c) = r.P_N.cwiseAbs();
-    if (poisson) P_abs.head(c) += r.P_NC.cwiseAbs();
-    if (tangential) {
-      MinvW_all.rightCols(c) = pb.W_T;
-      P_abs.tail(c) = r.P_T.cwiseAbs();
-      if (poisson) P_abs.tail(c) += r.P_TC.cwiseAbs();
-    }
-    llt.solve_lower_in_place(MinvW_all);
-    llt.solve_upper_in_place(MinvW_all);
-  }
-  // Σ_k |W_jᵀ M⁻¹W_k| |P_k| for the direction W_j; zero percussions add nothing (also where their
-  // column overflows).
-  auto percussion_terms = [&](const auto& W_j) {
-    double t = 0.0;
-    if (!percussions_rounded) return t;
-    for (int k = 0; k < rows; ++k)
-      if (P_abs(k) != 0.0) t += std::fabs(W_j.dot(MinvW_all.col(k))) * P_abs(k);
-    return t;
-  };
-  double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
-  VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c),
-          percussion_floor = VecT<C>::Zero(c);
-  for (int i = 0; i < c; ++i) {
-    const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
-    const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
-    const double gn_raw = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
-    const double gn = gn_raw > 0 ? gn_raw : 1.0;
-    double gt = 1.0;
-    if (tangential) {
-      const double g = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
-      gt = g > 0 ? g : 1.0;
-    }
-    // The rounding floor of the contact's terms, as in Frémond's stopping test
-    // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities (the
-    // percussions' part at 1e-10, above).
+    // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
+    // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
+    // ε times that, far above ε|D_NA|.
+    // Only where asked for: the stopping test asks only when the residual misses the tolerance.
+    VecT<N> q_abs(n);
+    // With percussions_rounded, Σ_k |G_jk||P_k| (G = WᵀM⁻¹W over every row of the problem): the
+    // percussions are stored in double precision, each to ε|P_k|, and where W_T is nearly parallel
+    // to W_N they are 1e4 times the velocities they make, so even correctly rounded percussions
+    // move the velocities by ε Σ_k |G_jk||P_k|. That part of the floor is capped at 1e-10 of the
+    // velocities, not 1e-6: with cond(G) = 2.5e11 (cond(M) > 1e9) the terms reach 1e-6 of the
+    // velocities, and an answer in the wrong mode (a contact open whose true percussion is 5 % of
+    // the others) met the law that closely, 8e-7 away from the quad reference.
+    const int rows = tangential ? 2 * c : c;
+    MatT<N, times2(C)> MinvW_all;
+    VecT<times2(C)> P_abs;
     if (beyond_rounding) {
-      double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
-      double terms = percussion_terms(pb.W_N.col(i));
+      q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
+      if (poisson) q_abs += qC.cwiseAbs();
+    }
+    if (beyond_rounding && percussions_rounded) {
+      MinvW_all.resize(n, rows);
+      P_abs.resize(rows);
+      MinvW_all.leftCols(c) = pb.W_N;
+      P_abs.head(c) = r.P_N.cwiseAbs();
+      if (poisson) P_abs.head(c) += r.P_NC.cwiseAbs();
       if (tangential) {
-        floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
-        terms += percussion_terms(pb.W_T.col(i));
+        MinvW_all.rightCols(c) = pb.W_T;
+        P_abs.tail(c) = r.P_T.cwiseAbs();
+        if (poisson) P_abs.tail(c) += r.P_TC.cwiseAbs();
       }
-      floor *= 16.0 * std::numeric_limits<double>::epsilon();
-      terms *= 16.0 * std::numeric_limits<double>::epsilon();
-      contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
-      percussion_floor(i) = std::isfinite(terms) ? terms : 0.0;
+      llt.solve_lower_in_place(MinvW_all);
+      llt.solve_upper_in_place(MinvW_all);
     }
-    auto keep = [&](double x) {
-      const double a = std::isnan(x) ? inf : std::fabs(x);
-      worst = std::max(worst, a);
-      contact_worst(i) = std::max(contact_worst(i), a);
+    // Σ_k |W_jᵀ M⁻¹W_k| |P_k| for the direction W_j; zero percussions add nothing (also where their
+    // column overflows).
+    auto percussion_terms = [&](const auto& W_j) {
+      double t = 0.0;
+      if (!percussions_rounded) return t;
+      for (int k = 0; k < rows; ++k)
+        if (P_abs(k) != 0.0) t += std::fabs(W_j.dot(MinvW_all.col(k))) * P_abs(k);
+      return t;
     };
-    if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
-      // A zero percussion is exactly right whatever g is.
-      keep(scaled(gn, r.P_N(i)));
-      keep(scaled(gt, r.P_T(i)));
-      if (poisson) {
-        keep(scaled(gn, r.P_NC(i)));
-        keep(scaled(gt, r.P_TC(i)));
+    double v_scale = std::numeric_limits<double>::min(), worst = 0.0;
+    VecT<C> contact_worst = VecT<C>::Zero(c), contact_floor = VecT<C>::Zero(c),
+            percussion_floor = VecT<C>::Zero(c);
+    for (int i = 0; i < c; ++i) {
+      const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
+      const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
+      const double gn_raw = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
+      const double gn = gn_raw > 0 ? gn_raw : 1.0;
+      double gt = 1.0;
+      if (tangential) {
+        const double g = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
+        gt = g > 0 ? g : 1.0;
       }
-      continue;
+      // The rounding floor of the contact's terms, as in Frémond's stopping test
+      // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities
+      // (the percussions' part at 1e-10, above).
+      if (beyond_rounding) {
+        double floor = std::fabs(wn(i)) + pb.W_N.col(i).cwiseAbs().dot(q_abs);
+        double terms = percussion_terms(pb.W_N.col(i));
+        if (tangential) {
+          floor += std::fabs(wt(i)) + pb.W_T.col(i).cwiseAbs().dot(q_abs);
+          terms += percussion_terms(pb.W_T.col(i));
+        }
+        floor *= 16.0 * std::numeric_limits<double>::epsilon();
+        terms *= 16.0 * std::numeric_limits<double>::epsilon();
+        contact_floor(i) = std::isfinite(floor) ? floor : 0.0;
+        percussion_floor(i) = std::isfinite(terms) ? terms : 0.0;
+      }
+      auto keep = [&](double x) {
+        const double a = std::isnan(x) ? inf : std::fabs(x);
+        worst = std::max(worst, a);
+        contact_worst(i) = std::max(contact_worst(i), a);
+      };
+      if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
+        // A zero percussion is exactly right whatever g is.
+        keep(scaled(gn, r.P_N(i)));
+        keep(scaled(gt, r.P_T(i)));
+        if (poisson) {
+          keep(scaled(gn, r.P_NC(i)));
+          keep(scaled(gt, r.P_TC(i)));
+        }
+        continue;
+      }
+      v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
+      const double e = law.e[i], mu = friction ? law.mu[i] : 0.0;
+      const double dne = contact_velocity(pb.W_N.col(i), qE, wn(i));
+      const double dte = tangential ? contact_velocity(pb.W_T.col(i), qE, wt(i)) : 0.0;
+      if (!poisson) {
+        keep(complementarity(dne + e * dna, r.P_N(i), gn));  // eq. 5 as a complementarity
+        if (tangential) keep(coulomb(r.P_T(i), dte, mu * r.P_N(i), gt));
+        continue;
+      }
+      // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
+      const double dnc = contact_velocity(pb.W_N.col(i), qC, wn(i));
+      const double dtc = tangential ? contact_velocity(pb.W_T.col(i), qC, wt(i)) : 0.0;
+      keep(complementarity(dnc, r.P_NC(i), gn));
+      if (tangential) keep(coulomb(r.P_TC(i), dtc, mu * r.P_NC(i), gt));
+      const double pne = r.P_N(i) - r.P_NC(i), pte = r.P_T(i) - r.P_TC(i);
+      keep(complementarity(dne, pne - e * r.P_NC(i), gn));
+      if (tangential) keep(coulomb(pte, dte, mu * pne, gt));
     }
-    v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
-    const double e = law.e[i], mu = friction ? law.mu[i] : 0.0;
-    const double dne = contact_velocity(pb.W_N.col(i), qE, wn(i));
-    const double dte = tangential ? contact_velocity(pb.W_T.col(i), qE, wt(i)) : 0.0;
-    if (!poisson) {
-      keep(complementarity(dne + e * dna, r.P_N(i), gn));  // eq. 5 as a complementarity
-      if (tangential) keep(coulomb(r.P_T(i), dte, mu * r.P_N(i), gt));
-      continue;
+    if (beyond_rounding) {
+      double beyond = 0.0;
+      for (int i = 0; i < c; ++i)
+        if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale) +
+                                      std::min(percussion_floor(i), percussion_cap * v_scale)))
+          beyond = std::max(beyond, contact_worst(i));
+      *beyond_rounding = beyond / v_scale;
     }
-    // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
-    const double dnc = contact_velocity(pb.W_N.col(i), qC, wn(i));
-    const double dtc = tangential ? contact_velocity(pb.W_T.col(i), qC, wt(i)) : 0.0;
-    keep(complementarity(dnc, r.P_NC(i), gn));
-    if (tangential) keep(coulomb(r.P_TC(i), dtc, mu * r.P_NC(i), gt));
-    const double pne = r.P_N(i) - r.P_NC(i), pte = r.P_T(i) - r.P_TC(i);
-    keep(complementarity(dne, pne - e * r.P_NC(i), gn));
-    if (tangential) keep(coulomb(pte, dte, mu * pne, gt));
+    return worst / v_scale;
+  };
+  // At the velocities the percussions make; and, where those miss the law beyond 64ε, at the
+  // result's own q̇_E if it balances the percussions, M(q̇_E − q̇_A) = W_N P_N + W_T P_T, to the
+  // rounding of that equation's terms, the smaller of the two. P and q̇_E are each the exact
+  // answer rounded where the contact mode fixes the velocities without M
+  // (classical_velocity_mode.hpp), and on an ill-conditioned M (cond 1e9) the velocities made
+  // from the rounded P are then 1e-6 off the law that q̇_E meets to 1e-16. Velocities that do
+  // not balance P (or none) are not read: the result is judged by its P.
+  double beyond_P = 0.0;
+  const double at_P = evaluate(velocity(r.P_N, r.P_T), beyond_rounding ? &beyond_P : nullptr);
+  double residual = at_P;
+  if (!(at_P <= 64 * std::numeric_limits<double>::epsilon()) && balances_percussions(pb, r)) {
+    double beyond_E = 0.0;
+    const double at_E = evaluate(r.qdot_E, beyond_rounding ? &beyond_E : nullptr);
+    if (at_E < at_P) {
+      residual = at_E;
+      beyond_P = beyond_E;
+    }
   }
-  if (beyond_rounding) {
-    double beyond = 0.0;
-    for (int i = 0; i < c; ++i)
-      if (!(contact_worst(i) <= std::min(contact_floor(i), 1e-6 * v_scale) +
-                                    std::min(percussion_floor(i), percussion_cap * v_scale)))
-        beyond = std::max(beyond, contact_worst(i));
-    *beyond_rounding = beyond / v_scale;
-  }
-  return worst / v_scale;
+  if (beyond_rounding) *beyond_rounding = beyond_P;
+  return residual;
 }
 
 #define FREMOND_INSTANTIATE(N, C)                                                   \

@@ -155,6 +155,36 @@ TEST(IllConditionedMass, NewtonWhoseModeFixesTheVelocitiesMeetsTheReference) {
   }
 }
 
+// Two of three contacts closing on a two-dof body with cond(M) = 1e9 and percussions 1e9 times the
+// velocities (stress case newton #1280 of seed 41). The closed form's answer was accepted within
+// the allowance for its percussions' rounding (criterion `rounding`, residual 5.9e-11) and was
+// 4e-10 of the velocity scale from the quad reference. Its mode fixes the velocities, which are now
+// solved for: the law and the reference to rounding.
+TEST(IllConditionedMass, NewtonAcceptedAtThePercussionsRoundingIsSolvedForItsVelocities) {
+  ImpactProblem pb;
+  pb.M.resize(2, 2);
+  pb.M << 3830958.1932967519, 4779147.7519670818, 4779147.7519670818, 5962062.2235709634;
+  pb.W_N.resize(2, 3);
+  pb.W_N << -0.19495298410423612, 0.082005886153948548, 0.1597661510727344, 0.36548518748597103,
+      -0.073867679622180771, -0.39102973342563041;
+  pb.qdot_A = Eigen::Vector2d(-21566.007105048568, -18748.555938764275);
+  const double e = 0.93403591594038327;
+  const ImpactResult r = solve_impact(pb, ImpactLaw::newton(e));
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  const auto found = ref::classical_modes(ref::problem_from(pb.M, pb.W_N, MatrixX(2, 0), pb.qdot_A),
+                                          ref::ClassicalLaw::newton, ref::QVec(3, quad(e)), {});
+  ASSERT_EQ(found.solutions.size(), 1u);
+  const ref::Solution& s = found.solutions[0];
+  const double scale = r.D_NA.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 2; ++i) {  // contacts 0 and 1 close; 2 separates
+    ASSERT_GT(r.P_N(i), 0.0);
+    EXPECT_NEAR(r.D_NE(i), -e * r.D_NA(i), 1e-15 * scale) << i;
+    EXPECT_NEAR(r.qdot_E(i), ref::to_double(s.qdot_E[i]), 1e-15 * scale) << i;
+    EXPECT_NEAR(r.P_N(i), ref::to_double(s.P_N[i]), 1e-13 * ref::to_double(s.P_N[i])) << i;
+  }
+  EXPECT_EQ(r.P_N(2), 0.0);
+}
+
 // Poisson + Coulomb on three contacts of a 6-dof body with cond(M) = 3e10 (stress case
 // poisson_coulomb #27 of seed 23): one contact takes part, slides through the compression and
 // sticks in the expansion. Reported converged with residual 8.5e-15 while, in exact arithmetic,
