@@ -13,9 +13,10 @@ namespace fremond {
 ///    μ|P_N||·| tangential), with τ = G_ii/2 (a natural scale of the row).
 ///  - Newton: min(D_NE + e D_NA, P_N·g) with Coulomb's natural map on (P_T, D_TE).
 ///  - Poisson: the same per phase (needs the phases in `result`).
-/// Classical laws: the velocities are the result's q̇_E where it balances the percussions,
-/// M(q̇_E − q̇_A) = W_N P_N + W_T P_T to the rounding of that equation's terms; otherwise they are
-/// recomputed from the percussions, so a result whose q̇_E and P disagree is judged by its P.
+/// Classical laws: the law at the velocities the percussions make; where that is above 64ε, the
+/// smaller of it and the law at the result's own q̇_E, if q̇_E balances the percussions,
+/// M(q̇_E − q̇_A) = W_N P_N + W_T P_T, to the rounding of that equation's terms. A result whose
+/// q̇_E and P disagree is judged by its P.
 /// Frémond's law: velocities are recomputed from the percussions.
 /// A result whose P_N or P_T is not of the problem's contact count is refused with
 /// InvalidArgument("result") naming the sizes, for every law.
