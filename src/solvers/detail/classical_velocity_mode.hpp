@@ -79,8 +79,7 @@ bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
     const auto& w = j < a ? pb.w_N : pb.w_T;
     return w.size() ? w(i) : 0.0;
   };
-  // Wᵀ q̇_E = b on the velocity rows (touched dofs), refined once with the residual in twice the
-  // precision.
+  // Wᵀ q̇_E = b on the velocity rows (touched dofs).
   Square A(t, t);
   Vec b(t), x(t), res(t), d(t);
   for (int k = 0; k < t; ++k) {
@@ -88,13 +87,19 @@ bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
     for (int l = 0; l < t; ++l) A(k, l) = cs.W(dof(l), j);
     b(k) = -offset(j) - (j < a ? off.target(j) : 0.0);
   }
+  // K y = rhs by LU (left in `lu`), refined once with the residual in twice the precision; false
+  // where K is singular to working precision.
   SmallLU<kMax> lu;
-  lu.compute(A);
-  if (lu.singular() || !(lu.rcond() > 64 * eps)) return false;
-  lu.solve(b, x);
-  for (int k = 0; k < t; ++k) res(k) = -accurate_dot(A.row(k), x, -b(k));
-  lu.solve(res, d);
-  x += d;
+  auto solve_refined = [&](const Square& K, const Vec& rhs, Vec& y) {
+    lu.compute(K);
+    if (lu.singular() || !(lu.rcond() > 64 * eps)) return false;
+    lu.solve(rhs, y);
+    for (int k = 0; k < t; ++k) res(k) = -accurate_dot(K.row(k), y, -rhs(k));
+    lu.solve(res, d);
+    y += d;
+    return true;
+  };
+  if (!solve_refined(A, b, x)) return false;
   // M(q̇_E − q̇_A) = F p with P = T p: a closed normal row's column is W_N,k plus s μ W_T,k of its
   // sliding tangential row; a sticking row's is W_T,j. Open rows and rows held at zero add nothing.
   Rows slide_of = Rows::Zero(r);  // s μ on a closed normal row whose tangential row slides
@@ -113,12 +118,7 @@ bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
   Vec dq(t), p(t);
   for (int k = 0; k < t; ++k) dq(k) = x(k) - pb.qdot_A(dof(k));
   for (int k = 0; k < t; ++k) b(k) = accurate_dot(Mt.row(k), dq);
-  lu.compute(F);
-  if (lu.singular() || !(lu.rcond() > 64 * eps)) return false;
-  lu.solve(b, p);
-  for (int k = 0; k < t; ++k) res(k) = -accurate_dot(F.row(k), p, -b(k));
-  lu.solve(res, d);
-  p += d;
+  if (!solve_refined(F, b, p)) return false;
   // The mode must be the data's, not rounding's: M(q̇_E − q̇_A) is known to 16ε Σ|M|(|q̇_E| +
   // |q̇_A|) per row, which moves p by up to |F⁻¹| times that. Where M is ill-conditioned and the
   // velocity change lies along its soft directions, that can exceed p itself; a closed row whose
