@@ -33,7 +33,8 @@ namespace fremond::detail::classical {
 /// no fixed part) for q̇_E, then P. Returns false, with P and q untouched, unless the mode's
 /// velocity equations are as many as the degrees of freedom the contacts touch, those dofs are
 /// not coupled by M to the others, the equations are regular to working precision (reciprocal
-/// condition number above 64ε) and the answer is finite.
+/// condition number above 64ε), each closed row's percussion and each sticking row's slack in the
+/// cone exceed what rounding can move them by, and the answer is finite.
 template <int N, int C>
 bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, const ModeOffsets<N, C>& off,
