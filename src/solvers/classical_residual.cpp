@@ -125,43 +125,43 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     q += x;
     return q;
   };
+  // Poisson's compression velocities, and the percussions' part of the floors: of P alone.
+  VecT<N> qC(n);
+  if (poisson) qC = velocity(r.P_NC, r.P_TC);
+  // With percussions_rounded, Σ_k |G_jk||P_k| (G = WᵀM⁻¹W over every row of the problem): the
+  // percussions are stored in double precision, each to ε|P_k|, and where W_T is nearly parallel
+  // to W_N they are 1e4 times the velocities they make, so even correctly rounded percussions
+  // move the velocities by ε Σ_k |G_jk||P_k|. That part of the floor is capped at 1e-10 of the
+  // velocities, not 1e-6: with cond(G) = 2.5e11 (cond(M) > 1e9) the terms reach 1e-6 of the
+  // velocities, and an answer in the wrong mode (a contact open whose true percussion is 5 % of
+  // the others) met the law that closely, 8e-7 away from the quad reference.
+  const int rows = tangential ? 2 * c : c;
+  MatT<N, times2(C)> MinvW_all;
+  VecT<times2(C)> P_abs;
+  if (beyond_rounding && percussions_rounded) {
+    MinvW_all.resize(n, rows);
+    P_abs.resize(rows);
+    MinvW_all.leftCols(c) = pb.W_N;
+    P_abs.head(c) = r.P_N.cwiseAbs();
+    if (poisson) P_abs.head(c) += r.P_NC.cwiseAbs();
+    if (tangential) {
+      MinvW_all.rightCols(c) = pb.W_T;
+      P_abs.tail(c) = r.P_T.cwiseAbs();
+      if (poisson) P_abs.tail(c) += r.P_TC.cwiseAbs();
+    }
+    llt.solve_lower_in_place(MinvW_all);
+    llt.solve_upper_in_place(MinvW_all);
+  }
   // The law at velocities qE (and the floors, into *beyond when asked).
   auto evaluate = [&](const VecT<N>& qE, double* beyond_rounding) {
-    VecT<N> qC(n);
-    if (poisson) qC = velocity(r.P_NC, r.P_TC);
-
     // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
     // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
     // ε times that, far above ε|D_NA|.
     // Only where asked for: the stopping test asks only when the residual misses the tolerance.
     VecT<N> q_abs(n);
-    // With percussions_rounded, Σ_k |G_jk||P_k| (G = WᵀM⁻¹W over every row of the problem): the
-    // percussions are stored in double precision, each to ε|P_k|, and where W_T is nearly parallel
-    // to W_N they are 1e4 times the velocities they make, so even correctly rounded percussions
-    // move the velocities by ε Σ_k |G_jk||P_k|. That part of the floor is capped at 1e-10 of the
-    // velocities, not 1e-6: with cond(G) = 2.5e11 (cond(M) > 1e9) the terms reach 1e-6 of the
-    // velocities, and an answer in the wrong mode (a contact open whose true percussion is 5 % of
-    // the others) met the law that closely, 8e-7 away from the quad reference.
-    const int rows = tangential ? 2 * c : c;
-    MatT<N, times2(C)> MinvW_all;
-    VecT<times2(C)> P_abs;
     if (beyond_rounding) {
       q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
       if (poisson) q_abs += qC.cwiseAbs();
-    }
-    if (beyond_rounding && percussions_rounded) {
-      MinvW_all.resize(n, rows);
-      P_abs.resize(rows);
-      MinvW_all.leftCols(c) = pb.W_N;
-      P_abs.head(c) = r.P_N.cwiseAbs();
-      if (poisson) P_abs.head(c) += r.P_NC.cwiseAbs();
-      if (tangential) {
-        MinvW_all.rightCols(c) = pb.W_T;
-        P_abs.tail(c) = r.P_T.cwiseAbs();
-        if (poisson) P_abs.tail(c) += r.P_TC.cwiseAbs();
-      }
-      llt.solve_lower_in_place(MinvW_all);
-      llt.solve_upper_in_place(MinvW_all);
     }
     // Σ_k |W_jᵀ M⁻¹W_k| |P_k| for the direction W_j; zero percussions add nothing (also where their
     // column overflows).
