@@ -73,6 +73,18 @@ bool is_poisson(const ImpactLaw& law) {
   return law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
 }
 
+// The mode offsets of Newton's laws: no fixed part, target e D_NA (eq. 5).
+template <int N, int C>
+classical::ModeOffsets<N, C> newton_offsets(const ContactSpaceT<N, C>& cs, const ImpactLaw& law) {
+  using Rows = typename ContactSpaceT<N, C>::Rows;
+  const int a = cs.active;
+  classical::ModeOffsets<N, C> off;
+  off.cN = off.cT = off.cB = Rows::Zero(a);
+  off.target.resize(a);
+  for (int k = 0; k < a; ++k) off.target(k) = law.e[cs.index(k)] * cs.D_A(k);
+  return off;
+}
+
 // Refines the answer's percussions P (and Poisson's compression P_C) in its contact mode
 // (classical_refine.hpp): compression first, then the expansion with the compression held.
 template <int N, int C>
@@ -80,12 +92,11 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
                                     const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
                                     typename ContactSpaceT<N, C>::Rows& P_C) {
   using classical::Refinement;
-  using Rows = typename ContactSpaceT<N, C>::Rows;
   const int a = cs.active;
-  classical::ModeOffsets<N, C> off;
-  off.cN = off.cT = off.cB = off.target = Rows::Zero(a);
+  classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
   Refinement compression = Refinement::converged;
   if (is_poisson(law)) {
+    off.target.setZero();  // both phases hold D = 0 on closed rows, from a fixed part
     compression = classical::refine_mode(pb, cs, law, off, P_C);  // D_NC = 0 where closed
     if (compression == Refinement::singular) return compression;
     for (int k = 0; k < a; ++k) {  // expansion: P_NE = e P_NC + ΔP, bound μ P_NE (SPEC table)
@@ -94,8 +105,6 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
       off.cB(k) = P_C(k);
       if (cs.tangential) off.cT(k) = P_C(a + k);
     }
-  } else {
-    for (int k = 0; k < a; ++k) off.target(k) = law.e[cs.index(k)] * cs.D_A(k);  // eq. 5
   }
   const Refinement expansion = classical::refine_mode(pb, cs, law, off, P);
   return expansion == Refinement::converged ? compression : expansion;
@@ -106,13 +115,8 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                          const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
-  using Rows = typename ContactSpaceT<N, C>::Rows;
   if (is_poisson(law)) return false;
-  const int a = cs.active;
-  classical::ModeOffsets<N, C> off;
-  off.cN = off.cT = off.cB = off.target = Rows::Zero(a);
-  for (int k = 0; k < a; ++k) off.target(k) = law.e[cs.index(k)] * cs.D_A(k);  // eq. 5
-  return classical::solve_mode_in_velocities(pb, cs, law, off, P, q);
+  return classical::solve_mode_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q);
 }
 
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
