@@ -49,4 +49,7 @@ struct ImpactResultT {
 using ImpactResult = ImpactResultT<Dynamic, Dynamic>;
 using SmallImpactResult = ImpactResultT<kSmallDofs, kSmallContacts>;
 
+/// Copies a stack-stored result into the heap-stored form: every member, the same values.
+ImpactResult to_dynamic(const SmallImpactResult& result);
+
 }  // namespace fremond
