@@ -11,8 +11,9 @@
 namespace fremond {
 
 template <int N, int C>
-ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                                 const SolverOptions& options) {
+ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
+                                                        const ImpactLaw& law,
+                                                        const SolverOptions& options) {
   detail::validate_shapes(pb);
   law.validate(pb.contacts());
   options.validate();
@@ -32,6 +33,24 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   return out;
 }
 
+template <int N, int C>
+ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                 const SolverOptions& options) {
+  if constexpr (N == Dynamic && C == Dynamic) {
+    // A planar body with a few contacts handed over in heap storage: the same templates on the
+    // stack sizes skip Eigen's dynamic-size dispatch and some 60 allocations of temporaries; the
+    // copies in and out cost less than that (README, Performance). Shapes that do not fit,
+    // valid or not, stay in their own storage, where validation names them.
+    if (fits_small(pb))
+      return to_dynamic(detail::solve_impact_in_own_storage(to_small(pb), law, options));
+  }
+  return detail::solve_impact_in_own_storage(pb, law, options);
+}
+
+template ImpactResultT<Dynamic, Dynamic> detail::solve_impact_in_own_storage(
+    const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&, const SolverOptions&);
+template ImpactResultT<kSmallDofs, kSmallContacts> detail::solve_impact_in_own_storage(
+    const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&, const SolverOptions&);
 template ImpactResultT<Dynamic, Dynamic> solve_impact(const ImpactProblemT<Dynamic, Dynamic>&,
                                                       const ImpactLaw&, const SolverOptions&);
 template ImpactResultT<kSmallDofs, kSmallContacts> solve_impact(

@@ -20,18 +20,18 @@
 //
 // Each case runs in a child process (fork), so that a solve that never returns or a crash is
 // recorded with its reproducer and the run goes on: --hang SECONDS (60) is the deadline of one
-// case. Every case is solved in the heap-stored form, every other one in the stack-stored form too;
-// every --methods-every-th also with each method forced (Frémond: semismooth Newton, proximal,
-// NLopt; classical: Lemke, mode enumeration), whose results must satisfy the same contract (a
-// method may fail, but must say so). On every --reference-every-th case the reference checks that
-// are cheap (Frémond on one contact with any tangential law; every classical law, by its contact
-// modes, where none is singular) compare the velocities after impact (and Poisson's after
-// compression), and a `no_solution` with the reference's (Frémond's on several contacts: the
-// feasibility of D_NE ≥ 0, by the reference's Newton modes with e = 0); every 10th of those also
-// Frémond without Coulomb on several contacts (about a second in quad precision). Every 10th case
-// is also solved beside a copy of itself at 1e-9 of its velocities, in one block-diagonal problem
-// (groups_check: each copy must get its own problem's answer). The summary gives the worst
-// disagreement by shape of data.
+// case. Every case is solved by solve_impact (in the stack-stored form where it fits), every other
+// one also in its heap storage (detail::solve_impact_in_own_storage); every --methods-every-th also
+// with each method forced (Frémond: semismooth Newton, proximal, NLopt; classical: Lemke, mode
+// enumeration), whose results must satisfy the same contract (a method may fail, but must say so).
+// On every --reference-every-th case the reference checks that are cheap (Frémond on one contact
+// with any tangential law; every classical law, by its contact modes, where none is singular)
+// compare the velocities after impact (and Poisson's after compression), and a `no_solution` with
+// the reference's (Frémond's on several contacts: the feasibility of D_NE ≥ 0, by the reference's
+// Newton modes with e = 0); every 10th of those also Frémond without Coulomb on several contacts
+// (about a second in quad precision). Every 10th case is also solved beside a copy of itself at
+// 1e-9 of its velocities, in one block-diagonal problem (groups_check: each copy must get its own
+// problem's answer). The summary gives the worst disagreement by shape of data.
 //
 // --known FILE: failures that are known library issues (known_issues.hpp; the file
 // tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
@@ -204,10 +204,12 @@ std::string fmt(double v) {
 
 template <int N, int C>
 void solve_and_check(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const SolverOptions& opt,
-                     const std::string& label, Sink& out, ImpactResult* keep = nullptr) {
+                     const std::string& label, Sink& out, ImpactResult* keep = nullptr,
+                     bool own_storage = false) {
   out.line("T " + label);  // which solve is running, should it never return
   const auto t0 = Clock::now();
-  const auto r = solve_impact(pb, law, opt);
+  const auto r = own_storage ? fremond::detail::solve_impact_in_own_storage(pb, law, opt)
+                             : solve_impact(pb, law, opt);
   const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   CheckStats st;
   const std::string broken = check_result(pb, law, opt, r, &st);
@@ -535,8 +537,10 @@ std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
 
 void run_case(const StressCase& sc, long k, const Args& a, Sink& out) {
   const SolverOptions opt;
+  // solve_impact moves a problem that fits the small form into it; every other one is also solved
+  // in its heap storage, so that the dynamic-size code is checked on the same problems.
   if (k % 2 == 0 && fits_small(sc.problem))
-    solve_and_check(to_small(sc.problem), sc.law, opt, "[small]", out);
+    solve_and_check(sc.problem, sc.law, opt, "[heap]", out, nullptr, true);
   ImpactResult r;
   solve_and_check(sc.problem, sc.law, opt, "", out, &r);
   if (a.methods_every && k % a.methods_every == 0)

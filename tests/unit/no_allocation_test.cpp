@@ -304,5 +304,39 @@ TEST(NoAllocation, ClassicalModeSolvedForItsVelocities) {
   }
 }
 
+/// How many heap blocks a result holds: one per non-empty vector.
+int heap_blocks(const ImpactResult& r) {
+  int k = 0;
+  for (const Eigen::VectorXd* v :
+       {&r.qdot_E, &r.P_N, &r.P_T, &r.D_NA, &r.D_TA, &r.D_NE, &r.D_TE, &r.P_N_reaction, &r.P_NC,
+        &r.P_TC, &r.D_NC, &r.D_TC, &r.admissibility.per_contact})
+    k += v->size() > 0 ? 1 : 0;
+  return k + (r.takes_part.size() > 0 ? 1 : 0);
+}
+
+// A heap-stored problem that fits the small form is solved in it (solve_impact.hpp): the solve
+// allocates the result's vectors and nothing else (in its own storage: some 70 blocks on the bar).
+TEST(NoAllocation, HeapStoredSmallProblemAllocatesOnlyItsResult) {
+  require_counting();
+  if (::testing::Test::IsSkipped()) return;
+  const std::vector<std::pair<std::string, ImpactLaw>> laws{
+      {"newton_coulomb", ImpactLaw::newton_coulomb(0.9, 1.0)},
+      {"poisson_coulomb", ImpactLaw::poisson_coulomb(0.9, 1.0)},
+      {"fremond viscous", ImpactLaw::fremond(PowerPotential(bar_fremond_k_normal(3.0), 3.0),
+                                             DeadZonePowerPotential(1.5, 2.0, 0.2))}};
+  for (const SmallImpactProblem& small : {bar_first_impact(true), flat_bar_two_contacts(true)})
+    for (const auto& [name, law] : laws) {
+      const ImpactProblem p = to_dynamic(small);
+      ImpactResult r;
+      std::string where;
+      const long n = allocations([&] { r = solve_impact(p, law); }, &where);
+      EXPECT_TRUE(r.ok()) << name;
+      EXPECT_GE(heap_blocks(r), 9) << name;
+      EXPECT_EQ(n, heap_blocks(r))
+          << name << " on " << p.contacts() << " contacts: an allocation beside the result's at\n"
+          << where;
+    }
+}
+
 }  // namespace
 }  // namespace fremond

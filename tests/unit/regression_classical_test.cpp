@@ -200,7 +200,7 @@ TEST(RegressionClassical, StalledLemkeAnswerFallsBackToTheEnumeration) {
   const ImpactLaw law =
       ImpactLaw::newton_coulomb(PerContact({0.0, 0.89786378748774553}), 86.844560776395539);
   const SolverOptions opt;
-  const auto r = solve_impact(pb, law, opt);
+  const auto r = detail::solve_impact_in_own_storage(pb, law, opt);
   ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
   EXPECT_LE(r.solver.residual, opt.tolerance);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
@@ -246,7 +246,7 @@ TEST(RegressionClassical, LemkeInTheCompressionPhaseFallsBackToTheEnumerationOfB
     EXPECT_LE((r.qdot_E - ref.qdot_E).cwiseAbs().maxCoeff(), 1e-12 * scale);
     EXPECT_LE((r.P_N - ref.P_N).cwiseAbs().maxCoeff(), 1e-12 * ref.P_N.cwiseAbs().maxCoeff());
   };
-  const auto r = solve_impact(pb, law, opt);
+  const auto r = detail::solve_impact_in_own_storage(pb, law, opt);
   check(r);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
   check(solve_impact(to_small(pb), law, opt));  // the same through the stack-stored problem
@@ -961,7 +961,7 @@ void expect_light_rotor_answer(const io::ProblemFile& file, const Eigen::Vector3
                                std::optional<std::pair<double, double>> compression = {}) {
   const auto check = [&](const auto& pb, const char* storage) {
     SCOPED_TRACE(storage);
-    const auto r = solve_impact(pb, file.law);
+    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
     EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), tol);
     EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);

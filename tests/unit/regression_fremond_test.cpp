@@ -1149,7 +1149,7 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
                           1.034872433410523586566764e-4, 51.20820664895467687567923);
   const auto check = [&](const auto& pb, const char* storage) {
     SCOPED_TRACE(storage);
-    const auto r = solve_impact(pb, file.law);
+    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
     EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_EQ(r.solver.criterion, StopCriterion::residual);
     const double v = r.D_TA.cwiseAbs().maxCoeff();  // 0.91
@@ -1198,7 +1198,7 @@ TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
     SCOPED_TRACE(file.law.describe());
     const Eigen::VectorXd expected = ratio * file.problem.qdot_A;  // q̇_E in closed form
     const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
-    const auto r = solve_impact(file.problem, file.law);
+    const auto r = detail::solve_impact_in_own_storage(file.problem, file.law);
     ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
     EXPECT_LE((r.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
@@ -1228,7 +1228,7 @@ TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
   const double PN = 859122.4000891379825426389, PT = 457131.9499283369349510254;
   const auto check = [&](const auto& pb, const char* storage) {
     SCOPED_TRACE(storage);
-    const auto r = solve_impact(pb, file.law);
+    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
     EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), 1e-13);
     // The percussions are known only to the condition of G (3e6) times their rounding.

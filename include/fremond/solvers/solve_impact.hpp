@@ -13,7 +13,8 @@ namespace fremond {
 /// Solves one impact. Throws InvalidArgument for an invalid problem, law or options; a solver that
 /// does not converge says so in result.solver.status (never an exception). For small problems
 /// (SmallImpactProblem) the solve allocates nothing on the heap, except for potentials whose prox
-/// is computed through the NLopt fallback.
+/// is computed through the NLopt fallback. A heap-stored problem (ImpactProblem) that fits the
+/// small form (fits_small) is solved in it: the only allocations are then the result's vectors.
 ///
 /// Contacts that G = WᵀM⁻¹W does not couple (two bodies in one problem) form independent groups,
 /// each solved as a problem of its own, to its own velocity scale (SPEC §1-2: the laws separate).
@@ -31,5 +32,14 @@ ImpactResultT<MaxDofs, MaxContacts> solve_impact(
 /// Independent groups of contacts (see solve_impact) give the product of the groups' lists.
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& problem, const ImpactLaw& law,
                                            const SolverOptions& options = {});
+
+namespace detail {
+/// solve_impact in the problem's own storage, without moving a heap-stored problem that fits into
+/// the small form. For tests that exercise the heap-stored code on small problems.
+template <int MaxDofs, int MaxContacts>
+ImpactResultT<MaxDofs, MaxContacts> solve_impact_in_own_storage(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const SolverOptions& options = {});
+}  // namespace detail
 
 }  // namespace fremond

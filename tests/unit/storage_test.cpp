@@ -1,0 +1,203 @@
+// A heap-stored problem that fits the small form is solved in it (solve_impact.hpp): its answer
+// must be the stack-stored answer in every member, whatever the law, the outcome (an energy gain,
+// Poisson's phases, Frémond's reaction, several solutions, independent groups, no contact taking
+// part) and the options; and a problem handed in either storage is refused with the same words.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../bench/problems.hpp"
+#include "fremond/fremond.hpp"
+
+namespace fremond {
+namespace {
+
+using namespace fremond::bench;
+
+/// Two point masses in one problem, one contact each: two independent groups.
+SmallImpactProblem two_point_masses() {
+  SmallImpactProblem p;
+  p.M = SmallImpactProblem::Mat::Identity(4, 4);
+  p.W_N = SmallImpactProblem::Jac::Zero(4, 2);
+  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
+  p.W_T = SmallImpactProblem::Jac::Zero(4, 2);
+  p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
+  p.qdot_A = SmallImpactProblem::Vec(4);
+  p.qdot_A << 2.0, -3.0, 1e-9, -2e-9;
+  return p;
+}
+
+/// The bar at θ = π/4 touching with D_NA = 0 and sliding back: for μ ≥ 5/3 both the open contact
+/// and sticking solve Newton + Coulomb (classical_coulomb_test.cpp works it by hand).
+SmallImpactProblem grazing_bar() {
+  SmallImpactProblem p;
+  const double l = 1.0, J = 1.0 / 3.0;  // unit mass and half-length: J = m l²/3
+  p.M = SmallImpactProblem::Mat(Eigen::Vector3d(1.0, 1.0, J).asDiagonal());
+  const double c = std::cos(std::numbers::pi / 4), s = std::sin(std::numbers::pi / 4);
+  p.W_N = SmallImpactProblem::Jac(Eigen::Vector3d(0.0, 1.0, -l * c));
+  p.W_T = SmallImpactProblem::Jac(Eigen::Vector3d(1.0, 0.0, l * s));
+  p.qdot_A = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  return p;
+}
+
+/// A body whose only contact is already separating: nothing takes part.
+SmallImpactProblem separating_point_mass() {
+  SmallImpactProblem p = point_mass(1.0, true);
+  p.qdot_A(1) = 0.5;
+  return p;
+}
+
+struct Case {
+  std::string name;
+  SmallImpactProblem problem;
+  ImpactLaw law;
+};
+
+std::vector<Case> cases() {
+  const double k3 = bar_fremond_k_normal(3.0);
+  const ImpactLaw p3 = ImpactLaw::fremond(PowerPotential(k3, 3.0));
+  const ImpactLaw viscous =
+      ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2));
+  const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), 1.0);
+  // A normal law too weak to stop the bar by itself: the reaction does (SPEC §3).
+  const ImpactLaw reaction = ImpactLaw::fremond(PowerPotential(1e-3, 2.0));
+  std::vector<Case> v{
+      {"bar newton_coulomb (energy gain)", bar_first_impact(true),
+       ImpactLaw::newton_coulomb(kRestitution, kFriction)},
+      {"bar poisson_coulomb (phases)", bar_first_impact(true),
+       ImpactLaw::poisson_coulomb(kRestitution, kFriction)},
+      {"bar fremond viscous", bar_first_impact(true), viscous},
+      {"bar fremond reaction", bar_first_impact(false), reaction},
+      {"flat bar newton_coulomb", flat_bar_two_contacts(true),
+       ImpactLaw::newton_coulomb(kRestitution, kFriction)},
+      {"flat bar poisson", flat_bar_two_contacts(false), ImpactLaw::poisson(kRestitution)},
+      {"flat bar fremond coulomb", flat_bar_two_contacts(true), coulomb},
+      {"flat bar fremond p3", flat_bar_two_contacts(false), p3},
+      {"two point masses newton_coulomb", two_point_masses(),
+       ImpactLaw::newton_coulomb(kRestitution, kFriction)},
+      {"two point masses fremond coulomb", two_point_masses(), coulomb},
+      {"grazing bar newton_coulomb (two solutions)", grazing_bar(),
+       ImpactLaw::newton_coulomb(0.5, 2.0)},
+      {"separating point mass", separating_point_mass(), viscous}};
+  for (int i = 0; i < 3; ++i) {
+    v.push_back({"random " + std::to_string(i) + " poisson_coulomb", random_spd_problem(i, true),
+                 ImpactLaw::poisson_coulomb(kRestitution, kFriction)});
+    v.push_back({"random " + std::to_string(i) + " viscous", random_spd_problem(i, true), viscous});
+  }
+  return v;
+}
+
+template <class A, class B>
+void expect_same_vector(const A& heap, const B& small, const char* what) {
+  ASSERT_EQ(heap.size(), small.size()) << what;
+  for (Eigen::Index i = 0; i < heap.size(); ++i)
+    EXPECT_EQ(heap(i), small(i)) << what << "[" << i << "]";
+}
+
+void expect_same(const ImpactResult& h, const SmallImpactResult& s) {
+  expect_same_vector(h.qdot_E, s.qdot_E, "qdot_E");
+  expect_same_vector(h.P_N, s.P_N, "P_N");
+  expect_same_vector(h.P_T, s.P_T, "P_T");
+  expect_same_vector(h.D_NA, s.D_NA, "D_NA");
+  expect_same_vector(h.D_TA, s.D_TA, "D_TA");
+  expect_same_vector(h.D_NE, s.D_NE, "D_NE");
+  expect_same_vector(h.D_TE, s.D_TE, "D_TE");
+  expect_same_vector(h.P_N_reaction, s.P_N_reaction, "P_N_reaction");
+  EXPECT_EQ(h.has_phases, s.has_phases);
+  expect_same_vector(h.P_NC, s.P_NC, "P_NC");
+  expect_same_vector(h.P_TC, s.P_TC, "P_TC");
+  expect_same_vector(h.D_NC, s.D_NC, "D_NC");
+  expect_same_vector(h.D_TC, s.D_TC, "D_TC");
+  expect_same_vector(h.takes_part, s.takes_part, "takes_part");
+  EXPECT_EQ(h.energy_change, s.energy_change);
+  EXPECT_EQ(h.unique, s.unique);
+  EXPECT_EQ(h.solutions_found, s.solutions_found);
+  const auto& a = h.admissibility;
+  const auto& b = s.admissibility;
+  EXPECT_EQ(a.kinetic_energy_A, b.kinetic_energy_A);
+  EXPECT_EQ(a.energy_change, b.energy_change);
+  EXPECT_EQ(a.total, b.total);
+  expect_same_vector(a.per_contact, b.per_contact, "admissibility.per_contact");
+  EXPECT_EQ(a.reaction, b.reaction);
+  EXPECT_EQ(a.dissipation, b.dissipation);
+  EXPECT_EQ(a.complementarity, b.complementarity);
+  EXPECT_EQ(a.penetration, b.penetration);
+  EXPECT_EQ(a.fenchel_young_gap, b.fenchel_young_gap);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.admissible, b.admissible);
+  EXPECT_EQ(a.failed, b.failed);
+  EXPECT_EQ(a.failed_contact, b.failed_contact);
+  EXPECT_EQ(a.violation, b.violation);
+  EXPECT_EQ(h.solver.method, s.solver.method);
+  EXPECT_EQ(h.solver.status, s.solver.status);
+  EXPECT_EQ(h.solver.criterion, s.solver.criterion);
+  EXPECT_EQ(h.solver.message, s.solver.message);
+  EXPECT_EQ(h.solver.iterations, s.solver.iterations);
+  EXPECT_EQ(h.solver.residual, s.solver.residual);
+  EXPECT_EQ(h.solver.native_code, s.solver.native_code);
+  EXPECT_EQ(h.solver.fallbacks, s.solver.fallbacks);
+}
+
+TEST(Storage, HeapStoredSmallProblemGetsTheStackStoredAnswerInEveryMember) {
+  bool saw_gain = false, saw_phases = false, saw_reaction = false, saw_several = false,
+       saw_none_taking_part = false;
+  for (const Case& c : cases()) {
+    const ImpactProblem heap = to_dynamic(c.problem);
+    for (const bool unique : {false, true}) {
+      SCOPED_TRACE(c.name + (unique ? ", check_uniqueness" : ""));
+      SolverOptions opt;
+      opt.check_uniqueness = unique;
+      const ImpactResult h = solve_impact(heap, c.law, opt);
+      const SmallImpactResult s = solve_impact(c.problem, c.law, opt);
+      expect_same(h, s);
+      EXPECT_TRUE(h.ok()) << to_string(h.solver.status);
+      saw_gain |= h.admissibility.energy_change > 0.0 && !h.admissibility.admissible;
+      saw_phases |= h.has_phases;
+      saw_reaction |= h.P_N_reaction.size() > 0 && h.P_N_reaction.maxCoeff() > 0.0;
+      saw_several |= !h.unique;
+      saw_none_taking_part |= h.takes_part.sum() == 0;
+    }
+  }
+  // The cases reach every member's interesting values, so a member left uncopied shows.
+  EXPECT_TRUE(saw_gain);
+  EXPECT_TRUE(saw_phases);
+  EXPECT_TRUE(saw_reaction);
+  EXPECT_TRUE(saw_several);
+  EXPECT_TRUE(saw_none_taking_part);
+}
+
+/// The refusal's first word: the member it names.
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const InvalidArgument& e) {
+    return e.name();
+  }
+  return "(accepted)";
+}
+
+// A heap-stored problem that fits the small form is validated there, with the same words as in
+// its own storage; one whose shapes do not fit is refused in its own storage.
+TEST(Storage, RefusalsNameTheSameMemberInEitherStorage) {
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.5, 1.0);
+  std::vector<ImpactProblem> bad(5, to_dynamic(bar_first_impact(true)));
+  bad[0].qdot_A(1) = std::numeric_limits<double>::quiet_NaN();
+  bad[1].M(0, 1) = 0.5;  // not symmetric
+  bad[2].W_T.resize(3, 0);
+  bad[2].w_T = Eigen::VectorXd::Zero(1);  // a tangential term without a tangential row
+  bad[3].M = -bad[3].M;                   // not positive definite
+  bad[4].W_N = Eigen::MatrixXd::Ones(kSmallDofs + 1, 1);  // does not fit: its own storage
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    SCOPED_TRACE(i);
+    const std::string heap = refusal([&] { (void)solve_impact(bad[i], law); });
+    EXPECT_NE(heap, "(accepted)");
+    EXPECT_EQ(heap, refusal([&] { (void)detail::solve_impact_in_own_storage(bad[i], law); }));
+  }
+}
+
+}  // namespace
+}  // namespace fremond
