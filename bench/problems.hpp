@@ -113,6 +113,21 @@ inline SmallImpactProblem point_mass(double m = 1.0, bool with_friction = true) 
   return p;
 }
 
+/// Two point masses in one problem, q = (x₁, y₁, x₂, y₂), one contact each, with q̇_A = (2, −3,
+/// 1e-9, −2e-9): G couples nothing, so the contacts form two independent groups, 1e9 apart in
+/// speed.
+inline SmallImpactProblem two_point_masses(bool with_friction = true) {
+  SmallImpactProblem p;
+  p.M = SmallImpactProblem::Mat::Identity(4, 4);
+  p.W_N = SmallImpactProblem::Jac::Zero(4, 2);
+  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
+  p.W_T = SmallImpactProblem::Jac::Zero(4, with_friction ? 2 : 0);
+  if (with_friction) p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
+  p.qdot_A = SmallImpactProblem::Vec(4);
+  p.qdot_A << 2.0, -3.0, 1e-9, -2e-9;
+  return p;
+}
+
 /// SplitMix64: a generator whose numbers are the same with every standard library (the standard
 /// distributions are not), so the random problems are the same everywhere.
 class SplitMix64 {
@@ -212,6 +227,19 @@ inline double bar_fremond_k_normal(double p, double e = kRestitution) {
   const ContactSpace cs = contact_space(bar_first_impact(false));
   const double dna = std::abs(cs.D_A(0)), gnn = cs.G(0, 0);
   return (1.0 + e) / (gnn * std::pow((1.0 - e) / 2.0, p - 1.0) * std::pow(dna, p - 2.0));
+}
+
+/// Frémond's laws for the bar as the tests use them: φ_N = k|z|³/3 with k from
+/// bar_fremond_k_normal, alone, with the viscous dead zone (k_T = 1.5, q = 2, r = 0.2), or with
+/// Coulomb (μ = 1).
+struct BarFremondLaws {
+  ImpactLaw p3, viscous, coulomb;
+};
+inline BarFremondLaws bar_fremond_laws() {
+  const double k3 = bar_fremond_k_normal(3.0);
+  return {ImpactLaw::fremond(PowerPotential(k3, 3.0)),
+          ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2)),
+          ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), 1.0)};
 }
 
 /// Newton + Coulomb on ONE contact in closed form (SPEC §2, paper §4): with b = (−(1+e) D_NA,

@@ -181,20 +181,6 @@ TEST(NoAllocation, TheCounterSeesTheLibrarysAllocations) {
   EXPECT_GE(allocations([&] { d = to_dynamic(small); }, &where), 4);
 }
 
-/// Two point masses in one problem, one contact each, at velocities 1e9 apart: independent
-/// groups of contacts, solved one by one (independent_groups.hpp).
-SmallImpactProblem two_point_masses(bool with_friction) {
-  SmallImpactProblem p;
-  p.M = SmallImpactProblem::Mat::Identity(4, 4);
-  p.W_N = SmallImpactProblem::Jac::Zero(4, 2);
-  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
-  p.W_T = SmallImpactProblem::Jac::Zero(4, with_friction ? 2 : 0);
-  if (with_friction) p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
-  p.qdot_A = SmallImpactProblem::Vec(4);
-  p.qdot_A << 2.0, -3.0, 1e-9, -2e-9;
-  return p;
-}
-
 struct Case {
   std::string name;
   SmallImpactProblem problem;
@@ -202,11 +188,7 @@ struct Case {
 };
 
 std::vector<Case> fremond_cases() {
-  const double k3 = bar_fremond_k_normal(3.0);
-  const ImpactLaw p3 = ImpactLaw::fremond(PowerPotential(k3, 3.0));
-  const ImpactLaw viscous =
-      ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2));
-  const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), 1.0);
+  const auto [p3, viscous, coulomb] = bar_fremond_laws();
   std::vector<Case> v;
   v.push_back({"bar p3", bar_first_impact(false), p3});
   v.push_back({"bar p3 viscous", bar_first_impact(true), viscous});
@@ -322,8 +304,7 @@ TEST(NoAllocation, HeapStoredSmallProblemAllocatesOnlyItsResult) {
   const std::vector<std::pair<std::string, ImpactLaw>> laws{
       {"newton_coulomb", ImpactLaw::newton_coulomb(0.9, 1.0)},
       {"poisson_coulomb", ImpactLaw::poisson_coulomb(0.9, 1.0)},
-      {"fremond viscous", ImpactLaw::fremond(PowerPotential(bar_fremond_k_normal(3.0), 3.0),
-                                             DeadZonePowerPotential(1.5, 2.0, 0.2))}};
+      {"fremond viscous", bar_fremond_laws().viscous}};
   for (const SmallImpactProblem& small : {bar_first_impact(true), flat_bar_two_contacts(true)})
     for (const auto& [name, law] : laws) {
       const ImpactProblem p = to_dynamic(small);

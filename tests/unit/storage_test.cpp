@@ -17,19 +17,6 @@ namespace {
 
 using namespace fremond::bench;
 
-/// Two point masses in one problem, one contact each: two independent groups.
-SmallImpactProblem two_point_masses() {
-  SmallImpactProblem p;
-  p.M = SmallImpactProblem::Mat::Identity(4, 4);
-  p.W_N = SmallImpactProblem::Jac::Zero(4, 2);
-  p.W_N(1, 0) = p.W_N(3, 1) = 1.0;
-  p.W_T = SmallImpactProblem::Jac::Zero(4, 2);
-  p.W_T(0, 0) = p.W_T(2, 1) = 1.0;
-  p.qdot_A = SmallImpactProblem::Vec(4);
-  p.qdot_A << 2.0, -3.0, 1e-9, -2e-9;
-  return p;
-}
-
 /// The bar at θ = π/4 touching with D_NA = 0 and sliding back: for μ ≥ 5/3 both the open contact
 /// and sticking solve Newton + Coulomb (classical_coulomb_test.cpp works it by hand).
 SmallImpactProblem grazing_bar() {
@@ -57,11 +44,7 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  const double k3 = bar_fremond_k_normal(3.0);
-  const ImpactLaw p3 = ImpactLaw::fremond(PowerPotential(k3, 3.0));
-  const ImpactLaw viscous =
-      ImpactLaw::fremond(PowerPotential(k3, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2));
-  const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), 1.0);
+  const auto [p3, viscous, coulomb] = bar_fremond_laws();
   // A normal law too weak to stop the bar by itself: the reaction does (SPEC §3).
   const ImpactLaw reaction = ImpactLaw::fremond(PowerPotential(1e-3, 2.0));
   std::vector<Case> v{
@@ -76,9 +59,9 @@ std::vector<Case> cases() {
       {"flat bar poisson", flat_bar_two_contacts(false), ImpactLaw::poisson(kRestitution)},
       {"flat bar fremond coulomb", flat_bar_two_contacts(true), coulomb},
       {"flat bar fremond p3", flat_bar_two_contacts(false), p3},
-      {"two point masses newton_coulomb", two_point_masses(),
+      {"two point masses newton_coulomb", two_point_masses(true),
        ImpactLaw::newton_coulomb(kRestitution, kFriction)},
-      {"two point masses fremond coulomb", two_point_masses(), coulomb},
+      {"two point masses fremond coulomb", two_point_masses(true), coulomb},
       {"grazing bar newton_coulomb (two solutions)", grazing_bar(),
        ImpactLaw::newton_coulomb(0.5, 2.0)},
       {"separating point mass", separating_point_mass(), viscous}};
