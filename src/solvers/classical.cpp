@@ -439,11 +439,13 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   }
 }
 
-std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const ImpactLaw& law,
-                                              const SolverOptions& options) {
-  ContactSpaceT<Dynamic, Dynamic> cs;
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>& pb,
+                                                     const ImpactLaw& law,
+                                                     const SolverOptions& options) {
+  ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.has_friction(), cs);
-  std::vector<ImpactResult> all;
+  std::vector<ImpactResultT<N, C>> all;
   if (!method_applies(options.method)) {
     fill_unsupported(pb, cs, law, options, all.emplace_back());
     return all;
@@ -452,7 +454,7 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
     fill_trivial(pb, cs, law, all.emplace_back());
     return all;
   }
-  LawOutcome<Dynamic> lo;
+  LawOutcome<C> lo;
   if (options.method != SolverMethod::trivial)
     solve_law(pb, cs, law, classical::kMaxEnumerated, lo, options.method);
   if (options.method == SolverMethod::trivial || lo.unsupported) {
@@ -470,7 +472,7 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
     return lo.solutions[i].energy_change < lo.solutions[j].energy_change;
   });
   for (int k : order) {
-    ImpactResult& r = all.emplace_back();
+    ImpactResultT<N, C>& r = all.emplace_back();
     fill_result(pb, cs, law, options, lo, k, r);
     if (!all_finite(r)) fill_failure(pb, cs, law, lo, r, true);
   }
@@ -483,7 +485,9 @@ std::vector<ImpactResult> solve_classical_all(const ImpactProblem& pb, const Imp
   template void write_classical_answer(                                                        \
       const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const ImpactLaw&,               \
       const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
-      ImpactResultT<N, C>&, const VecT<N>*);
+      ImpactResultT<N, C>&, const VecT<N>*);                                                   \
+  template std::vector<ImpactResultT<N, C>> solve_classical_all(                               \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

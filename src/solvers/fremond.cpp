@@ -970,21 +970,22 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   return std::max(res, off * gmax) / cs.v_scale;
 }
 
-std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const ImpactLaw& law,
-                                            const SolverOptions& opt) {
-  ContactSpaceT<Dynamic, Dynamic> cs;
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
+                                                   const ImpactLaw& law, const SolverOptions& opt) {
+  ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
-  FremondRowsT<Dynamic, Dynamic> rows;
+  FremondRowsT<N, C> rows;
   rows.init(cs, law);
-  std::vector<ImpactResult> all;
+  std::vector<ImpactResultT<N, C>> all;
   if (cs.active == 1 && rows.coulomb && rows.all_prox && !decoupled(cs)) {
     std::array<ContactSolution, 16> sols;
     bool exhaustive = true;
     const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,
                                 &exhaustive);
     for (int s = 0; s < n; ++s) {
-      ImpactResult r;
-      Rows<Dynamic, Dynamic> P(2), z, R;
+      ImpactResultT<N, C> r;
+      Rows<N, C> P(2), z, R;
       P << sols[s].PN, sols[s].PT;
       MethodOutcome o;
       o.status = SolverStatus::converged;
@@ -1004,7 +1005,7 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
     if (n > 0) return all;
     // None found: solve_fremond decides between "no solution" and what semismooth Newton finds.
   }
-  ImpactResult r;
+  ImpactResultT<N, C> r;
   solve_fremond(pb, cs, law, opt, r);
   if (r.solver.status == SolverStatus::no_solution) return {};
   r.solutions_found = 1;
@@ -1016,7 +1017,9 @@ std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const Impac
   template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
                               const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
   template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
-                                   const ImpactResultT<N, C>&);
+                                   const ImpactResultT<N, C>&);                              \
+  template std::vector<ImpactResultT<N, C>> solve_fremond_all(                               \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

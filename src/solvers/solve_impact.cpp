@@ -56,17 +56,31 @@ template ImpactResultT<Dynamic, Dynamic> solve_impact(const ImpactProblemT<Dynam
 template ImpactResultT<kSmallDofs, kSmallContacts> solve_impact(
     const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&, const SolverOptions&);
 
+namespace {
+/// solve_impact_all's work in the problem's storage.
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                              const SolverOptions& options) {
+  // Independent groups of contacts: the product of the groups' lists (independent_groups.hpp).
+  std::vector<ImpactResultT<N, C>> all;
+  if (!detail::solve_all_by_groups(pb, law, options, all))
+    all = law.type == LawType::fremond ? detail::solve_fremond_all(pb, law, options)
+                                       : detail::solve_classical_all(pb, law, options);
+  for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
+  return all;
+}
+}  // namespace
+
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& pb, const ImpactLaw& law,
                                            const SolverOptions& options) {
   validate(pb);
   law.validate(pb.contacts());
   options.validate();
-  // Independent groups of contacts: the product of the groups' lists (independent_groups.hpp).
+  // In the storage solve_impact uses, so that a unique answer is solve_impact's to the last bit.
+  if (!fits_small(pb)) return solve_all_in(pb, law, options);
   std::vector<ImpactResult> all;
-  if (!detail::solve_all_by_groups(pb, law, options, all))
-    all = law.type == LawType::fremond ? detail::solve_fremond_all(pb, law, options)
-                                       : detail::solve_classical_all(pb, law, options);
-  for (auto& r : all) r.admissibility = check_admissibility(pb, law, r, options);
+  for (const SmallImpactResult& r : solve_all_in(to_small(pb), law, options))
+    all.push_back(to_dynamic(r));
   return all;
 }
 

@@ -4,6 +4,7 @@
 // part) and the options; and a problem handed in either storage is refused with the same words.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -150,6 +151,34 @@ TEST(Storage, HeapStoredSmallProblemGetsTheStackStoredAnswerInEveryMember) {
   EXPECT_TRUE(saw_reaction);
   EXPECT_TRUE(saw_several);
   EXPECT_TRUE(saw_none_taking_part);
+}
+
+// solve_impact_all solves in the storage solve_impact uses: where the answer is unique, the list's
+// one answer is solve_impact's to the last bit (with `fremond impact` and `--all-solutions` print
+// the same numbers); where it is not, solve_impact's answer is one of the list.
+TEST(Storage, SolveImpactAllGivesSolveImpactsAnswerToTheLastBit) {
+  int unique = 0, several = 0;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const ImpactProblem heap = to_dynamic(c.problem);
+    const ImpactResult one = solve_impact(heap, c.law);
+    const std::vector<ImpactResult> all = solve_impact_all(heap, c.law);
+    ASSERT_FALSE(all.empty());
+    const auto same = [&](const ImpactResult& r) {
+      return r.qdot_E == one.qdot_E && r.P_N == one.P_N && r.P_T == one.P_T &&
+             r.energy_change == one.energy_change;
+    };
+    if (all.size() == 1) {
+      ++unique;
+      EXPECT_TRUE(same(all[0]));
+      EXPECT_EQ(all[0].solver.status, one.solver.status);
+    } else {
+      ++several;
+      EXPECT_TRUE(std::any_of(all.begin(), all.end(), same));
+    }
+  }
+  EXPECT_GE(unique, 15);
+  EXPECT_GE(several, 1);
 }
 
 /// The refusal's first word: the member it names.

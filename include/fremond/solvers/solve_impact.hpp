@@ -30,6 +30,7 @@ ImpactResultT<MaxDofs, MaxContacts> solve_impact(
 /// contact, exactly) by enumerating contact modes; otherwise the single answer of solve_impact.
 /// Each result has `unique` and `solutions_found` set. An empty list means no solution exists.
 /// Independent groups of contacts (see solve_impact) give the product of the groups' lists.
+/// Solved in the storage solve_impact uses, so a unique answer is solve_impact's to the last bit.
 std::vector<ImpactResult> solve_impact_all(const ImpactProblem& problem, const ImpactLaw& law,
                                            const SolverOptions& options = {});
 

@@ -28,8 +28,10 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
                    const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out);
 
 /// Every solution found: exact for one contact with Coulomb (mode enumeration), else one.
-std::vector<ImpactResult> solve_fremond_all(const ImpactProblem& pb, const ImpactLaw& law,
-                                            const SolverOptions& options);
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
+                                                   const ImpactLaw& law,
+                                                   const SolverOptions& options);
 
 /// Semismooth Newton on R(P) = z − prox(z − τP) from the P given; P is overwritten.
 template <int N, int C>

@@ -232,34 +232,35 @@ bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
 /// of the groups' lists (most dissipative first, as each law's own list). False (nothing written)
 /// where the contacts form one group, where a group's list is empty or holds an answer that is not
 /// converged (the whole problem's list then says so), or where the product exceeds 256.
-inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
-                                const SolverOptions& options, std::vector<ImpactResult>& all) {
-  ContactSpaceT<Dynamic, Dynamic> cs;
+template <int N, int C>
+bool solve_all_by_groups(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                         const SolverOptions& options, std::vector<ImpactResultT<N, C>>& all) {
+  ContactSpaceT<N, C> cs;
   build_contact_space(pb, tangential_rows(law), cs);
   if (cs.active < 2 || coupled_to_first(cs)) return false;
-  Eigen::VectorXi group;
+  GroupLabels<C> group;
   const int groups = independent_groups(cs, group);
   if (groups < 2) return false;
-  ImpactProblem sub = pb;
-  ContactSpaceT<Dynamic, Dynamic> gcs;
-  std::vector<std::vector<ImpactResult>> lists(groups);
+  ImpactProblemT<N, C> sub = pb;
+  ContactSpaceT<N, C> gcs;
+  std::vector<std::vector<ImpactResultT<N, C>>> lists(groups);
   long total = 1;
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     lists[g] = law.type == LawType::fremond ? solve_fremond_all(sub, law, options)
                                             : solve_classical_all(sub, law, options);
     if (lists[g].empty()) return false;
-    for (const ImpactResult& r : lists[g])
+    for (const ImpactResultT<N, C>& r : lists[g])
       if (r.solver.status != SolverStatus::converged) return false;
     total *= static_cast<long>(lists[g].size());
     if (total > 256) return false;
   }
-  std::vector<ImpactResult> found;
+  std::vector<ImpactResultT<N, C>> found;
   std::vector<std::size_t> pick(groups, 0);
   while (true) {
-    GroupMerge<Dynamic, Dynamic> merge(pb, cs);
+    GroupMerge<N, C> merge(pb, cs);
     for (int g = 0; g < groups; ++g) merge.add(group, g, lists[g][pick[g]]);
-    ImpactResult& r = found.emplace_back();
+    ImpactResultT<N, C>& r = found.emplace_back();
     if (!merge.write(law, r)) return false;
     r.unique = r.unique && total == 1;
     r.solutions_found = static_cast<int>(total);
@@ -267,9 +268,10 @@ inline bool solve_all_by_groups(const ImpactProblem& pb, const ImpactLaw& law,
     while (g < groups && ++pick[g] == lists[g].size()) pick[g++] = 0;
     if (g == groups) break;
   }
-  std::stable_sort(found.begin(), found.end(), [](const ImpactResult& x, const ImpactResult& y) {
-    return x.energy_change < y.energy_change;
-  });
+  std::stable_sort(found.begin(), found.end(),
+                   [](const ImpactResultT<N, C>& x, const ImpactResultT<N, C>& y) {
+                     return x.energy_change < y.energy_change;
+                   });
   all = std::move(found);
   return true;
 }

@@ -29,8 +29,10 @@ void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                             const VecT<MaxDofs>* velocities = nullptr);
 
 /// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
-std::vector<ImpactResult> solve_classical_all(const ImpactProblem& problem, const ImpactLaw& law,
-                                              const SolverOptions& options);
+template <int MaxDofs, int MaxContacts>
+std::vector<ImpactResultT<MaxDofs, MaxContacts>> solve_classical_all(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const SolverOptions& options);
 
 /// The scaled natural-map residual of a classical law at `result` (see laws/residual.hpp).
 /// `beyond_rounding`, if given, receives the same residual without the contacts whose every term
