@@ -288,6 +288,12 @@ template <int N, int C>
 AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                             const ImpactResultT<N, C>& r,
                                             const SolverOptions& options) {
+  if constexpr (N == Dynamic && C == Dynamic) {
+    // In the storage solve_impact uses for this problem, so that the result's own certificate
+    // reads the same to the last bit (solve_impact.cpp).
+    if (fits_small(pb) && fits_small(r))
+      return to_dynamic(check_admissibility(to_small(pb), law, to_small(r), options));
+  }
   // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
   // cannot be factorised (M not positive definite) gets no rounding allowance.
   VecT<C> rounding = VecT<C>::Zero(pb.contacts()), percussion = VecT<C>::Zero(pb.contacts());
@@ -319,8 +325,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   template AdmissibilityReportT<C> check_admissibility(                             \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
       const SolverOptions&);
-FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
+FREMOND_INSTANTIATE(Dynamic, Dynamic)
 #undef FREMOND_INSTANTIATE
 
 }  // namespace fremond

@@ -7,6 +7,7 @@
 #include "../solvers/detail/fremond.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/solvers/detail/classical.hpp"
+#include "fremond/solvers/impact_result.hpp"
 
 namespace fremond {
 
@@ -22,13 +23,18 @@ double law_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
       throw InvalidArgument("result", std::string(name) + " has " + std::to_string(size) +
                                           " entries, the problem has " + std::to_string(c) +
                                           " contacts");
+  if constexpr (N == Dynamic && C == Dynamic) {
+    // In the storage solve_impact uses for this problem, so that the result's own residual reads
+    // the same to the last bit (solve_impact.cpp).
+    if (fits_small(pb) && fits_small(r)) return law_residual(to_small(pb), law, to_small(r));
+  }
   if (law.type != LawType::fremond) return detail::classical_residual(pb, law, r);
   return detail::fremond_residual(pb, law, r);
 }
 
-template double law_residual(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,
-                             const ImpactResultT<Dynamic, Dynamic>&);
 template double law_residual(const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&,
                              const ImpactResultT<kSmallDofs, kSmallContacts>&);
+template double law_residual(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,
+                             const ImpactResultT<Dynamic, Dynamic>&);
 
 }  // namespace fremond

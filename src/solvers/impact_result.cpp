@@ -1,11 +1,17 @@
 // Moving a result between storages (impact_result.hpp).
 #include "fremond/solvers/impact_result.hpp"
 
+#include <string>
+
+#include "fremond/core/error.hpp"
+
 namespace fremond {
 
 namespace {
-AdmissibilityReportT<Dynamic> to_dynamic(const AdmissibilityReportT<kSmallContacts>& a) {
-  AdmissibilityReportT<Dynamic> d;
+/// The certificate in the other storage: every member.
+template <int To, int From>
+AdmissibilityReportT<To> convert(const AdmissibilityReportT<From>& a) {
+  AdmissibilityReportT<To> d;
   d.kinetic_energy_A = a.kinetic_energy_A;
   d.energy_change = a.energy_change;
   d.total = a.total;
@@ -22,10 +28,11 @@ AdmissibilityReportT<Dynamic> to_dynamic(const AdmissibilityReportT<kSmallContac
   d.violation = a.violation;
   return d;
 }
-}  // namespace
 
-ImpactResult to_dynamic(const SmallImpactResult& s) {
-  ImpactResult d;
+/// The result in the other storage: every member.
+template <int N, int C, int N0, int C0>
+ImpactResultT<N, C> convert(const ImpactResultT<N0, C0>& s) {
+  ImpactResultT<N, C> d;
   d.qdot_E = s.qdot_E;
   d.P_N = s.P_N;
   d.P_T = s.P_T;
@@ -43,9 +50,35 @@ ImpactResult to_dynamic(const SmallImpactResult& s) {
   d.energy_change = s.energy_change;
   d.unique = s.unique;
   d.solutions_found = s.solutions_found;
-  d.admissibility = to_dynamic(s.admissibility);
+  d.admissibility = convert<C>(s.admissibility);
   d.solver = s.solver;
   return d;
+}
+}  // namespace
+
+AdmissibilityReportT<Dynamic> to_dynamic(const AdmissibilityReportT<kSmallContacts>& report) {
+  return convert<Dynamic>(report);
+}
+
+ImpactResult to_dynamic(const SmallImpactResult& result) {
+  return convert<Dynamic, Dynamic>(result);
+}
+
+bool fits_small(const ImpactResult& r) {
+  if (r.qdot_E.size() > kSmallDofs) return false;
+  for (const Eigen::VectorXd* v :
+       {&r.P_N, &r.P_T, &r.D_NA, &r.D_TA, &r.D_NE, &r.D_TE, &r.P_N_reaction, &r.P_NC, &r.P_TC,
+        &r.D_NC, &r.D_TC, &r.admissibility.per_contact})
+    if (v->size() > kSmallContacts) return false;
+  return r.takes_part.size() <= kSmallContacts;
+}
+
+SmallImpactResult to_small(const ImpactResult& result) {
+  if (!fits_small(result))
+    throw InvalidArgument("result", "does not fit the small form (at most " +
+                                        std::to_string(kSmallDofs) + " velocities and " +
+                                        std::to_string(kSmallContacts) + " contacts)");
+  return convert<kSmallDofs, kSmallContacts>(result);
 }
 
 }  // namespace fremond

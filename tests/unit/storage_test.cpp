@@ -125,6 +125,17 @@ void expect_same(const ImpactResult& h, const SmallImpactResult& s) {
   EXPECT_EQ(h.solver.fallbacks, s.solver.fallbacks);
 }
 
+/// The refusal's first word: the member it names.
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const InvalidArgument& e) {
+    return e.name();
+  }
+  return "(accepted)";
+}
+
 TEST(Storage, HeapStoredSmallProblemGetsTheStackStoredAnswerInEveryMember) {
   bool saw_gain = false, saw_phases = false, saw_reaction = false, saw_several = false,
        saw_none_taking_part = false;
@@ -153,6 +164,36 @@ TEST(Storage, HeapStoredSmallProblemGetsTheStackStoredAnswerInEveryMember) {
   EXPECT_TRUE(saw_none_taking_part);
 }
 
+// law_residual and check_admissibility of a heap-stored small problem read it in the small form
+// too: the same numbers as on the stack-stored problem and result, to the last bit.
+TEST(Storage, ResidualAndCertificateOfAHeapStoredResultAreTheStackStoredOnes) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const ImpactProblem heap = to_dynamic(c.problem);
+    ImpactResult h = solve_impact(heap, c.law);
+    SmallImpactResult s = solve_impact(c.problem, c.law);
+    EXPECT_EQ(law_residual(heap, c.law, h), law_residual(c.problem, c.law, s));
+    h.admissibility = check_admissibility(heap, c.law, h);
+    s.admissibility = check_admissibility(c.problem, c.law, s);
+    expect_same(h, s);
+    // The result moved back to the small form is the stack-stored result.
+    const SmallImpactResult back = to_small(h);
+    expect_same(h, back);
+  }
+}
+
+// A result larger than the small form is refused by to_small, naming it.
+TEST(Storage, ToSmallRefusesAResultThatDoesNotFit) {
+  ImpactResult r = to_dynamic(solve_impact(bar_first_impact(true), ImpactLaw::newton(0.5)));
+  EXPECT_TRUE(fits_small(r));
+  r.qdot_E = Eigen::VectorXd::Zero(kSmallDofs + 1);
+  EXPECT_FALSE(fits_small(r));
+  EXPECT_EQ(refusal([&] { (void)to_small(r); }), "result");
+  r = to_dynamic(solve_impact(bar_first_impact(true), ImpactLaw::newton(0.5)));
+  r.admissibility.per_contact = Eigen::VectorXd::Zero(kSmallContacts + 1);
+  EXPECT_FALSE(fits_small(r));
+}
+
 // solve_impact_all solves in the storage solve_impact uses: where the answer is unique, the list's
 // one answer is solve_impact's to the last bit (with `fremond impact` and `--all-solutions` print
 // the same numbers); where it is not, solve_impact's answer is one of the list.
@@ -179,17 +220,6 @@ TEST(Storage, SolveImpactAllGivesSolveImpactsAnswerToTheLastBit) {
   }
   EXPECT_GE(unique, 15);
   EXPECT_GE(several, 1);
-}
-
-/// The refusal's first word: the member it names.
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.name();
-  }
-  return "(accepted)";
 }
 
 // A heap-stored problem that fits the small form is validated there, with the same words as in

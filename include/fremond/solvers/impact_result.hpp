@@ -51,5 +51,11 @@ using SmallImpactResult = ImpactResultT<kSmallDofs, kSmallContacts>;
 
 /// Copies a stack-stored result into the heap-stored form: every member, the same values.
 ImpactResult to_dynamic(const SmallImpactResult& result);
+/// The same for the certificate alone.
+AdmissibilityReportT<Dynamic> to_dynamic(const AdmissibilityReportT<kSmallContacts>& report);
+/// True when every vector of the result fits the small form (kSmallDofs, kSmallContacts).
+bool fits_small(const ImpactResult& result);
+/// Copies a result into the stack-stored form; throws InvalidArgument if it does not fit.
+SmallImpactResult to_small(const ImpactResult& result);
 
 }  // namespace fremond
