@@ -2,6 +2,7 @@
 // and accelerated proximal iterations. Both solve R(P) = z − prox_{τψ}(z − τP) = 0 (fremond_rows).
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,8 +18,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Newton's step solves J ΔP = −R with J = (I − D) G/2 + D T (+ the Coulomb coupling ∂R_T/∂P_N),
 // D = diag(∂prox/∂x) ∈ [0,1], T = diag(τ). J is singular where the law leaves P undetermined (a
-// flat bar sticking with both ends: two identical rows); then a Levenberg–Marquardt step (JᵀJ +
-// λI)ΔP = −JᵀR with λ = ‖R‖ keeps fast local convergence (Yamashita–Fukushima).
+// flat bar sticking with both ends: two identical rows); then the least-squares step of least
+// norm, and after it a Levenberg–Marquardt step (JᵀJ + λI)ΔP = −JᵀR with λ = ‖R‖ (Yamashita–
+// Fukushima).
 template <int N, int C>
 MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
                                 typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
@@ -84,6 +86,18 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
         newton_dP = lu.solve(-R);
         have_newton = true;
       }
+    }
+    // J singular but J ΔP = −R consistent (two contacts sticking with one tangent: equal rows
+    // with equal residuals): a solution from a rank-revealing LU is Newton's step on the rows J
+    // has, and keeps its quadratic convergence. Levenberg–Marquardt, damped by ‖R‖ far from the
+    // answer, crawled there: the plate touching with four contacts under Coulomb took 30 steps to
+    // a kink, then the fallbacks, 1 ms in all against 6 steps. An inconsistent system is left to
+    // Levenberg–Marquardt.
+    if (!have_newton) {
+      const Eigen::FullPivLU<RowMat> full(J);
+      newton_dP = full.solve(-R);
+      const double miss = (J * newton_dP + R).cwiseAbs().maxCoeff();
+      have_newton = newton_dP.allFinite() && miss <= 1e-12 * R.cwiseAbs().maxCoeff();
     }
     // The Levenberg–Marquardt data, formed only when the Newton step is not taken.
     RowMat JtJ;
