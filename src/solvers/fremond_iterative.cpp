@@ -2,7 +2,6 @@
 // and accelerated proximal iterations. Both solve R(P) = z − prox_{τψ}(z − τP) = 0 (fremond_rows).
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,9 +17,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // Newton's step solves J ΔP = −R with J = (I − D) G/2 + D T (+ the Coulomb coupling ∂R_T/∂P_N),
 // D = diag(∂prox/∂x) ∈ [0,1], T = diag(τ). J is singular where the law leaves P undetermined (a
-// flat bar sticking with both ends: two identical rows); then the least-squares step of least
-// norm, and after it a Levenberg–Marquardt step (JᵀJ + λI)ΔP = −JᵀR with λ = ‖R‖ (Yamashita–
-// Fukushima).
+// flat bar sticking with both ends: two identical rows); then a solution of J ΔP = −R from a
+// full-pivoting LU where that system is consistent, else a Levenberg–Marquardt step (JᵀJ + λI)ΔP =
+// −JᵀR with λ = ‖R‖ (Yamashita–Fukushima).
 template <int N, int C>
 MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
                                 typename FremondRowsT<N, C>::Rows& P, const SolverOptions& opt) {
