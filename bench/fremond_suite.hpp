@@ -257,25 +257,6 @@ inline ImpactProblem random_problem_any(int n, int c, int index, bool with_frict
   return p;
 }
 
-/// A flat plate (the bar, lying at θ = 0) touching the ground at c points spread evenly over its
-/// length, all approaching: q̇_A = (2, −3, 1) gives D_NA,i = −3 + x_i ∈ [−3.5, −2.5]. Three
-/// degrees of freedom, so G is singular from c = 4 on (c = 2 with the friction rows). Dynamic.
-inline ImpactProblem plate_many_contacts(int c, bool with_friction) {
-  ImpactProblem p;
-  p.M = Eigen::MatrixXd(bar_mass());
-  p.W_N.resize(3, c);
-  p.W_T.resize(3, with_friction ? c : 0);
-  for (int i = 0; i < c; ++i) {
-    const double x = c == 1 ? -kHalfLength : -kHalfLength + 2.0 * kHalfLength * i / (c - 1);
-    p.W_N.col(i) << 0.0, 1.0, x;
-    if (with_friction) p.W_T.col(i) << 1.0, 0.0, 0.0;
-  }
-  p.w_N = Eigen::VectorXd::Zero(c);
-  p.w_T = Eigen::VectorXd::Zero(with_friction ? c : 0);
-  p.qdot_A = Eigen::Vector3d(kXdot0, -3.0, 1.0);
-  return p;
-}
-
 // ---------------------------------------------------------------------------------------------
 // The suite.
 
