@@ -199,6 +199,8 @@ std::vector<Case> fremond_cases() {
   v.push_back({"flat bar p3", flat_bar_two_contacts(false), p3});
   v.push_back({"flat bar p3 viscous", flat_bar_two_contacts(true), viscous});
   v.push_back({"flat bar p3 coulomb", flat_bar_two_contacts(true), coulomb});
+  // More than twice as many rows as dofs: Newton in velocity space first.
+  v.push_back({"plate c4 viscous", to_small(plate_many_contacts(4, true)), viscous});
   v.push_back({"two point masses p3", two_point_masses(false), p3});
   v.push_back({"two point masses viscous", two_point_masses(true), viscous});
   v.push_back({"two point masses coulomb", two_point_masses(true), coulomb});

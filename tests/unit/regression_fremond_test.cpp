@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../bench/problems.hpp"
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/solvers/detail/accurate_dot.hpp"
@@ -1249,17 +1250,7 @@ namespace {
 /// The paper's bar lying flat (θ = 0) on c points of its length, all with the tangent (1, 0, 0):
 /// with two or more contacts sticking, their tangential rows of Newton's Jacobian are equal.
 SmallImpactProblem flat_plate(int c) {
-  SmallImpactProblem p;
-  const double l = 0.5, m = 1.0;
-  p.M = SmallImpactProblem::Mat(Eigen::Vector3d(m, m, m * l * l / 3).asDiagonal());
-  p.W_N.resize(3, c);
-  p.W_T.resize(3, c);
-  for (int i = 0; i < c; ++i) {
-    p.W_N.col(i) << 0.0, 1.0, -l + 2.0 * l * i / (c - 1);
-    p.W_T.col(i) << 1.0, 0.0, 0.0;
-  }
-  p.qdot_A = Eigen::Vector3d(2.0, -3.0, 1.0);
-  return p;
+  return to_small(bench::plate_many_contacts(c, true));
 }
 
 // The plate touching with 3 and 4 contacts under Frémond + Coulomb (p = 3, μ = 1): the contacts
@@ -1314,6 +1305,61 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
   EXPECT_EQ(r.qdot_E(1), -pb.qdot_A(1));
   EXPECT_EQ(r.qdot_E(2), 0.0);
   EXPECT_TRUE(r.admissibility.admissible);
+}
+
+// The plate lying flat on 16 and 32 contacts, 3 dofs (G of rank 3 with 16 to 64 rows), with p = 3
+// alone or with viscous dead zones. In contact space Newton's J = (I − D) G/2 + D T is singular
+// up to the small diagonal D T of the stiff power law: Newton took 22 steps on 16 contacts and
+// stalled on 32, where the splitting then took 4,231 sweeps (5 ms). Newton in velocity space
+// (3 unknowns) takes about 12 steps. Reference: the quad solution.
+TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
+  namespace ref = fremond_reference;
+  const double k = bench::bar_fremond_k_normal(3.0);
+  const double kT = 1.5, q = 2.0, r0 = 0.2;
+  for (const bool viscous : {false, true}) {
+    for (const int c : {16, 32}) {
+      SCOPED_TRACE(std::to_string(c) + (viscous ? " contacts, viscous" : " contacts"));
+      const ImpactProblem pb = bench::plate_many_contacts(c, viscous);
+      const ImpactLaw law =
+          viscous ? ImpactLaw::fremond(PowerPotential(k, 3.0), DeadZonePowerPotential(kT, q, r0))
+                  : ImpactLaw::fremond(PowerPotential(k, 3.0));
+      const auto r = solve_impact(pb, law);
+      ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+      EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
+      EXPECT_EQ(r.solver.fallbacks, 0);
+      EXPECT_LE(r.solver.iterations, 16);
+      EXPECT_TRUE(r.admissibility.admissible);
+      EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
+      const auto s = ref::fremond_several(
+          ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+          std::vector<ref::PowerLaw>(c, ref::PowerLaw{k, 3.0}),
+          std::vector<ref::TangentialLaw>(
+              c, viscous ? ref::TangentialLaw::dead_zone(kT, q, r0) : ref::TangentialLaw::none()));
+      ASSERT_TRUE(s.ok);
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(r.qdot_E(i), ref::to_double(s.qdot_E[i]), 1e-13 * 3.0) << i;
+    }
+  }
+}
+
+// The same plate with a soft power law (k = 1e-3): the power law alone would let it through the
+// ground, so every contact's reaction takes part. Newton in velocity space, whose objective holds
+// no reaction, stops at the unconstrained minimum and says so; contact space's methods answer.
+TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
+  namespace ref = fremond_reference;
+  const ImpactProblem pb = bench::plate_many_contacts(16, false);
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(1e-3, 3.0));
+  const auto r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible);
+  EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
+  EXPECT_GT(r.P_N_reaction.cwiseAbs().maxCoeff(), 0.0);
+  const auto s =
+      ref::fremond_several(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
+                           std::vector<ref::PowerLaw>(16, ref::PowerLaw{1e-3, 3.0}),
+                           std::vector<ref::TangentialLaw>(16, ref::TangentialLaw::none()));
+  ASSERT_TRUE(s.ok);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.qdot_E(i), ref::to_double(s.qdot_E[i]), 1e-12) << i;
 }
 
 }  // namespace

@@ -38,6 +38,15 @@ template <int N, int C>
 MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
                                 typename FremondRowsT<N, C>::Rows& P, const SolverOptions& options);
 
+/// Newton on the velocity-space problem of SPEC §2 (n unknowns instead of one per row), for a law
+/// without Coulomb whose potentials all have a prox; P (the start, then the answer) in contact
+/// space. Converged only when the answer passes the law's own stopping test: an answer that needs
+/// a reaction does not (fremond_velocity_newton.cpp).
+template <int N, int C>
+MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
+                                    typename FremondRowsT<N, C>::Rows& P,
+                                    const SolverOptions& options);
+
 /// Accelerated proximal gradient (FISTA with restart) on the dual in contact space.
 template <int N, int C>
 MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
