@@ -806,7 +806,7 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     // More than twice as many rows as degrees of freedom (and no Coulomb): Newton in velocity
     // space first, whose Hessian stays positive definite where contact space's J is singular
     // up to a small diagonal (fremond_velocity_newton.cpp). The plate lying flat on 16 and 32
-    // contacts under p = 3: 68 µs and 5.1 ms (Newton stalled, the splitting) → 13 µs and 25 µs.
+    // contacts under p = 3: 68 µs and 5.1 ms (Newton stalled, the splitting) → 12 µs and 21 µs.
     // With fewer rows contact space's Newton, from the decoupled guess, is the faster (the flat
     // bar with its viscous rows, 4 rows on 3 dofs: 1.9 µs against 3.2 µs). An answer that needs
     // a reaction is left to contact space.
