@@ -112,15 +112,20 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     }
     return o;
   };
+  // A failure ends the method, except after an answer passed the test: that answer stands.
+  auto stop = [&](SolverStatus status, StopCriterion criterion, const char* message) {
+    if (polishing) return done();
+    o.status = status;
+    o.criterion = criterion;
+    o.message = message;
+    return o;
+  };
   double decrement = std::numeric_limits<double>::infinity();  // −slope of the last step
   for (int it = 0;; ++it) {
     o.iterations = it;
-    if (!std::isfinite(f)) {
-      if (polishing) return done();
-      o.status = SolverStatus::failed;
-      o.message = "velocity-space Newton: the objective is not finite";
-      return o;
-    }
+    if (!std::isfinite(f))
+      return stop(SolverStatus::failed, StopCriterion::none,
+                  "velocity-space Newton: the objective is not finite");
     // The law's own stopping test, on the percussions the velocities give: O(rows²) and a prox
     // per row, so only once Newton's decrement is small (at 1e-8 of F the next step is at
     // rounding), and on the start.
@@ -140,12 +145,9 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
       residual_done = o.residual;
       iterations_done = it;
     }
-    if (it >= std::min(opt.max_iterations, kMaxIterations) && !polishing) {
-      o.status = SolverStatus::max_iterations;
-      o.criterion = StopCriterion::iterations;
-      o.message = "velocity-space Newton: iteration budget exhausted";
-      return o;
-    }
+    if (it >= std::min(opt.max_iterations, kMaxIterations))
+      return stop(SolverStatus::max_iterations, StopCriterion::iterations,
+                  "velocity-space Newton: iteration budget exhausted");
     // Gradient and generalized Hessian.
     g.noalias() = 2.0 * (pb.M * u) + cs.W * s;
     for (int j = 0; j < r; ++j) {
@@ -159,35 +161,24 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     for (int j = 0; j < r; ++j)
       if (h(j) != 0.0) H.noalias() += h(j) * cs.W.col(j) * cs.W.col(j).transpose();
     const Eigen::LLT<Mat> chol(H);
-    if (chol.info() != Eigen::Success) {
-      if (polishing) return done();
-      o.status = SolverStatus::failed;
-      o.message = "velocity-space Newton: the Hessian is not positive definite";
-      return o;
-    }
+    if (chol.info() != Eigen::Success)
+      return stop(SolverStatus::failed, StopCriterion::none,
+                  "velocity-space Newton: the Hessian is not positive definite");
     du = chol.solve(-g);
     const double slope = g.dot(du);  // < 0: H is positive definite
     decrement = -slope;
-    if (!du.allFinite() || !(slope < 0.0)) {
-      if (polishing) return done();
-      o.status = SolverStatus::stalled;
-      o.criterion = StopCriterion::step;
-      o.message = "velocity-space Newton: no descent direction (rounding)";
-      return o;
-    }
+    if (!du.allFinite() || !(slope < 0.0))
+      return stop(SolverStatus::stalled, StopCriterion::step,
+                  "velocity-space Newton: no descent direction (rounding)");
     // The unconstrained minimum reached (Newton's decrement at 1e-12 of F) with a contact
     // penetrating (D_NE < 0 beyond 1e-10 of the velocity scale): the answer needs a reaction,
     // which F does not hold, and the contact-space methods take over. 191 of the 526 tries on the
     // stress problems end so.
-    if (!polishing && -slope <= 1e-12 * f) {
+    if (-slope <= 1e-12 * f)
       for (int j = 0; j < cs.active; ++j)
-        if (z(j) - rows.lower_bound(j) < -0.5e-10 * cs.v_scale) {
-          o.status = SolverStatus::stalled;
-          o.criterion = StopCriterion::step;
-          o.message = "velocity-space Newton: the answer needs a reaction (D_NE < 0 without one)";
-          return o;
-        }
-    }
+        if (z(j) - rows.lower_bound(j) < -0.5e-10 * cs.v_scale)
+          return stop(SolverStatus::stalled, StopCriterion::step,
+                      "velocity-space Newton: the answer needs a reaction (D_NE < 0 without one)");
     // Armijo backtracking on F, which is convex: the full step is taken near the answer. There
     // the decrease F can show, ½|slope|, falls below the rounding of F itself (its terms are all
     // non-negative: about ε F), and the test would compare noise; the step is then judged by the
@@ -207,13 +198,9 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
       }
       t *= 0.5;
     }
-    if (!accepted) {
-      if (polishing) return done();
-      o.status = SolverStatus::stalled;
-      o.criterion = StopCriterion::step;
-      o.message = "velocity-space Newton: the line search found no decrease (rounding)";
-      return o;
-    }
+    if (!accepted)
+      return stop(SolverStatus::stalled, StopCriterion::step,
+                  "velocity-space Newton: the line search found no decrease (rounding)");
     u = ut;
     z = zt;
     s = st;
