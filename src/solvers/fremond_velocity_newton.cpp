@@ -11,7 +11,7 @@
 // freedom G = WᵀM⁻¹W is singular. Semismooth Newton's matrix there, J = (I − D) G/2 + D T, is then
 // singular up to the diagonal D T, which a stiff potential makes small: the plate lying flat on 32
 // contacts (3 dofs, p = 3) stalled at a kink of ‖R‖ after 20 steps, and the splitting took 4,231
-// sweeps, 5 ms. In velocity space the same answer takes a handful of 3 × 3 steps.
+// sweeps, 5 ms. In velocity space the same answer takes 12 steps of 3 × 3, 21 µs.
 //
 // φ'' is not part of a potential's interface; its prox derivative gives it: at x = z + τ φ'(z) the
 // prox returns z, and its derivative there is 1/(1 + τ φ''(z)). A derivative 0 (a kink: p < 2 at
