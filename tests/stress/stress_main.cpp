@@ -36,7 +36,8 @@
 // --known FILE: failures that are known library issues (known_issues.hpp; the file
 // tests/stress/known_issues.txt): counted and listed but they do not fail the run, and a known
 // issue no longer seen is said so. --show N: reproducers printed, one per kind of failure.
-// --list N: the first N cases of each kind of failure, by number (for --case).
+// --list N: the first N cases of each kind of failure, and of each shape and status that did not
+// converge, by number (for --case).
 //
 // Exit status 0 when nothing but known issues broke: no invariant, no hang, no crash, no reference
 // disagreement. The summary lists the statuses, methods, non-convergence by problem shape,
@@ -575,7 +576,8 @@ struct Failure {
 struct Tally {
   long problems = 0, solves = 0;
   std::map<std::string, long> statuses, methods, shapes;
-  std::map<std::string, long> not_converged_by_shape;  // automatic method only
+  std::map<std::string, long> not_converged_by_shape;                   // automatic method only
+  std::map<std::string, std::vector<std::string>> not_converged_cases;  // the first labels (--list)
   std::map<std::string, long> inadmissible_by_inequality;
   long inadmissible_converged = 0, not_unique = 0;
   long broken = 0, broken_known = 0;
@@ -652,7 +654,12 @@ void tally_line(Tally& t, const std::string& line, const StressCase& sc, const s
       t.slowest_case = label + who + " (" + method + ", " + status + ")";
     }
     const bool automatic = who.find("--method") == std::string::npos;
-    if (ok != "1" && automatic) ++t.not_converged_by_shape[sc.shape + ":" + status];
+    if (ok != "1" && automatic) {
+      const std::string key = sc.shape + ":" + status;
+      ++t.not_converged_by_shape[key];
+      auto& first = t.not_converged_cases[key];
+      if (first.size() < 100 && (first.empty() || first.back() != label)) first.push_back(label);
+    }
     if (ok == "1") {
       if (ratio > t.worst_residual_ratio) {
         t.worst_residual_ratio = ratio;
@@ -812,6 +819,9 @@ bool run_law(const std::string& name, const Args& a, std::vector<KnownIssue>& kn
     for (const auto& [s, n] : t.shapes) std::printf(" %s %ld", s.c_str(), n);
     std::printf("\n  not converged (automatic), by shape:");
     for (const auto& [s, n] : t.not_converged_by_shape) std::printf(" %s %ld", s.c_str(), n);
+    for (const auto& [s, labels] : t.not_converged_cases)
+      for (std::size_t i = 0; i < std::min(a.list, labels.size()); ++i)
+        std::printf("\n    %s: %s", s.c_str(), labels[i].c_str());
     std::printf("\n  worst reference error, by shape:");
     for (const auto& [s, e] : t.worst_reference_by_shape)
       std::printf(" %s %.2g [#%s]", s.c_str(), e.first,
