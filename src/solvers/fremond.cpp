@@ -291,6 +291,56 @@ bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, cons
   return qr.rank() == m;
 }
 
+/// Whether Coulomb's bounds μ|P_N| of an answer rest on normal percussions that double precision
+/// does not determine. A normal law steep at z_N = 0 (p near 1: P_N = −k|z|^(p−1) sign z, so
+/// p = 1.2 and k = 1e6 give P_N = 1 at |z| = 1e-30) leaves P_N free over the range its
+/// subgradient spans across the row's rounding floor f (z_N ± f), and where the rows so left free
+/// have dependent columns of W (more contacts than their normals span: the plate on four
+/// contacts) the percussions can move along W's null space without moving any velocity or failing
+/// the stopping test. Without friction that changes no velocity; under Coulomb it moves the bounds
+/// and, where a contact slides or could, the tangential answer: on that plate (p = 1.2, k = 1e6,
+/// μ = 0.3) the answer passed the law's test with P_N of mixed signs and slid 50 % off the quad
+/// reference, whose P_N are all positive. True when such a row's freedom moves its contact's
+/// tangential velocity (2τ_T μ u) by more than `limit` and the free rows' normals are dependent.
+/// A reaction that acts, or a normal law set-valued at z_N (P_N free in exact arithmetic too), is
+/// the law's own non-uniqueness and is not counted here.
+template <int N, int C>
+bool coulomb_bounds_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                                 const Rows<N, C>& z, const ImpactResultT<N, C>& out,
+                                 double limit) {
+  const auto& cs = *rows.cs;
+  const int a = cs.active, r = cs.rows();
+  if (!rows.coulomb || a < 2) return false;
+  MatT<N, C> Wf(cs.dofs, a);
+  int m = 0;
+  bool bound_sensitive = false;
+  for (int j = 0; j < a; ++j) {
+    const int i = rows.contact(j);
+    if (out.P_N_reaction(i) > 0.0) continue;
+    double abs_GP = 0.0;
+    for (int k = 0; k < r; ++k) abs_GP += std::fabs(cs.G(j, k) * P(k));
+    const double f = row_rounding_floor(cs.D_A(j), abs_GP, rows.tau(j), P(j), cs.v_scale);
+    const Potential& phi = rows.law->normal[i];
+    const Interval sd = phi.subdifferential(z(j));
+    if (sd.hi - sd.lo > 0.0) continue;  // set-valued: P_N is free in exact arithmetic too
+    const double s0 = phi.subgradient(z(j));
+    // The freedom both ways: a null direction of W moves some rows up and others down.
+    const double u = std::min(std::fabs(phi.subgradient(z(j) + f) - s0),
+                              std::fabs(s0 - phi.subgradient(z(j) - f)));
+    const double mu = rows.law->mu[i], tau_t = rows.tau(a + j);
+    if (!(2.0 * tau_t * mu * u > limit) || !std::isfinite(u)) continue;
+    Wf.col(m++) = cs.W.col(j);
+    // Sliding, or sticking near enough to the bound that the bound's freedom reaches it.
+    bound_sensitive =
+        bound_sensitive || std::fabs(P(a + j)) >= mu * (std::fabs(P(j)) - u) - 64 * kEps * mu * u;
+  }
+  if (m < 2 || !bound_sensitive) return false;
+  Wf.conservativeResize(cs.dofs, m);
+  Eigen::ColPivHouseholderQR<MatT<N, C>> qr(Wf);
+  qr.setThreshold(1e-10);
+  return qr.rank() < m;
+}
+
 /// One Gauss–Seidel sweep after convergence: each row then satisfies its own law exactly given
 /// the others (a row in a dead zone or a stick zone gets exactly zero, not Newton's last rounding).
 /// Every row, smooth ones included: skipping those (0 < ∂prox/∂x < 1) moved the velocities of
@@ -623,6 +673,19 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     // them. Unique is then not claimed, as for a classical law whose modes were not enumerated.
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
       out.unique = !(rows.coulomb && cs.active >= 2) && percussion_unique(rows, P, z, out);
+    // The limit, 1e-6 of the velocity scale, is the cap of every row's rounding floor
+    // (row_rounding_floor): an answer not resolved to that is none in double precision.
+    if (out.solver.status == SolverStatus::converged &&
+        coulomb_bounds_undetermined(rows, P, z, out, 1e-6 * cs.v_scale)) {
+      out.solver.status = SolverStatus::stalled;
+      out.solver.criterion = StopCriterion::rounding;
+      out.solver.message =
+          "Frémond + Coulomb: the normal percussions of contacts whose normals are dependent are "
+          "not determined in double precision (a normal law steep at z_N = 0 holds their mean "
+          "normal velocities at rounding level), and Coulomb's bounds, so the tangential answer, "
+          "depend on them; the answer passes the law's test but may be far from the exact one";
+      out.unique = false;
+    }
   };
 
   if (cs.active == 0) {
