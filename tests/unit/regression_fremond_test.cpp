@@ -1391,8 +1391,8 @@ Eigen::Vector3d plate_coulomb_reference(const ImpactProblem& pb, double k, doubl
 }
 
 // What must hold: an answer marked converged is the law's answer. The library solved these to the
-// law's own test with P_N of mixed signs (−0.14, 0.48, 0.43, −0.16 on four contacts, the
-// reference's all positive) and slid 50 % (four contacts) and 3 % (three) off the reference; it now
+// law's own test with P_N of mixed signs (−1.4, 4.8, 4.3, −1.6 on four contacts; the reference's
+// 1.5, 1.0, 2.9, 0.58) and slid 50 % (four contacts) and 3 % (three) off the reference; it now
 // says `stalled`, with the reason. With p = 3 the same plate is resolved, converged and right.
 TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNotConverged) {
   for (const int c : {3, 4})
