@@ -1037,5 +1037,25 @@ TEST(RegressionClassical, AnswersWithTheSameVelocitiesAreOneSolution) {
   EXPECT_LT(std::fabs(r.D_TE(0)), 1e-11 * std::fabs(r.D_NA(0)));
 }
 
+// Solver fuzz: a mode on one dof whose Delassus entry is subnormal (G = W²/M = 2.9e-309) had
+// no finite row scale, and the mode's SVD of a matrix of ∞ read out of bounds. The contact
+// touches (D_NA = 0), so every mode's answer is no percussion. Must hold: no crash, and a result
+// that keeps the invariants, for the enumeration forced and for the automatic choice.
+TEST(RegressionClassical, ModeWithSubnormalDelassusEntryIsNoCrash) {
+  ImpactProblem pb;
+  pb.M = Eigen::MatrixXd::Constant(1, 1, 7.7315413010871635e+307);
+  pb.W_N = Eigen::MatrixXd::Constant(1, 1, 0.47234007267754419);
+  pb.qdot_A = Eigen::VectorXd::Zero(1);
+  const ImpactLaw law = ImpactLaw::poisson(0.38823529411764707);
+  for (const SolverMethod m : {SolverMethod::mode_enumeration, SolverMethod::automatic}) {
+    SolverOptions opt;
+    opt.method = m;
+    const auto r = solve_impact(pb, law, opt);
+    EXPECT_EQ(robust::check_result(pb, law, opt, r), "") << to_string(m);
+    EXPECT_EQ(r.P_N(0), 0.0) << to_string(m) << ": " << r.solver.message;
+    EXPECT_EQ(r.qdot_E(0), 0.0) << to_string(m);
+  }
+}
+
 }  // namespace
 }  // namespace fremond

@@ -268,7 +268,7 @@ bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph) {
     if (!std::isfinite(norm)) return true;  // G's LCP decides
     // A zero column is its own certificate when q_i < 0 (y = e_i), and no constraint otherwise:
     // left as it is, Lemke sees exactly that.
-    d(i) = norm > 0.0 ? 1.0 / norm : 1.0;
+    d(i) = norm > 0.0 ? std::min(1.0 / norm, 0x1p1000) : 1.0;  // a subnormal norm: 1/norm = ∞
   }
   for (int i = 0; i < a; ++i) {
     wp.q(i) = d(i) * ph.q(i);

@@ -629,13 +629,17 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   // units (velocity rows of G, percussion rows of 1 and μ), and a relative threshold on K as
   // formed took G's own small directions (cond(M) = 1e11: G's singular values 1e-13 of a row's
   // 1) for rounding beside a percussion row, or a row (1, μ = 1e8) hid the pivots of every other.
+  // The scale is capped at 2^1000: a row whose largest entry is subnormal (G = W²/M = 3e-309 with
+  // M = 7.7e307) has no finite reciprocal, and a row of ∞ sent the SVD below reading out of
+  // bounds (solver fuzz, Poisson on one dof).
   VecT<kMaxRows> row_scale(r);
   for (int j = 0; j < r; ++j) {
     const double m = s.K.row(j).cwiseAbs().maxCoeff();
-    row_scale(j) = m > 0.0 ? 1.0 / m : 1.0;
+    row_scale(j) = m > 0.0 ? std::min(1.0 / m, 0x1p1000) : 1.0;
   }
   const MatT<kMaxRows, kMaxRows> Ks = row_scale.asDiagonal() * s.K;
   const VecT<kMaxRows> rhs_s = row_scale.cwiseProduct(s.rhs);
+  if (!Ks.allFinite() || !rhs_s.allFinite()) return false;  // no factorisation of ∞ or NaN
   Eigen::FullPivLU<MatT<kMaxRows, kMaxRows>> lu(Ks);
   lu.setThreshold(1e-10);
   if (lu.rank() == r) {
