@@ -528,12 +528,7 @@ bool split_normal_percussions(const FremondRowsT<N, C>& rows, Rows<N, C>& P,
       for (int j = a; j < r; ++j) {
         const double g = cs.G(j, j);
         if (!(g > 0.0)) continue;
-        const double x = z(j) - 0.5 * g * X(j);
-        const double dP = (rows.prox(j, x, rows.bound(j, X)) - x) / rows.tau(j) - X(j);
-        if (dP == 0.0) continue;
-        X(j) += dP;
-        z.noalias() += (0.5 * dP) * cs.G.col(j);
-        change = std::max(change, std::fabs(dP) * g);
+        change = std::max(change, std::fabs(rows.gauss_seidel_step(j, X, z)) * g);
       }
       if (!(change > 0.25 * target)) break;
     }
@@ -575,12 +570,7 @@ void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double targe
   for (int j = 0; j < r; ++j) {
     const double g = cs.G(j, j);
     if (!(g > 1e-14 * gmax)) continue;
-    const double x = z(j) - 0.5 * g * Q(j);
-    const double d = (rows.prox(j, x, rows.bound(j, Q)) - x) / rows.tau(j) - Q(j);
-    if (d == 0.0) continue;
-    Q(j) += d;
-    z.noalias() += (0.5 * d) * cs.G.col(j);
-    moved = true;
+    if (rows.gauss_seidel_step(j, Q, z) != 0.0) moved = true;
   }
   if (!moved) return;
   if (std::isfinite(rows.residual(Q, z, R)) && rows.converged(Q, R, target)) {

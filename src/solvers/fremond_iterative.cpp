@@ -178,13 +178,7 @@ MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
     for (int j = 0; j < r; ++j) {
       const double g = cs.G(j, j);
       if (!(g > 1e-14 * gmax)) continue;  // a row that cannot move keeps its percussion
-      const double x = z(j) - 0.5 * g * P(j);
-      const double zj = rows.prox(j, x, rows.bound(j, P));
-      const double dPj = (zj - x) / rows.tau(j) - P(j);
-      if (dPj != 0.0) {
-        P(j) += dPj;
-        z.noalias() += (0.5 * dPj) * cs.G.col(j);
-      }
+      rows.gauss_seidel_step(j, P, z);
     }
     const double nr = rows.residual(P, z, R);
     o.iterations = it;

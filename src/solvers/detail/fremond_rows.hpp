@@ -182,6 +182,21 @@ struct FremondRowsT {
     }
   }
 
+  /// Row j solved exactly with the others held (one nonsmooth Gauss–Seidel step): with
+  /// x = z_j − G_jj P_j/2, z_j = prox(x) and P_j = (z_j − x)/τ_j. P_j and z move by the change,
+  /// which is returned. The splitting's sweep, the final sweep after Newton and the tangential
+  /// sweeps of the split of undetermined normal percussions.
+  double gauss_seidel_step(int j, Rows& P, Rows& z) const {
+    const double g = cs->G(j, j);
+    const double x = z(j) - 0.5 * g * P(j);
+    const double dP = (prox(j, x, bound(j, P)) - x) / tau(j) - P(j);
+    if (dP != 0.0) {
+      P(j) += dP;
+      z.noalias() += (0.5 * dP) * cs->G.col(j);
+    }
+    return dP;
+  }
+
   /// z = D_A + G P / 2. A hand loop for the stack-stored sizes (≤ 8 rows), where Eigen's
   /// dynamic-size matrix-vector product costs more in dispatch than in arithmetic.
   void mean_velocity(const Rows& P, Rows& z) const {
