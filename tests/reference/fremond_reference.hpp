@@ -27,6 +27,10 @@
 ///    non-smooth Gauss-Seidel sweeps (each row solved exactly by the scalar root finder; the block
 ///    coordinate descent of the dual problem, which converges), then Levenberg-Marquardt on
 ///    F(s) = z(s) − D_A − G P(s)/2, whose Jacobian stays bounded for p or q near 1 and for large p.
+///  - fremond_coulomb_near(): Frémond + Coulomb on several contacts, not as a reference (the law is
+///    quasi-variational there, and no method here lists every solution) but as a check of a given
+///    answer: the exact solution nearest to it, each contact mode the answer lies near solved by
+///    damped Newton in quad precision and its inequalities and residual checked.
 ///  - newton_frictionless(): Newton's law, LCP 0 ≤ P_N ⊥ G_NN P_N + (1 + e) D_NA ≥ 0 (eq. 6 for one
 ///    contact), by enumeration of the active sets; every distinct solution of a regular active
 ///    set (a singular one is skipped: where G_NN is singular the list may be empty although the
@@ -49,11 +53,12 @@
 /// Not handled: α = 0 exactly in a Coulomb slide mode (μ G_NT = ±G_NN: a continuum of solutions or
 /// none; that mode is skipped), stick with W_T parallel to W_N (G singular on one contact) and
 /// D_NE = 0 exactly (the reaction free: a continuum),
-/// Frémond + Coulomb on several contacts, more than 12 contacts taking part in newton_frictionless
-/// (2^c active sets), more than 4 in classical_modes (6^c modes a phase), and whether a classical
-/// law has a solution where a mode is singular (classical_modes says `complete` = false). Observed,
-/// not proved: on one contact with Coulomb the number of solutions found was always odd (1 or 3)
-/// over 20000 random draws up to μ = 400, never 0.
+/// every solution of Frémond + Coulomb on several contacts (fremond_coulomb_near checks one
+/// answer), more than 12 contacts taking part in newton_frictionless (2^c active sets), more than 4
+/// in classical_modes (6^c modes a phase), and whether a classical law has a solution where a mode
+/// is singular (classical_modes says `complete` = false). Observed, not proved: on one contact with
+/// Coulomb the number of solutions found was always odd (1 or 3) over 20000 random draws up to μ =
+/// 400, never 0.
 #include <quadmath.h>
 
 #include <algorithm>
@@ -923,7 +928,10 @@ inline Resolvent resolvent(const Row& row, quad s) {
 /// sweeps (each row exactly: s_j = D_A,j + ½ Σ_{k≠j} G_jk P_k; the block coordinate descent of the
 /// dual problem, which converges), then Levenberg-Marquardt on F with the Jacobian
 /// diag(J') − ½ G C (diag(J') − I), alternating until ‖F‖ is at rounding level. `ok` is false when
-/// the law's residual stays above 1e-27. Laws: one for every contact or one each.
+/// the law's residual stays above 1e-27. Laws: one for every contact or one each. Where the normals
+/// are dependent (a plate on three points) and the law holds z_N far below the velocities (p = 1.2,
+/// k = 1e6: z_N near 1e-29), the split of P_N between those contacts, which only z_N sees, is as
+/// good as that residual: 30 % off on the plate, whose velocities do not depend on it.
 inline Solution fremond_several(const Problem& p, const std::vector<PowerLaw>& normal,
                                 const std::vector<TangentialLaw>& tangential) {
   using namespace detail;
@@ -1100,6 +1108,293 @@ inline Solution fremond_several(const Problem& p, const std::vector<PowerLaw>& n
   }
   sol.ok = sol.residual <= ldexpq(1, -90);
   return sol;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frémond + Coulomb, several contacts: the exact solution near a given answer
+
+namespace detail {
+
+/// A contact mode of Frémond + Coulomb on one contact that takes part: the normal row free (the
+/// power law alone) or held by its reaction (D_NE = 0); the tangential row sticking (z_T = 0) or
+/// sliding against σ = sign(z_T) at the bound, P_T = −σ μ s P_N, with s the sign of P_N.
+struct CoulombMode {
+  bool reaction = false;
+  int slide = 0;  ///< 0: stick; ±1: σ
+  int sign = 1;   ///< s = sign(P_N) in a slide
+};
+
+}  // namespace detail
+
+/// Frémond + Coulomb on several contacts: the exact solution nearest to an answer (P_N, P_T, one
+/// entry a contact). NOT a reference of the law: with Coulomb's bound μ|P_N| the law is
+/// quasi-variational and each contact mode is a nonlinear system with no bracket, so no method
+/// here lists every solution. It checks an answer instead: is it within rounding of an exact
+/// solution? Each mode the answer lies near (per contact: free, or held by its reaction where
+/// D_NE ≈ 0; stick where z_T ≈ 0, slide where |P_T| ≈ μ|P_N|, with both signs of P_N where
+/// P_N ≈ 0; "near" is 1e-3 of the scales) is solved by damped Newton in quad precision from the
+/// answer, its equations written in the form that stays smooth (P_N + f_N(z_N) = 0 for p ≥ 2,
+/// z_N = f_N⁻¹(−P_N) for p < 2, where f_N⁻¹ is (|s|/k)^(1/(p−1)) and resolves z_N near 0 to
+/// full relative precision). A mode's root is a solution when its inequalities hold (D_NE ≥ 0
+/// free; reaction ≥ 0 held; |P_T| ≤ μ|P_N| stick; σ z_T ≥ 0 and s P_N ≥ 0 slide) and its
+/// fremond_residual is at quad level. Returns the solution nearest to the answer (in P, relative
+/// to the percussion scale), `ok` false when no mode gives one: the answer is then not near any
+/// solution this check can find. `mode_pivot` is the smallest relative pivot of the mode's
+/// Jacobian at the root: near 0 where the root is not determined by the data (dependent normals
+/// under a law that holds z_N below quad rounding: only the power law's inverse splits P_N there).
+inline Solution fremond_coulomb_near(const Problem& p, const std::vector<PowerLaw>& normal,
+                                     const QVec& mu, const QVec& PN0, const QVec& PT0) {
+  using namespace detail;
+  const ContactData d = contact_data(p);
+  const int c = d.c;
+  if (!d.has_T || static_cast<int>(PN0.size()) != c || static_cast<int>(PT0.size()) != c ||
+      (mu.size() != 1 && static_cast<int>(mu.size()) != c))
+    throw std::invalid_argument("fremond_coulomb_near: sizes");
+  auto mu_of = [&](int i) { return mu.size() == 1 ? mu[0] : mu[i]; };
+  std::vector<int> act;
+  for (int i = 0; i < c; ++i)
+    if (d.part[i]) act.push_back(i);
+  const int a = static_cast<int>(act.size());
+  Solution start = empty_solution(c);
+  for (int i : act) {
+    start.P_N[i] = PN0[i];
+    start.P_T[i] = PT0[i];
+  }
+  complete(p, d, start);
+  const auto [vs, Ps] = scales(d, start);
+  const std::vector<TangentialLaw> tangential = [&] {
+    std::vector<TangentialLaw> t;
+    for (int i = 0; i < c; ++i) t.push_back(TangentialLaw::coulomb(mu_of(i)));
+    return t;
+  }();
+  // "Near": within 1e-3 of the scales, for answers computed in double precision from data whose
+  // M has a condition up to 1e12 (a velocity 1e-6 of the scale off where the exact one is 0).
+  const quad near = ldexpq(1, -10);
+  // The candidate modes of each contact that takes part.
+  std::vector<std::vector<CoulombMode>> cand(a);
+  for (int k = 0; k < a; ++k) {
+    const int i = act[k];
+    const quad PN = start.P_N[i], PT = start.P_T[i], zT = start.z_T[i];
+    const quad m = mu_of(i);
+    std::vector<bool> reactions{false};
+    if (fabsq(start.D_NE[i]) <= near * vs) reactions.push_back(true);
+    std::vector<int> signs;
+    if (PN >= -near * Ps) signs.push_back(1);
+    if (PN <= near * Ps) signs.push_back(-1);
+    for (bool r : reactions) {
+      if (fabsq(zT) <= near * vs) cand[k].push_back({r, 0, 1});
+      if (fabsq(fabsq(PT) - m * fabsq(PN)) <= near * Ps || fabsq(zT) > near * vs) {
+        std::vector<int> sigmas;
+        if (zT >= -near * vs && PT <= near * Ps) sigmas.push_back(1);
+        if (zT <= near * vs && PT >= -near * Ps) sigmas.push_back(-1);
+        for (int sg : sigmas)
+          for (int sn : signs) cand[k].push_back({r, sg, sn});
+      }
+    }
+    if (cand[k].empty()) {
+      Solution none = start;
+      none.ok = false;
+      return none;
+    }
+  }
+  // z = D_A + G P/2 on the contacts that take part (the others carry no percussion).
+  auto mean_velocities = [&](const QVec& x, QVec& zN, QVec& zT) {
+    zN.assign(a, 0);
+    zT.assign(a, 0);
+    for (int k = 0; k < a; ++k) {
+      const int i = act[k];
+      quad n = d.DNA[i], t = d.DTA[i];
+      for (int l = 0; l < a; ++l) {
+        const int j = act[l];
+        n += (d.GNN(i, j) * x[l] + d.GNT(i, j) * x[a + l]) / 2;
+        t += (d.GNT(j, i) * x[l] + d.GTT(i, j) * x[a + l]) / 2;
+      }
+      zN[k] = n;
+      zT[k] = t;
+    }
+  };
+  // The mode's equations F(x) (x = (P_N, P_T) over the contacts that take part; each equation over
+  // its own scale, v_s or P_s) and, if asked, their Jacobian.
+  auto equations = [&](const std::vector<CoulombMode>& mode, const QVec& x, QVec& F, Mat* J) {
+    QVec zN, zT;
+    mean_velocities(x, zN, zT);
+    F.assign(2 * a, 0);
+    if (J) *J = Mat(2 * a, 2 * a);
+    for (int k = 0; k < a; ++k) {
+      const int i = act[k];
+      const PowerLaw& nl = pick(normal, i);
+      const quad PN = x[k], PT = x[a + k];
+      // ∂z_N,k/∂x_l and ∂z_T,k/∂x_l: entries of G/2.
+      auto dzN = [&](int l) {
+        const int j = act[l % a];
+        return (l < a ? d.GNN(i, j) : d.GNT(i, j)) / 2;
+      };
+      auto dzT = [&](int l) {
+        const int j = act[l % a];
+        return (l < a ? d.GNT(j, i) : d.GTT(i, j)) / 2;
+      };
+      if (mode[k].reaction) {  // D_NE = 2 z_N − D_NA = 0
+        F[k] = (2 * zN[k] - d.DNA[i]) / vs;
+        if (J)
+          for (int l = 0; l < 2 * a; ++l) (*J)(k, l) = 2 * dzN(l) / vs;
+      } else if (nl.k == 0) {
+        F[k] = PN / Ps;
+        if (J) (*J)(k, k) = 1 / Ps;
+      } else if (nl.p >= 2) {  // P_N + f_N(z_N) = 0
+        F[k] = (PN + f_normal(nl, zN[k])) / Ps;
+        if (J) {
+          const quad fp = df_normal(nl, zN[k]);
+          for (int l = 0; l < 2 * a; ++l) (*J)(k, l) = fp * dzN(l) / Ps;
+          (*J)(k, k) += 1 / Ps;
+        }
+      } else {  // z_N − f_N⁻¹(−P_N) = 0, f_N⁻¹(s) = sign(s)(|s|/k)^(1/(p−1))
+        const quad e = 1 / (nl.p - 1);
+        F[k] = (zN[k] + sgn(PN) * powq(fabsq(PN) / nl.k, e)) / vs;
+        if (J) {
+          for (int l = 0; l < 2 * a; ++l) (*J)(k, l) = dzN(l) / vs;
+          (*J)(k, k) += e / nl.k * pow_abs(PN / nl.k, e - 1) / vs;
+        }
+      }
+      if (mode[k].slide == 0) {  // z_T = 0
+        F[a + k] = zT[k] / vs;
+        if (J)
+          for (int l = 0; l < 2 * a; ++l) (*J)(a + k, l) = dzT(l) / vs;
+      } else {  // P_T + σ μ s P_N = 0
+        const quad g = mode[k].slide * mu_of(i) * mode[k].sign;
+        F[a + k] = (PT + g * PN) / Ps;
+        if (J) {
+          (*J)(a + k, a + k) = 1 / Ps;
+          (*J)(a + k, k) = g / Ps;
+        }
+      }
+    }
+  };
+  auto norm = [](const QVec& F) {
+    quad m = 0;
+    for (quad f : F) m = fmaxq(m, fabsq(f));
+    return m;
+  };
+  // Damped Newton on one mode from the answer, until ‖F‖ stops decreasing (quad rounding: a stop
+  // at a fixed tolerance would leave z_N near 1e-30 unresolved, and with it the split of P_N
+  // between dependent normals); true at a root. `pivot`: the smallest relative pivot of the
+  // Jacobian there, about the inverse of its condition.
+  auto solve_mode = [&](const std::vector<CoulombMode>& mode, QVec& x, quad& pivot) {
+    QVec F, Fn, dx;
+    Mat J;
+    equations(mode, x, F, &J);
+    for (int it = 0; it < 300; ++it) {
+      const quad f = norm(F);
+      if (!finite(f)) return false;
+      if (f == 0) break;
+      dx = F;
+      for (quad& v : dx) v = -v;
+      if (!solve_linear(J, dx, ldexpq(1, -110))) {
+        // A singular mode (contacts sharing a tangent that sticks: only the sum of their P_T is
+        // determined; the velocities are): a Levenberg-Marquardt step, (JᵀJ + λI) dx = −JᵀF with
+        // λ at 2^-100 of JᵀJ's largest diagonal entry, which keeps the root nearest the answer.
+        const int m = 2 * a;
+        Mat A(m, m);
+        QVec g(m, 0);
+        quad top = 0;
+        for (int i = 0; i < m; ++i) {
+          for (int j = 0; j < m; ++j) {
+            quad v = 0;
+            for (int l = 0; l < m; ++l) v += J(l, i) * J(l, j);
+            A(i, j) = v;
+          }
+          for (int l = 0; l < m; ++l) g[i] -= J(l, i) * F[l];
+          top = fmaxq(top, A(i, i));
+        }
+        for (int i = 0; i < m; ++i) A(i, i) += ldexpq(top, -100);
+        dx = g;
+        if (!solve_linear(A, dx, ldexpq(1, -125))) return false;
+      }
+      quad t = 1;
+      bool moved = false;
+      for (int ls = 0; ls < 60; ++ls, t /= 2) {
+        QVec xn = x;
+        for (int l = 0; l < 2 * a; ++l) xn[l] += t * dx[l];
+        equations(mode, xn, Fn, nullptr);
+        if (norm(Fn) < (1 - t / 4) * f) {
+          x = xn;
+          moved = true;
+          break;
+        }
+      }
+      if (!moved) break;
+      equations(mode, x, F, &J);
+    }
+    // Where Newton stops, F is at its rounding, which an ill-conditioned M (1e12) or mode (contacts
+    // whose tangents are 1e-11 apart, both sticking) lifts far above quad's ε: the root is judged
+    // by the law's residual below, as every reference answer is.
+    if (!(norm(F) <= ldexpq(1, -40))) return false;
+    pivot = 1;
+    QVec b(2 * a, 0);
+    if (!solve_linear(J, b, 0, &pivot)) pivot = 0;
+    return true;
+  };
+  Solution best = start;
+  best.ok = false;
+  quad best_d = 0;
+  std::vector<int> pick_of(a, 0);
+  const quad slack = ldexpq(1, -80);  // the mode's inequalities, relative to the scales
+  for (;;) {
+    std::vector<CoulombMode> mode(a);
+    for (int k = 0; k < a; ++k) mode[k] = cand[k][pick_of[k]];
+    QVec x(2 * a);
+    for (int k = 0; k < a; ++k) {
+      x[k] = start.P_N[act[k]];
+      x[a + k] = start.P_T[act[k]];
+    }
+    quad pivot = 1;
+    if (solve_mode(mode, x, pivot)) {
+      Solution s = empty_solution(c);
+      s.mode_pivot = pivot;
+      for (int k = 0; k < a; ++k) {
+        s.P_N[act[k]] = x[k];
+        s.P_T[act[k]] = x[a + k];
+      }
+      complete(p, d, s);
+      bool holds = true;
+      for (int k = 0; k < a && holds; ++k) {
+        const int i = act[k];
+        const quad R = s.P_N[i] + f_normal(pick(normal, i), s.z_N[i]);
+        if (mode[k].reaction) {
+          holds = R >= -slack * Ps;
+          s.P_reaction[i] = fmaxq(R, quad(0));
+        } else {
+          holds = s.D_NE[i] >= -slack * vs;
+        }
+        if (mode[k].slide == 0)
+          holds = holds && fabsq(s.P_T[i]) <= mu_of(i) * fabsq(s.P_N[i]) + slack * Ps;
+        else
+          holds = holds && mode[k].slide * s.z_T[i] >= -slack * vs &&
+                  mode[k].sign * s.P_N[i] >= -slack * Ps;
+      }
+      if (holds) {
+        s.residual = fremond_residual(p, normal, tangential, s);
+        quad dist = 0;
+        for (int i : act)
+          dist = fmaxq(dist, fmaxq(fabsq(s.P_N[i] - start.P_N[i]), fabsq(s.P_T[i] - start.P_T[i])));
+        dist /= Ps;
+        s.ok = s.residual <= ldexpq(1, -67);  // below 1e-20
+        if (s.ok && (!best.ok || dist < best_d)) {
+          std::string m;
+          for (int k = 0; k < a; ++k)
+            m += "c" + std::to_string(act[k]) + ":" + (mode[k].reaction ? "reaction" : "free") +
+                 (mode[k].slide == 0 ? "/stick" : (mode[k].slide > 0 ? "/slide+" : "/slide-")) +
+                 " ";
+          s.mode = m;
+          best = s;
+          best_d = dist;
+        }
+      }
+    }
+    int k = 0;
+    while (k < a && ++pick_of[k] == static_cast<int>(cand[k].size())) pick_of[k++] = 0;
+    if (k == a) break;
+  }
+  return best;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1367,8 +1367,11 @@ TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
 // normal velocities near (P_N/k)^5 ~ 1e-30, far below their rounding, so the split of P_N between
 // the contacts is not determined in double precision, and Coulomb's bounds μ|P_N,i| depend on it.
 // The reference: every tangent is the same column and G_NT = 0, so the normal law alone gives P_N
-// (quad precision, where 1e-30 is still resolved), and the total tangential percussion S along the
-// shared tangent t sticks (z_T = 0) or slides at μ Σ|P_N,i|.
+// (quad precision), and the total tangential percussion S along the shared tangent t sticks
+// (z_T = 0) or slides at μ Σ|P_N,i|. That reference's own split of P_N is only as good as its
+// residual (7e-29 here: 30 % off the exact split, which fremond_coulomb_near finds, see
+// ReferenceSelfTest.CoulombNearOnThePlateFindsTheExactSplit), but its P_N are all positive, so the
+// bound μ Σ|P_N,i| = μ Σ P_N,i, and the velocities, do not depend on the split.
 Eigen::Vector3d plate_coulomb_reference(const ImpactProblem& pb, double k, double p, double mu) {
   namespace ref = fremond_reference;
   const int c = static_cast<int>(pb.W_N.cols());
@@ -1391,8 +1394,8 @@ Eigen::Vector3d plate_coulomb_reference(const ImpactProblem& pb, double k, doubl
 }
 
 // What must hold: an answer marked converged is the law's answer. The library solved these to the
-// law's own test with P_N of mixed signs (−1.4, 4.8, 4.3, −1.6 on four contacts; the reference's
-// 1.5, 1.0, 2.9, 0.58) and slid 50 % (four contacts) and 3 % (three) off the reference, marked
+// law's own test with P_N of mixed signs (−1.4, 4.8, 4.3, −1.6 on four contacts; the exact split is
+// 1.64, 1.56, 1.47, 1.34) and slid 50 % (four contacts) and 3 % (three) off the reference, marked
 // converged. Where the split cannot be made from its exact condition the result says `stalled`,
 // with the reason. With p = 3 the same plate is resolved by the velocities themselves.
 TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNotConverged) {
