@@ -240,6 +240,21 @@ inline bool solve_linear(Mat A, QVec& b, quad rel_tol = ldexpq(1, -100),
   return true;
 }
 
+/// Levenberg-Marquardt's normal equations of J δ = −F (J square, m × m): A = JᵀJ, g = −JᵀF.
+inline void normal_equations(const Mat& J, const QVec& F, Mat& A, QVec& g) {
+  const int m = J.rows;
+  A = Mat(m, m);
+  g.assign(m, 0);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      quad v = 0;
+      for (int l = 0; l < m; ++l) v += J(l, i) * J(l, j);
+      A(i, j) = v;
+    }
+    for (int l = 0; l < m; ++l) g[i] -= J(l, i) * F[l];
+  }
+}
+
 /// Is the polyhedron {u : A u = b, C u ≥ h} non-empty? Phase one of the simplex method on
 /// u = u⁺ − u⁻ (u⁺, u⁻ ≥ 0), with an artificial variable per row and Bland's rule (no cycling on
 /// degenerate vertices), in quad precision. Each row is scaled to a largest coefficient of 1; the
@@ -1044,16 +1059,9 @@ inline Solution fremond_several(const Problem& p, const std::vector<PowerLaw>& n
       for (int a = 0; a < m; ++a)
         for (int b = 0; b < m; ++b)
           Jf(a, b) = (a == b ? slope[a] : quad(0)) - G(a, b) * rows[b].c * (slope[b] - 1) / 2;
-      Mat A(m, m);
-      QVec g(m, 0);
-      for (int a = 0; a < m; ++a) {
-        for (int b = 0; b < m; ++b) {
-          quad sum = 0;
-          for (int k = 0; k < m; ++k) sum += Jf(k, a) * Jf(k, b);
-          A(a, b) = sum;
-        }
-        for (int k = 0; k < m; ++k) g[a] -= Jf(k, a) * F[k];
-      }
+      Mat A;
+      QVec g;
+      normal_equations(Jf, F, A, g);
       quad diag = 0;
       for (int a = 0; a < m; ++a) diag = fmaxq(diag, A(a, a));
       bool improved = false;
@@ -1292,20 +1300,12 @@ inline Solution fremond_coulomb_near(const Problem& p, const std::vector<PowerLa
         // A singular mode (contacts sharing a tangent that sticks: only the sum of their P_T is
         // determined; the velocities are): a Levenberg-Marquardt step, (JᵀJ + λI) dx = −JᵀF with
         // λ at 2^-100 of JᵀJ's largest diagonal entry, which keeps the root nearest the answer.
-        const int m = 2 * a;
-        Mat A(m, m);
-        QVec g(m, 0);
+        Mat A;
+        QVec g;
+        normal_equations(J, F, A, g);
         quad top = 0;
-        for (int i = 0; i < m; ++i) {
-          for (int j = 0; j < m; ++j) {
-            quad v = 0;
-            for (int l = 0; l < m; ++l) v += J(l, i) * J(l, j);
-            A(i, j) = v;
-          }
-          for (int l = 0; l < m; ++l) g[i] -= J(l, i) * F[l];
-          top = fmaxq(top, A(i, i));
-        }
-        for (int i = 0; i < m; ++i) A(i, i) += ldexpq(top, -100);
+        for (int i = 0; i < A.rows; ++i) top = fmaxq(top, A(i, i));
+        for (int i = 0; i < A.rows; ++i) A(i, i) += ldexpq(top, -100);
         dx = g;
         if (!solve_linear(A, dx, ldexpq(1, -125))) return false;
       }
