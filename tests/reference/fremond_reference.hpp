@@ -1147,7 +1147,8 @@ struct CoulombMode {
 /// free; reaction ≥ 0 held; |P_T| ≤ μ|P_N| stick; σ z_T ≥ 0 and s P_N ≥ 0 slide) and its
 /// fremond_residual is at quad level. Returns the solution nearest to the answer (in P, relative
 /// to the percussion scale), `ok` false when no mode gives one: the answer is then not near any
-/// solution this check can find. `mode_pivot` is the smallest relative pivot of the mode's
+/// solution this check can find (or, with `mode` "too many modes", more than 1024 modes lie near
+/// it and none was tried). `mode_pivot` is the smallest relative pivot of the mode's
 /// Jacobian at the root: near 0 where the root is not determined by the data (dependent normals
 /// under a law that holds z_N below quad rounding: only the power law's inverse splits P_N there).
 inline Solution fremond_coulomb_near(const Problem& p, const std::vector<PowerLaw>& normal,
@@ -1204,6 +1205,15 @@ inline Solution fremond_coulomb_near(const Problem& p, const std::vector<PowerLa
       none.ok = false;
       return none;
     }
+  }
+  // Every contact ambiguous in every way (four contacts: up to 10^4 modes, seconds): not checked.
+  std::size_t modes = 1;
+  for (const auto& cs : cand) modes *= cs.size();
+  if (modes > 1024) {
+    Solution none = start;
+    none.ok = false;
+    none.mode = "too many modes";
+    return none;
   }
   // z = D_A + G P/2 on the contacts that take part (the others carry no percussion).
   auto mean_velocities = [&](const QVec& x, QVec& zN, QVec& zT) {
