@@ -256,6 +256,15 @@ void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, const R
   }
 }
 
+/// The rank of A's columns, at a relative threshold of 1e-10 (0 without a column).
+template <class Mat>
+int column_rank(const Mat& A) {
+  if (A.cols() == 0) return 0;
+  Eigen::ColPivHouseholderQR<Mat> qr(A);
+  qr.setThreshold(1e-10);
+  return static_cast<int>(qr.rank());
+}
+
 /// The percussion is determined by the velocities except on rows whose ∂ψ is set-valued (an
 /// active reaction, a sticking Coulomb contact, a kink of a potential); P is unique iff the
 /// columns of W for those rows are independent.
@@ -286,34 +295,21 @@ bool percussion_unique(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, cons
   }
   if (m <= 1) return m == 0 || Ws.col(0).squaredNorm() > 0.0;
   Ws.conservativeResize(cs.dofs, m);
-  Eigen::ColPivHouseholderQR<MatT<N, ContactSpaceT<N, C>::kMaxRows>> qr(Ws);
-  qr.setThreshold(1e-10);
-  return qr.rank() == m;
+  return column_rank(Ws) == m;
 }
 
-/// Whether Coulomb's bounds μ|P_N| of an answer rest on normal percussions that double precision
-/// does not determine. A normal law steep at z_N = 0 (p near 1: P_N = −k|z|^(p−1) sign z, so
-/// p = 1.2 and k = 1e6 give P_N = 1 at |z| = 1e-30) leaves P_N free over the range its
-/// subgradient spans across the row's rounding floor f (z_N ± f), and where the rows so left free
-/// have dependent columns of W (more contacts than their normals span: the plate on four
-/// contacts) the percussions can move along W's null space without moving any velocity or failing
-/// the stopping test. Without friction that changes no velocity; under Coulomb it moves the bounds
-/// and, where a contact slides or could, the tangential answer: on that plate (p = 1.2, k = 1e6,
-/// μ = 0.3) the answer passed the law's test with P_N of mixed signs and slid 50 % off the quad
-/// reference, whose P_N are all positive. True when such a row's freedom moves its contact's
-/// tangential velocity (2τ_T μ u) by more than `limit` and the free rows' normals are dependent.
-/// A reaction that acts, or a normal law set-valued at z_N (P_N free in exact arithmetic too), is
-/// the law's own non-uniqueness and is not counted here.
+/// The free normal rows of coulomb_bounds_undetermined (see there): their columns of W go to Wf
+/// (m of them); `bound_sensitive` says whether a contact among them slides or sticks near enough
+/// to its bound that their freedom reaches it.
 template <int N, int C>
-bool coulomb_bounds_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
-                                 const Rows<N, C>& z, const ImpactResultT<N, C>& out,
-                                 double limit) {
+void free_rows_moving_bounds(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                             const Rows<N, C>& z, const ImpactResultT<N, C>& out, double limit,
+                             MatT<N, C>& Wf, int& m, bool& bound_sensitive) {
   const auto& cs = *rows.cs;
   const int a = cs.active, r = cs.rows();
-  if (!rows.coulomb || a < 2) return false;
-  MatT<N, C> Wf(cs.dofs, a);
-  int m = 0;
-  bool bound_sensitive = false;
+  Wf.resize(cs.dofs, a);
+  m = 0;
+  bound_sensitive = false;
   for (int j = 0; j < a; ++j) {
     const int i = rows.contact(j);
     if (out.P_N_reaction(i) > 0.0) continue;
@@ -334,11 +330,102 @@ bool coulomb_bounds_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C
     bound_sensitive =
         bound_sensitive || std::fabs(P(a + j)) >= mu * (std::fabs(P(j)) - u) - 64 * kEps * mu * u;
   }
-  if (m < 2 || !bound_sensitive) return false;
   Wf.conservativeResize(cs.dofs, m);
-  Eigen::ColPivHouseholderQR<MatT<N, C>> qr(Wf);
-  qr.setThreshold(1e-10);
-  return qr.rank() < m;
+}
+
+/// Whether Coulomb's bounds μ|P_N| of an answer rest on normal percussions that double precision
+/// does not determine. A normal law steep at z_N = 0 (p near 1: P_N = −k|z|^(p−1) sign z, so
+/// p = 1.2 and k = 1e6 give P_N = 1 at |z| = 1e-30) leaves P_N free over the range its
+/// subgradient spans across the row's rounding floor f (z_N ± f), and where the rows so left free
+/// have dependent columns of W (more contacts than their normals span: the plate on four
+/// contacts) the percussions can move along W's null space without moving any velocity or failing
+/// the stopping test. Without friction that changes no velocity; under Coulomb it moves the bounds
+/// and, where a contact slides or could, the tangential answer: on that plate (p = 1.2, k = 1e6,
+/// μ = 0.3) the answer passed the law's test with P_N of mixed signs and slid 50 % off the quad
+/// reference, whose P_N are all positive. True when such a row's freedom moves its contact's
+/// tangential velocity (2τ_T μ u) by more than the limit (free_rows_moving_bounds, whose output
+/// this takes) and the free rows' normals are dependent. A reaction that acts, or a normal law
+/// set-valued at z_N (P_N free in exact arithmetic too), is the law's own non-uniqueness and is
+/// not counted here.
+template <int N, int C>
+bool coulomb_bounds_undetermined(const MatT<N, C>& Wf, int m, bool bound_sensitive) {
+  return m >= 2 && bound_sensitive && column_rank(Wf) < m;
+}
+
+/// The same freedom reaching the answer through the other contacts: free rows (as in
+/// coulomb_bounds_undetermined) whose columns are independent, but
+///  - not together with the tangents of the contacts that stick (two contacts on three dofs, both
+///    sticking, p = 1.5, k = 1e6, speeds 5e-6: four columns in R^3): along such a null direction
+///    the free rows' percussions move with the sticking ones' and no velocity changes until a
+///    bound is reached, so any sticking contact may be concerned, far from its bound included
+///    (one that bears no P_N has bound 0 and cannot move);
+///  - or that fix the mean velocities so near zero that a sliding contact's z_T is at its
+///    rounding (two contacts on two dofs, both sliding, p = 1.5 at speeds of 1e-10): the sign
+///    of z_T, which decides whether the contact slides against its velocity, is then rounding's.
+/// True when rank[W_F W_S] < m + rank W_S (S the sticking tangential rows), or a sliding row's
+/// |z_T| is within its rounding floor; W_F (m columns) from free_rows_moving_bounds.
+template <int N, int C>
+bool coulomb_mode_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                               const Rows<N, C>& z, const MatT<N, C>& Wf, int m) {
+  const auto& cs = *rows.cs;
+  const int a = cs.active, r = cs.rows();
+  if (!rows.coulomb || a < 2 || m < 1) return false;
+  MatT<N, times2(C)> WS(cs.dofs, a), WFS(cs.dofs, m + a);
+  WFS.leftCols(m) = Wf;
+  int s = 0;
+  for (int j = 0; j < a; ++j) {
+    const double b = rows.law->mu[rows.contact(j)] * std::fabs(P(j));
+    if (!(b > 0.0)) continue;
+    if (std::fabs(P(a + j)) >= b * (1.0 - 1e-9)) {  // slides
+      double abs_GP = 0.0;
+      for (int k = 0; k < r; ++k) abs_GP += std::fabs(cs.G(a + j, k) * P(k));
+      const double floor =
+          row_rounding_floor(cs.D_A(a + j), abs_GP, rows.tau(a + j), P(a + j), cs.v_scale);
+      if (std::fabs(z(a + j)) <= floor) return true;
+      continue;
+    }
+    WS.col(s) = cs.W.col(a + j);
+    WFS.col(m + s) = cs.W.col(a + j);
+    ++s;
+  }
+  if (s == 0) return false;
+  WS.conservativeResize(cs.dofs, s);
+  WFS.conservativeResize(cs.dofs, m + s);
+  return column_rank(WFS) < m + column_rank(WS);
+}
+
+/// Two contacts held by their reactions whose normals are parallel to rounding (every 2×2 minor
+/// below 1e-10 of |n_k||n_l|) but not exactly (some minor not exactly zero: the bar upright on
+/// both ends, θ = π/2 in double, normals 6e-17 apart). The exact data then fix how the two
+/// reactions share their percussion through terms 1e-33 of G's entries, which double precision
+/// rounds to parallel normals, whose law has a continuum of answers; under Coulomb the bounds
+/// μ|P_N|, so whether each contact sticks or slides and the tangential answer, depend on that
+/// share (0.9 of the velocity scale in the stress program's worst case). Exactly parallel normals
+/// are the law's own continuum, answered as converged and not unique.
+template <int N, int C>
+bool reactions_on_normals_parallel_to_rounding(const FremondRowsT<N, C>& rows,
+                                               const ImpactResultT<N, C>& out) {
+  const auto& cs = *rows.cs;
+  const int a = cs.active, n = cs.dofs;
+  for (int k = 0; k < a; ++k) {
+    if (!(out.P_N_reaction(rows.contact(k)) > 0.0)) continue;
+    for (int l = k + 1; l < a; ++l) {
+      if (!(out.P_N_reaction(rows.contact(l)) > 0.0)) continue;
+      const auto x = cs.W.col(k), y = cs.W.col(l);
+      const double size = x.norm() * y.norm();
+      bool parallel = true, exactly = true;
+      for (int i = 0; i < n && parallel; ++i)
+        for (int j = i + 1; j < n && parallel; ++j) {
+          // x_i y_j − x_j y_i from the exact products (p + e = x_i y_j, q + f = x_j y_i).
+          const double p = x(i) * y(j), e = std::fma(x(i), y(j), -p);
+          const double q = x(j) * y(i), f = std::fma(x(j), y(i), -q);
+          parallel = std::fabs((p - q) + (e - f)) <= 1e-10 * size;
+          exactly = exactly && p == q && e == f;
+        }
+      if (parallel && !exactly) return true;
+    }
+  }
+  return false;
 }
 
 /// The split of the normal percussions that coulomb_bounds_undetermined finds double precision
@@ -879,30 +966,63 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
       out.unique = !(rows.coulomb && cs.active >= 2) && percussion_unique(rows, P, z, out);
     // The limit, 1e-6 of the velocity scale, is the cap of every row's rounding floor
     // (row_rounding_floor): an answer not resolved to that is none in double precision.
-    if (out.solver.status == SolverStatus::converged &&
-        coulomb_bounds_undetermined(rows, P, z, out, 1e-6 * cs.v_scale)) {
-      if (split_normal_percussions(rows, P, out, opt)) {
-        o.residual = rows.plain_residual(P);
-        o.residual_is_plain = true;
-        o.message =
-            "converged, with the normal percussions of contacts whose normals are dependent, which "
-            "their rounded velocities do not determine, split by their exact condition";
-        write_outcome(o, m, cs.v_scale, opt, out);
-        scatter_solution(pb, cs, P, out);
-        rows.mean_velocity(P, z);
-        split_reaction(rows, P, z, out);
-        out.unique = false;
-        return;
-      }
+    if (out.solver.status != SolverStatus::converged || !rows.coulomb || cs.active < 2) return;
+    if (reactions_on_normals_parallel_to_rounding(rows, out)) {
       out.solver.status = SolverStatus::stalled;
       out.solver.criterion = StopCriterion::rounding;
       out.solver.message =
-          "Frémond + Coulomb: the normal percussions of contacts whose normals are dependent are "
-          "not determined in double precision (a normal law steep at z_N = 0 holds their mean "
-          "normal velocities at rounding level), and Coulomb's bounds, so the tangential answer, "
-          "depend on them; the answer passes the law's test but may be far from the exact one";
+          "Frémond + Coulomb: two contacts held by their reactions have normals parallel to "
+          "rounding but not exactly; how they share their percussion is fixed by terms of G below "
+          "double precision, and Coulomb's bounds, so the tangential answer, depend on it; the "
+          "answer passes the law's test but may be far from the exact one";
       out.unique = false;
+      return;
     }
+    const double limit = 1e-6 * cs.v_scale;
+    MatT<N, C> Wf;
+    int free_rows = 0;
+    bool bound_sensitive = false;
+    free_rows_moving_bounds(rows, P, z, out, limit, Wf, free_rows, bound_sensitive);
+    if (free_rows == 0) return;  // every normal row resolved by its velocities
+    const bool normals_dependent =
+        coulomb_bounds_undetermined<N, C>(Wf, free_rows, bound_sensitive);
+    if (!normals_dependent && !coulomb_mode_undetermined(rows, P, z, Wf, free_rows)) return;
+    auto take_exact = [&](const char* message) {
+      o.residual = rows.plain_residual(P);
+      o.residual_is_plain = true;
+      o.message = message;
+      write_outcome(o, m, cs.v_scale, opt, out);
+      scatter_solution(pb, cs, P, out);
+      rows.mean_velocity(P, z);
+      split_reaction(rows, P, z, out);
+      out.unique = false;
+    };
+    // The split first (the plate: its normals alone are dependent); its answer may still leave
+    // the mode to rounding, through sticking tangents or a sliding z_T, and is checked for that.
+    if (normals_dependent && split_normal_percussions(rows, P, out, opt)) {
+      take_exact(
+          "converged, with the normal percussions of contacts whose normals are dependent, which "
+          "their rounded velocities do not determine, split by their exact condition");
+      free_rows_moving_bounds(rows, P, z, out, limit, Wf, free_rows, bound_sensitive);
+      if (!coulomb_mode_undetermined(rows, P, z, Wf, free_rows)) return;
+    }
+    if (solve_in_coulomb_mode(pb, rows, P, out.P_N_reaction, opt)) {
+      take_exact(
+          "converged, with the percussions of contacts that are free in double precision (normal "
+          "laws steep at z_N = 0) solved in their contact mode, with the exact conditions their "
+          "dependent columns and their velocities below rounding leave");
+      return;
+    }
+    out.solver.status = SolverStatus::stalled;
+    out.solver.criterion = StopCriterion::rounding;
+    out.solver.message =
+        "Frémond + Coulomb: a normal law steep at z_N = 0 holds mean normal velocities at "
+        "rounding level, which leaves the percussions of contacts with dependent columns of W "
+        "(with each other or with sticking contacts' tangents), or the direction of a contact "
+        "sliding at rounding speed, to rounding, and no contact mode solved with their exact "
+        "conditions gave an answer; the answer passes the law's test but may be far from the "
+        "exact one";
+    out.unique = false;
   };
 
   if (cs.active == 0) {

@@ -59,6 +59,27 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
                                    typename FremondRowsT<N, C>::Rows& P,
                                    const SolverOptions& options);
 
+/// Frémond + Coulomb (power normal laws) solved in the contact mode of the answer P: each normal
+/// row free or held by its reaction (P_N_reaction > 0), each tangential row sticking or sliding,
+/// by Newton on the mode's equations z_E = t_E(P) for the rows E whose velocity the mode fixes
+/// (free normals: z_N = −sign(P_N)(|P_N|/k)^(1/(p−1)); reactions: D_NE = 0; sticking: z_T = 0),
+/// sliding percussions σμ|P_N|. Where the columns W_E are dependent, the equations along their
+/// null space N read Nᵀt_E(P) = Nᵀw_E exactly (Nᵀz_E = (W_E N)ᵀq̄ + Nᵀw_E), in place of
+/// D_A + G P/2, which cancels to its rounding where a normal law is steep at z_N = 0 (p ≤ 1.5 at
+/// small speeds): the rows so left free in double precision, with the sticking contacts' tangents,
+/// then get the split of their percussions that the law's exact conditions make, not one the
+/// rounding allows. Rows that break the mode's inequalities change mode and Newton runs again;
+/// where that ends in no root or cycles, every mode of up to 4 contacts (6^a) is solved from the
+/// answer and the feasible root nearest to it is taken. True, P replaced, when the answer passes
+/// the law's stopping test; false, P untouched, when no mode gives one (Newton stalls, a mode
+/// leaves a percussion undetermined, or a null direction mixes a free row with a reaction: a z_N
+/// far below the rounding of that reaction's D_NA).
+template <int N, int C>
+bool solve_in_coulomb_mode(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
+                           typename FremondRowsT<N, C>::Rows& P,
+                           const typename ImpactResultT<N, C>::CVec& P_N_reaction,
+                           const SolverOptions& options);
+
 /// Scaled Frémond residual of an answer (law_residual for Frémond's law).
 template <int N, int C>
 double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
