@@ -967,15 +967,18 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     // The limit, 1e-6 of the velocity scale, is the cap of every row's rounding floor
     // (row_rounding_floor): an answer not resolved to that is none in double precision.
     if (out.solver.status != SolverStatus::converged || !rows.coulomb || cs.active < 2) return;
-    if (reactions_on_normals_parallel_to_rounding(rows, out)) {
+    auto stall = [&](const char* message) {  // the answer is kept, and said to be no more
       out.solver.status = SolverStatus::stalled;
       out.solver.criterion = StopCriterion::rounding;
-      out.solver.message =
+      out.solver.message = message;
+      out.unique = false;
+    };
+    if (reactions_on_normals_parallel_to_rounding(rows, out)) {
+      stall(
           "Frémond + Coulomb: two contacts held by their reactions have normals parallel to "
           "rounding but not exactly; how they share their percussion is fixed by terms of G below "
           "double precision, and Coulomb's bounds, so the tangential answer, depend on it; the "
-          "answer passes the law's test but may be far from the exact one";
-      out.unique = false;
+          "answer passes the law's test but may be far from the exact one");
       return;
     }
     const double limit = 1e-6 * cs.v_scale;
@@ -1013,16 +1016,13 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
           "dependent columns and their velocities below rounding leave");
       return;
     }
-    out.solver.status = SolverStatus::stalled;
-    out.solver.criterion = StopCriterion::rounding;
-    out.solver.message =
+    stall(
         "Frémond + Coulomb: a normal law steep at z_N = 0 holds mean normal velocities at "
         "rounding level, which leaves the percussions of contacts with dependent columns of W "
         "(with each other or with sticking contacts' tangents), or the direction of a contact "
         "sliding at rounding speed, to rounding, and no contact mode solved with their exact "
         "conditions gave an answer; the answer passes the law's test but may be far from the "
-        "exact one";
-    out.unique = false;
+        "exact one");
   };
 
   if (cs.active == 0) {

@@ -1472,6 +1472,23 @@ fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, cons
                                    PN, PT);
 }
 
+// The result within 1e-9 of the exact solution nearest to it (exact_coulomb_near): velocities
+// relative to |q̇_A|, and, with `percussions`, P_N and P_T relative to the largest percussion.
+void expect_near_exact_coulomb(const io::ProblemFile& file, const ImpactResult& r,
+                               bool percussions) {
+  const auto near = exact_coulomb_near(file, r);
+  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
+  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
+  for (int i = 0; i < file.problem.dofs(); ++i)
+    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
+  if (!percussions) return;
+  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
+  for (int i = 0; i < file.problem.contacts(); ++i) {
+    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
+    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
+  }
+}
+
 // Frémond + Coulomb on two contacts of a body with three dofs, p = 1.5, k = 1e6 at speeds of
 // 5e-6: z_N near 1e-22, below the rounding of D_A + G P/2, so the normal rows are free over that
 // rounding, and with the sticking contacts' tangents the four columns of W are dependent in R^3.
@@ -1499,17 +1516,9 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
   EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_FALSE(r.unique);
-  const double scale = pb.qdot_A.cwiseAbs().maxCoeff();
-  const auto near = exact_coulomb_near(file, r);
-  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
-  for (int i = 0; i < pb.dofs(); ++i)
-    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
   // The percussions too, which the old answer had 10 times off on the first contact.
-  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
-  for (int i = 0; i < pb.contacts(); ++i) {
-    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
-    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
-  }
+  expect_near_exact_coulomb(file, r, true);
+  const double scale = pb.qdot_A.cwiseAbs().maxCoeff();
   EXPECT_GT(std::fabs(r.P_N(0) - 1.8e-5), 1e-6);
 
   const double lambda = 1e3, p = 1.5;
@@ -1558,16 +1567,7 @@ TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
     const auto r = solve_impact(pb, file.law);
     ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_TRUE(r.admissibility.admissible);
-    const auto near = exact_coulomb_near(file, r);
-    ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
-    const double scale = pb.qdot_A.cwiseAbs().maxCoeff();
-    for (int i = 0; i < pb.dofs(); ++i)
-      EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
-    const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
-    for (int i = 0; i < pb.contacts(); ++i) {
-      EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
-      EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
-    }
+    expect_near_exact_coulomb(file, r, true);
     if (index == 1) {
       EXPECT_NEAR(r.P_N(0), -1.7385846523530203e-07, 1e-15);  // not −3.0e-7
     }
@@ -1640,11 +1640,7 @@ TEST(RegressionFremond, DISABLED_CoulombOnTangentsParallelTo1e12IsNearAnExactSol
     EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << r.solver.message;
     return;
   }
-  const auto near = exact_coulomb_near(file, r);
-  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
-  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
-  for (int i = 0; i < file.problem.dofs(); ++i)
-    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
+  expect_near_exact_coulomb(file, r, false);
 }
 
 }  // namespace
