@@ -306,16 +306,14 @@ void free_rows_moving_bounds(const FremondRowsT<N, C>& rows, const Rows<N, C>& P
                              const Rows<N, C>& z, const ImpactResultT<N, C>& out, double limit,
                              MatT<N, C>& Wf, int& m, bool& bound_sensitive) {
   const auto& cs = *rows.cs;
-  const int a = cs.active, r = cs.rows();
+  const int a = cs.active;
   Wf.resize(cs.dofs, a);
   m = 0;
   bound_sensitive = false;
   for (int j = 0; j < a; ++j) {
     const int i = rows.contact(j);
     if (out.P_N_reaction(i) > 0.0) continue;
-    double abs_GP = 0.0;
-    for (int k = 0; k < r; ++k) abs_GP += std::fabs(cs.G(j, k) * P(k));
-    const double f = row_rounding_floor(cs.D_A(j), abs_GP, rows.tau(j), P(j), cs.v_scale);
+    const double f = rows.rounding_floor(j, P);
     const Potential& phi = rows.law->normal[i];
     const Interval sd = phi.subdifferential(z(j));
     if (sd.hi - sd.lo > 0.0) continue;  // set-valued: P_N is free in exact arithmetic too
@@ -368,7 +366,7 @@ template <int N, int C>
 bool coulomb_mode_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
                                const Rows<N, C>& z, const MatT<N, C>& Wf, int m) {
   const auto& cs = *rows.cs;
-  const int a = cs.active, r = cs.rows();
+  const int a = cs.active;
   if (!rows.coulomb || a < 2 || m < 1) return false;
   MatT<N, times2(C)> WS(cs.dofs, a), WFS(cs.dofs, m + a);
   WFS.leftCols(m) = Wf;
@@ -377,11 +375,7 @@ bool coulomb_mode_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>&
     const double b = rows.law->mu[rows.contact(j)] * std::fabs(P(j));
     if (!(b > 0.0)) continue;
     if (std::fabs(P(a + j)) >= b * (1.0 - 1e-9)) {  // slides
-      double abs_GP = 0.0;
-      for (int k = 0; k < r; ++k) abs_GP += std::fabs(cs.G(a + j, k) * P(k));
-      const double floor =
-          row_rounding_floor(cs.D_A(a + j), abs_GP, rows.tau(a + j), P(a + j), cs.v_scale);
-      if (std::fabs(z(a + j)) <= floor) return true;
+      if (std::fabs(z(a + j)) <= rows.rounding_floor(a + j, P)) return true;
       continue;
     }
     WS.col(s) = cs.W.col(a + j);

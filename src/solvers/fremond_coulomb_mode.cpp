@@ -235,15 +235,14 @@ class CoulombModes {
     for (int j = 0; j < 2 * a_; ++j)
       if (Q(j) != 0.0) qbar += (0.5 * Q(j)) * cs_.MinvW.col(j);
     const double q_size = qbar.cwiseAbs().maxCoeff();
+    Rows size(u_);  // each row's terms: |D_A| + ½Σ|G P| + |t_E|
+    for (int t = 0; t < u_; ++t)
+      size(t) = std::fabs(cs_.D_A(E_(t))) + 0.5 * rows_.abs_GP(E_(t), Q) + std::fabs(tE_(t));
     for (int c = 0; c < rank_; ++c) {
       h_(c) = scale_(c) = 0.0;
       for (int t = 0; t < u_; ++t) {
-        const int row = E_(t);
-        double abs_GP = 0.0;
-        for (int l = 0; l < 2 * a_; ++l) abs_GP += std::fabs(cs_.G(row, l) * Q(l));
-        h_(c) += V_(t, c) * (z_(row) - tE_(t));
-        scale_(c) +=
-            std::fabs(V_(t, c)) * (std::fabs(cs_.D_A(row)) + 0.5 * abs_GP + std::fabs(tE_(t)));
+        h_(c) += V_(t, c) * (z_(E_(t)) - tE_(t));
+        scale_(c) += std::fabs(V_(t, c)) * size(t);
       }
     }
     for (int c = 0; c < d_; ++c) {
@@ -406,10 +405,7 @@ class CoulombModes {
   /// The rounding floor of the stopping test (row_rounding_floor) of a row, as a percussion:
   /// what a row's percussion may be off by and still pass it.
   double percussion_floor(int row, const Rows& X) const {
-    double abs_GP = 0.0;
-    for (int l = 0; l < 2 * a_; ++l) abs_GP += std::fabs(cs_.G(row, l) * X(l));
-    const double tau = rows_.tau(row);
-    return row_rounding_floor(cs_.D_A(row), abs_GP, tau, X(row), cs_.v_scale) / tau;
+    return rows_.rounding_floor(row, X) / rows_.tau(row);
   }
 
   /// The mode's inequalities (SPEC §2) at its root X; the rows that break them are switched.
@@ -417,18 +413,11 @@ class CoulombModes {
     rows_.mean_velocity(X, z_);
     const Rows z = z_;
     bool kept = true;
-    auto abs_GP = [&](int row) {
-      double s = 0.0;
-      for (int l = 0; l < 2 * a_; ++l) s += std::fabs(cs_.G(row, l) * X(l));
-      return s;
-    };
     for (int j = 0; j < a_; ++j) {
       if (mode.normal(j) == kFree) {  // D_NE ≥ 0, with z_N exact from the power law
         double slope = 0.0;
         const double D_NE = 2.0 * free_velocity(j, X(j), slope) - cs_.D_A(j);
-        const double floor =
-            row_rounding_floor(cs_.D_A(j), abs_GP(j), rows_.tau(j), X(j), cs_.v_scale);
-        if (D_NE < -2.0 * floor) mode.normal(j) = kReaction, kept = false;
+        if (D_NE < -2.0 * rows_.rounding_floor(j, X)) mode.normal(j) = kReaction, kept = false;
       } else {  // the reaction pushes: P_N + φ'(D_NA/2) ≥ 0
         const double reaction =
             X(j) + rows_.law->normal[rows_.contact(j)].subgradient(0.5 * cs_.D_A(j));
@@ -456,9 +445,8 @@ class CoulombModes {
       // sliding is the exact answer of no contact mode, and every method stalled).
       const int row = a_ + j;
       double zt = z(row), floor = 0.0, log_scale = 0.0;
-      const double row_scale = std::fabs(cs_.D_A(row)) + 0.5 * abs_GP(row);
-      if (!exact_velocity(mode, row, X, zt, floor, log_scale))
-        floor = row_rounding_floor(cs_.D_A(row), abs_GP(row), rows_.tau(row), X(row), cs_.v_scale);
+      const double row_scale = std::fabs(cs_.D_A(row)) + 0.5 * rows_.abs_GP(row, X);
+      if (!exact_velocity(mode, row, X, zt, floor, log_scale)) floor = rows_.rounding_floor(row, X);
       const bool negligible =
           std::log(std::fabs(zt)) + log_scale <= std::log(kEps * kEps * row_scale);
       if (zt * mode.sign(j) > floor && !negligible) mode.tangent(j) = kStick, kept = false;

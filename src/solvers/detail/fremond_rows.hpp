@@ -240,6 +240,18 @@ struct FremondRowsT {
     return law->tangential_potential[contact(j)].capabilities().prox;
   }
 
+  /// Σ_k |G_jk P_k|: the size of the terms of row j's mean velocity D_A + G P/2 beyond D_A.
+  double abs_GP(int j, const Rows& P) const {
+    double s = 0.0;
+    for (int k = 0; k < cs->rows(); ++k) s += std::fabs(cs->G(j, k) * P(k));
+    return s;
+  }
+
+  /// Row j's rounding floor at P (row_rounding_floor), which the stopping test accepts.
+  double rounding_floor(int j, const Rows& P) const {
+    return row_rounding_floor(cs->D_A(j), abs_GP(j, P), tau(j), P(j), cs->v_scale);
+  }
+
   /// The stopping test of every solver: each row within the target or at its own rounding floor,
   ///   weight_j |R_j| ≤ target  or  |R_j| ≤ min(16ε (|D_A,j| + ½Σ_k |G_jk P_k| + τ_j |P_j|),
   ///                                              1e-6 v_scale)   (row_rounding_floor),
@@ -249,8 +261,7 @@ struct FremondRowsT {
     for (int j = 0; j < r; ++j) {
       const double a = std::fabs(R(j));
       if (weight(j) * a <= target) continue;
-      const double floor = row_rounding_floor(cs->D_A(j), cs->G.row(j).cwiseAbs().dot(P.cwiseAbs()),
-                                              tau(j), P(j), cs->v_scale);
+      const double floor = rounding_floor(j, P);
       if (!(a <= floor)) return false;
     }
     return true;
