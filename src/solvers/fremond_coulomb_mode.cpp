@@ -159,7 +159,8 @@ class CoulombModes {
   /// columns' exact dependences W_E N is rounding and is dropped, leaving Nᵀt_E(P) = Nᵀw_E with
   /// t_E exact functions of the percussions (the free rows' power laws), far below the rounding
   /// of D_A + G P/2 where those laws are steep at z_N = 0. False where a null direction holds a
-  /// free row and a reaction: the free row's z_N against the reaction's rounded D_NA/2.
+  /// free row and a reaction with entries above 1e-8: the free row's z_N against the reaction's
+  /// rounded D_NA/2.
   bool set_up(const Mode& mode) {
     E_.resize(2 * a_);
     u_ = 0;
@@ -179,6 +180,7 @@ class CoulombModes {
     v_.resize(n_, d_);
     Nw_.resize(d_);
     null_free_.resize(d_);
+    null_reaction_.resize(d_);
     homogeneous_.resize(d_);
     null_log_.setConstant(d_, -kInfinity);
     const double size = u_ ? WE_.cwiseAbs().maxCoeff() : 0.0;
@@ -190,7 +192,15 @@ class CoulombModes {
         (mode.normal(E_(t)) == kFree ? on_free : on_reaction) += std::fabs(nc(t));
       }
       if (on_free > 1e-8 && on_reaction > 1e-8) return false;
-      null_free_(c) = on_free > 1e-8;
+      // A null vector's entries are known to ε·u of its unit norm; anything above is a real
+      // dependence, however small: tangents 1.4e-12 apart tie two sticking rows to the normals
+      // through entries of 2δ = 2.7e-12 (the bar nearly flat on both ends), and read as zero
+      // they let a mode that breaks Σ n_t t_t = 0 pass as the law's own continuum. A direction
+      // tied to both a free row and a reaction only through such entries (below 1e-8) keeps the
+      // reaction's t = D_NA/2 in its condition.
+      const double known = 64 * kEps * u_;
+      null_free_(c) = on_free > known;
+      null_reaction_(c) = on_reaction > known;
       for (int i = 0; i < n_; ++i) {
         v_(i, c) = 0.0;
         for (int t = 0; t < u_; ++t) v_(i, c) += WE_(i, t) * nc(t);
@@ -198,7 +208,8 @@ class CoulombModes {
       if (v_.col(c).cwiseAbs().maxCoeff() <= 64 * kEps * size * u_) v_.col(c).setZero();
       Nw_(c) = 0.0;
       for (int t = 0; t < u_; ++t) Nw_(c) += nc(t) * offset(E_(t));
-      homogeneous_(c) = null_free_(c) && v_.col(c).isZero(0.0) && Nw_(c) == 0.0;
+      homogeneous_(c) =
+          null_free_(c) && !null_reaction_(c) && v_.col(c).isZero(0.0) && Nw_(c) == 0.0;
     }
     return true;
   }
@@ -273,7 +284,7 @@ class CoulombModes {
       h_(eq) = v_.col(c).dot(qbar) + Nw_(c);
       scale_(eq) = v_.col(c).cwiseAbs().sum() * q_size + std::fabs(Nw_(c));
       for (int t = 0; t < u_; ++t) {
-        if (E_(t) >= a_ || mode.normal(E_(t)) != kFree) continue;
+        if (E_(t) >= a_ || (mode.normal(E_(t)) != kFree && !null_reaction_(c))) continue;
         h_(eq) -= V_(t, eq) * tE_(t);
         scale_(eq) += std::fabs(V_(t, eq) * tE_(t));
       }
@@ -387,7 +398,8 @@ class CoulombModes {
       for (int t = 0; t < u_; ++t) {
         if (c(t) == 0.0 || !(log_of(t) > -kInfinity)) continue;
         const double term = c(t) * std::exp(log_of(t) - L);
-        z += log_t_(t) > -kInfinity ? sign_t_(t) * term : std::copysign(term, tE_(t));
+        // term carries c_t's sign; t_t's multiplies it (a copysign would drop c_t's).
+        z += (log_t_(t) > -kInfinity ? sign_t_(t) : sign_of(tE_(t))) * term;
         floor += 64 * kEps * u_ * std::fabs(term);
       }
       return true;
@@ -469,7 +481,7 @@ class CoulombModes {
   Rows Nw_, h_, scale_, tE_, dtE_, z_;
   Rows log_t_, sign_t_;  ///< log|t_E| and sign t_E of the free rows (−∞ elsewhere)
   Rows null_log_;        ///< the largest log|t| of each homogeneous null-space equation
-  Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, R, 1> null_free_, homogeneous_;
+  Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, R, 1> null_free_, null_reaction_, homogeneous_;
 };
 
 }  // namespace
