@@ -350,6 +350,102 @@ bool coulomb_bounds_undetermined(const MatT<N, C>& Wf, int m, bool bound_sensiti
   return m >= 2 && bound_sensitive && column_rank(Wf) < m;
 }
 
+enum class Parallel { no, to_rounding, exactly };
+
+/// Whether two columns are parallel: every 2×2 minor x_i y_j − x_j y_i within `relative` of
+/// |x||y|, and exactly when every minor is exactly zero (from the exact products, p + e = x_i y_j
+/// and q + f = x_j y_i).
+template <class X, class Y>
+Parallel parallelism(const X& x, const Y& y, double relative) {
+  const double size = x.norm() * y.norm();
+  bool exactly = true;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    for (Eigen::Index j = i + 1; j < x.size(); ++j) {
+      const double p = x(i) * y(j), e = std::fma(x(i), y(j), -p);
+      const double q = x(j) * y(i), f = std::fma(x(j), y(i), -q);
+      if (!(std::fabs((p - q) + (e - f)) <= relative * size)) return Parallel::no;
+      exactly = exactly && p == q && e == f;
+    }
+  return exactly ? Parallel::exactly : Parallel::to_rounding;
+}
+
+/// Sticking contacts tied to the normal rows through a dependence of their columns whose normal
+/// entries are real (above ε) but small (at most 1e-8), so that its exact condition lies below
+/// rounding. For the mode's
+/// columns W_E (every normal row and the sticking tangents) a null vector n gives Σ n_t z_t = 0
+/// exactly (z = W_Eᵀq̄), so with the tangents' z_T = 0, Σ_normal n_t z_N,t = 0: on the bar nearly
+/// flat on both ends (tangents ±δ = ±1.2e-11 apart), both contacts stick exactly only where
+/// 2δ(z_N2 − z_N1) = 0. Where those terms are within 1e3 times the rows' rounding floors, the
+/// stopping test cannot see that condition fail (speeds of 1e7 round z_T to 1e-8, while
+/// 2δ q̄_θ = 3e-13), and the answer can stick where the exact one slides.
+template <int N, int C>
+bool sticking_tied_below_rounding(const FremondRowsT<N, C>& rows, const Rows<N, C>& P,
+                                  const Rows<N, C>& z) {
+  const auto& cs = *rows.cs;
+  const int a = cs.active, n = cs.dofs;
+  if (!rows.coulomb || a < 2) return false;
+  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, times2(C), 1> E(2 * a);
+  int u = 0;
+  for (int j = 0; j < a; ++j) E(u++) = j;
+  for (int j = 0; j < a; ++j) {
+    const double b = rows.law->mu[rows.contact(j)] * std::fabs(P(j));
+    if (b > 0.0 && std::fabs(P(a + j)) < b * (1.0 - 1e-9)) E(u++) = a + j;
+  }
+  if (u == a) return false;  // nothing sticks
+  // Such a tie needs the sticking tangents nearly dependent among themselves (W_S n_S = −W_N n_N
+  // with |n_N| ≤ 1e-8): two of them parallel to 1e-8 but not exactly (the flat bar's exactly
+  // parallel tangents are the law's continuum), or three or more of rank below their count.
+  const int sticking = u - a;
+  if (sticking == 1) return false;
+  if (sticking == 2 &&
+      parallelism(cs.W.col(E(a)), cs.W.col(E(a + 1)), 1e-8) != Parallel::to_rounding)
+    return false;
+  MatT<N, times2(C)> WE(n, u);
+  for (int t = 0; t < u; ++t) WE.col(t) = cs.W.col(E(t));
+  if (u <= n && column_rank(WE) == u) return false;  // independent columns: no condition
+  const Eigen::JacobiSVD<MatT<N, times2(C)>> svd(WE, Eigen::ComputeFullV);
+  const auto& sv = svd.singularValues();
+  int rank = 0;
+  for (int t = 0; t < sv.size(); ++t)
+    if (sv(t) > 1e-10 * sv(0)) ++rank;
+  const auto& V = svd.matrixV();
+  const double known = 64 * kEps * u;  // a null vector's entries are known to that
+  for (int c = rank; c < u; ++c) {
+    double normal = 0.0, terms = 0.0, floor = 0.0;
+    for (int t = 0; t < u; ++t) {
+      const double w = std::fabs(V(t, c));
+      if (E(t) < a) {
+        normal = std::max(normal, w);
+        terms += w * std::fabs(z(E(t)));
+      }
+      floor += w * rows.rounding_floor(E(t), P);
+    }
+    // Ties of order one are the steep normal laws' (coulomb_mode_undetermined): here only those
+    // through lever arms below 1e-8.
+    if (normal > known && normal <= 1e-8 && terms <= 1e3 * floor) return true;
+  }
+  return false;
+}
+
+/// A contact sliding at its bound whose mean tangential velocity z_T is within its row's rounding
+/// floor: the sign of z_T, which decides the friction's direction, is then rounding's, and the
+/// answer passes the law's test whichever way the contact slides. `min_change`: a contact whose
+/// reversal would move its own velocity by no more (2 μ|P_N| G_TT) is not counted: either
+/// direction is then the answer to that accuracy.
+template <int N, int C>
+bool sliding_at_rounding(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, const Rows<N, C>& z,
+                         double min_change = 0.0) {
+  const int a = rows.cs->active;
+  for (int j = 0; j < a; ++j) {
+    const double b = rows.law->mu[rows.contact(j)] * std::fabs(P(j));
+    if (b > 0.0 && 2.0 * b * rows.cs->G(a + j, a + j) > min_change &&
+        std::fabs(P(a + j)) >= b * (1.0 - 1e-9) &&
+        std::fabs(z(a + j)) <= rows.rounding_floor(a + j, P))
+      return true;
+  }
+  return false;
+}
+
 /// The same freedom reaching the answer through the other contacts: free rows (as in
 /// coulomb_bounds_undetermined) whose columns are independent, but
 ///  - not together with the tangents of the contacts that stick (two contacts on three dofs, both
@@ -368,16 +464,13 @@ bool coulomb_mode_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>&
   const auto& cs = *rows.cs;
   const int a = cs.active;
   if (!rows.coulomb || a < 2 || m < 1) return false;
+  if (sliding_at_rounding(rows, P, z)) return true;
   MatT<N, times2(C)> WS(cs.dofs, a), WFS(cs.dofs, m + a);
   WFS.leftCols(m) = Wf;
   int s = 0;
   for (int j = 0; j < a; ++j) {
     const double b = rows.law->mu[rows.contact(j)] * std::fabs(P(j));
-    if (!(b > 0.0)) continue;
-    if (std::fabs(P(a + j)) >= b * (1.0 - 1e-9)) {  // slides
-      if (std::fabs(z(a + j)) <= rows.rounding_floor(a + j, P)) return true;
-      continue;
-    }
+    if (!(b > 0.0) || std::fabs(P(a + j)) >= b * (1.0 - 1e-9)) continue;  // no bound, or slides
     WS.col(s) = cs.W.col(a + j);
     WFS.col(m + s) = cs.W.col(a + j);
     ++s;
@@ -400,23 +493,12 @@ template <int N, int C>
 bool reactions_on_normals_parallel_to_rounding(const FremondRowsT<N, C>& rows,
                                                const ImpactResultT<N, C>& out) {
   const auto& cs = *rows.cs;
-  const int a = cs.active, n = cs.dofs;
+  const int a = cs.active;
   for (int k = 0; k < a; ++k) {
     if (!(out.P_N_reaction(rows.contact(k)) > 0.0)) continue;
     for (int l = k + 1; l < a; ++l) {
       if (!(out.P_N_reaction(rows.contact(l)) > 0.0)) continue;
-      const auto x = cs.W.col(k), y = cs.W.col(l);
-      const double size = x.norm() * y.norm();
-      bool parallel = true, exactly = true;
-      for (int i = 0; i < n && parallel; ++i)
-        for (int j = i + 1; j < n && parallel; ++j) {
-          // x_i y_j − x_j y_i from the exact products (p + e = x_i y_j, q + f = x_j y_i).
-          const double p = x(i) * y(j), e = std::fma(x(i), y(j), -p);
-          const double q = x(j) * y(i), f = std::fma(x(j), y(i), -q);
-          parallel = std::fabs((p - q) + (e - f)) <= 1e-10 * size;
-          exactly = exactly && p == q && e == f;
-        }
-      if (parallel && !exactly) return true;
+      if (parallelism(cs.W.col(k), cs.W.col(l), 1e-10) == Parallel::to_rounding) return true;
     }
   }
   return false;
@@ -980,10 +1062,21 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     int free_rows = 0;
     bool bound_sensitive = false;
     free_rows_moving_bounds(rows, P, z, out, limit, Wf, free_rows, bound_sensitive);
-    if (free_rows == 0) return;  // every normal row resolved by its velocities
+    // Whatever the normal rows, the tangential mode may be rounding's: on the bar nearly flat on
+    // both ends (tangents' lever arms ±δ, 1e-12 … 1e-11) a sliding contact's z_T = 2δ(z_N2 − z_N1)
+    // can lie below the rounding of tangential percussions that cancel (its direction then
+    // rounding's), or both contacts stick where the exact answer slides one (see the two tests);
+    // the exact conditions of the contact modes decide. A reversal that moves velocities by
+    // less than 1e-9 of their scale is not looked for (the mode solve may find no mode where
+    // such a contact bears percussions near rounding, and the answer holds to that either way).
+    const bool sliding_undetermined = sliding_at_rounding(rows, P, z, 1e-9 * cs.v_scale) ||
+                                      sticking_tied_below_rounding(rows, P, z);
+    if (free_rows == 0 && !sliding_undetermined) return;
     const bool normals_dependent =
-        coulomb_bounds_undetermined<N, C>(Wf, free_rows, bound_sensitive);
-    if (!normals_dependent && !coulomb_mode_undetermined(rows, P, z, Wf, free_rows)) return;
+        free_rows > 0 && coulomb_bounds_undetermined<N, C>(Wf, free_rows, bound_sensitive);
+    if (!normals_dependent && !sliding_undetermined &&
+        !coulomb_mode_undetermined(rows, P, z, Wf, free_rows))
+      return;
     auto take_exact = [&](const char* message) {
       o.residual = rows.plain_residual(P);
       o.residual_is_plain = true;
@@ -1005,18 +1098,28 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     }
     if (solve_in_coulomb_mode(pb, rows, P, out.P_N_reaction, opt)) {
       take_exact(
-          "converged, with the percussions of contacts that are free in double precision (normal "
-          "laws steep at z_N = 0) solved in their contact mode, with the exact conditions their "
-          "dependent columns and their velocities below rounding leave");
+          sliding_undetermined && free_rows == 0
+              ? "converged, with the contact mode (which contacts stick, which way the others "
+                "slide) fixed by its exact conditions: tangents dependent on the other rows "
+                "leave mean tangential velocities below the rounding of the percussions"
+              : "converged, with the percussions of contacts that are free in double "
+                "precision (normal laws steep at z_N = 0) solved in their contact mode, "
+                "with the exact conditions their dependent columns and their velocities "
+                "below rounding leave");
       return;
     }
-    stall(
-        "Frémond + Coulomb: a normal law steep at z_N = 0 holds mean normal velocities at "
-        "rounding level, which leaves the percussions of contacts with dependent columns of W "
-        "(with each other or with sticking contacts' tangents), or the direction of a contact "
-        "sliding at rounding speed, to rounding, and no contact mode solved with their exact "
-        "conditions gave an answer; the answer passes the law's test but may be far from the "
-        "exact one");
+    stall(sliding_undetermined && free_rows == 0
+              ? "Frémond + Coulomb: tangents dependent on the other rows leave mean tangential "
+                "velocities below the rounding of the percussions, so which contacts stick and "
+                "which way the others slide is rounding's, and no contact mode solved with its "
+                "exact conditions gave an answer; the answer passes the law's test but may be far "
+                "from the exact one"
+              : "Frémond + Coulomb: a normal law steep at z_N = 0 holds mean normal velocities at "
+                "rounding level, which leaves the percussions of contacts with dependent columns "
+                "of W (with each other or with sticking contacts' tangents), or the direction of a "
+                "contact sliding at rounding speed, to rounding, and no contact mode solved with "
+                "their exact conditions gave an answer; the answer passes the law's test but may "
+                "be far from the exact one");
   };
 
   if (cs.active == 0) {

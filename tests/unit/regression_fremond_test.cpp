@@ -1619,15 +1619,16 @@ TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.qdot_E(i), r.qdot_E(i), 1e-9 * scale) << i;
 }
 
-// Known issue (tests/stress/known_issues.txt). The bar nearly flat on both ends (the stress
-// program's θ → 0: its tangents' lever arms ±1.4e-12), Frémond + Coulomb with μ = 248: the
-// tangential percussions, ±4.3e5, are 1e4 times the velocities they make and cancel. The library
-// answers with contact 1 held by its reaction and sliding at its bound, contact 2 sticking,
-// converged (Coulomb's modes enumerated); contact 1's mean tangential velocity is then at the
-// rounding of those percussions, and no exact solution lies near the answer (each contact mode
-// near it solved in quad precision). What must hold: an answer marked converged is within 1e-9 of
-// an exact solution, or the result says it is not determined.
-TEST(RegressionFremond, DISABLED_CoulombOnTangentsParallelTo1e12IsNearAnExactSolution) {
+// The bar nearly flat on both ends (the stress program's θ → 0: its tangents' lever arms
+// ±δ = ±1.4e-12), Frémond + Coulomb with μ = 248: tangential percussions ±4.3e5, 1e4 times the
+// velocities they make, cancel. Contact 2 sticks and contact 1 slides with z_T1 = 2δ(z_N2 − z_N1)
+// = +3.9e-12, below the rounding of D_A + G P/2 (about 1e-11 here): the law's test passes whichever
+// way contact 1 slides. The direction is fixed by the exact conditions of its contact mode
+// (W_T1 = W_T2 + 2δ(W_N2 − W_N1)); it once came out the wrong way (P_T1 = +μ P_N1), from two
+// faults of that solve: a term's sign dropped in the exact z_T (a copysign on c_t t_t), and the
+// null direction tying the two sticking tangents to the normals through its entries 2δ read as
+// none. The answer must be within 1e-9 of the exact solution nearest to it (quad precision).
+TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelocity) {
   const auto file = io::parse_problem_file(
       R"({"M": [[106.89071879502048, 0, 0], [0, 106.89071879502048, 0], [0, 0, 8.9075598995850402]],
           "W_N": [[0, 0], [1, 1], [-0.5, 0.5]],
@@ -1636,10 +1637,44 @@ TEST(RegressionFremond, DISABLED_CoulombOnTangentsParallelTo1e12IsNearAnExactSol
           "law": {"type": "fremond", "normal": {"potential": "power", "k": [0.00053724984259547783, 0.00011053940040775476], "p": [1.8187647649489351, 12.033338866260745]}, "tangential": {"potential": "coulomb", "mu": 248.02296846440314}}})",
       PotentialRegistry::with_builtins());
   const auto r = solve_impact(file.problem, file.law);
-  if (r.solver.status != SolverStatus::converged) {
-    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << r.solver.message;
-    return;
-  }
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  // Contact 1 at its bound against z_T1 > 0 (the mean angular velocity, z_N2 − z_N1 = 1.44,
+  // times 2δ), contact 2 inside its cone; their sum is the x momentum, −2 m ẋ_A.
+  const double mu = 248.02296846440314;
+  EXPECT_NEAR(r.P_T(0), -mu * r.P_N(0), 1e-9 * mu * r.P_N(0));
+  EXPECT_LT(std::fabs(r.P_T(1)), mu * r.P_N(1));
+  const double m = 106.89071879502048;
+  EXPECT_NEAR(r.P_T(0) + r.P_T(1), m * (r.qdot_E(0) - file.problem.qdot_A(0)), 1e-6);
+  expect_near_exact_coulomb(file, r, false);
+}
+
+// The bar nearly flat on both ends again (lever arms ±δ = ±1.2e-11), μ = 0.022 and 161, speeds
+// 1e7. Semismooth Newton answers with both contacts sticking, but both stick exactly only at zero
+// mean angular velocity (z_T1 − z_T2 = 2δ q̄_θ), and the answer's is −0.013, which its tangential
+// rows, rounded to 1e-8 at speeds of 1e7, cannot see; the tangential percussion that would stop
+// that rotation is far beyond contact 1's bound. So contact 1 slides, at its bound: the velocities
+// move by 1e-12 of their scale, contact 1's percussion from 0 to ±μ P_N1 = 7.5e5. Solved in the
+// contact modes, the answer must be within 1e-9 of the exact solution nearest to it.
+TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo1e11SlidesOneContact) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[4.373878231316394, 0, 0], [0, 4.373878231316394, 0], [0, 0, 0.36448985260969952]],
+          "W_N": [[0, 0], [1, 1], [-0.5, 0.5]],
+          "W_T": [[1, 1], [0, 0], [1.2240762649953195e-11, -1.2240762649953195e-11]],
+          "qdot_A": [15250802.797251966, -9077867.7217128985, -8023285.3481146218],
+          "law": {"type": "fremond", "normal": {"potential": "power", "k": 8.8343991384363211e-05, "p": 44.52348302028831}, "tangential": {"potential": "coulomb", "mu": [0.022182660580589295, 160.83209251904415]}}})",
+      PotentialRegistry::with_builtins());
+  const auto r = solve_impact(file.problem, file.law);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  const double mu1 = 0.022182660580589295, mu2 = 160.83209251904415;
+  // Contact 1 slides at its bound; contact 2 sticks, inside its own.
+  EXPECT_NEAR(std::fabs(r.P_T(0)), mu1 * r.P_N(0), 1e-9 * mu1 * r.P_N(0));
+  EXPECT_LT(std::fabs(r.P_T(1)), mu2 * r.P_N(1));
+  // Contact 1 slides against its exact mean velocity z_T1 = 2δ q̄_θ (contact 2's z_T2 = 0).
+  const double delta = 1.2240762649953195e-11;
+  const double qbar_theta = 0.5 * (file.problem.qdot_A(2) + r.qdot_E(2));
+  EXPECT_LT(r.P_T(0) * 2 * delta * qbar_theta, 0.0);
   expect_near_exact_coulomb(file, r, false);
 }
 
