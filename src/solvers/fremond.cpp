@@ -790,7 +790,7 @@ bool refine_in_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT
     if constexpr (N != Dynamic) {
       SmallLU<ContactSpaceT<N, C>::kMaxRows> lu;
       lu.compute(J);
-      if (!(lu.rcond() > 1e-14)) break;
+      if (!lu.well_conditioned(1e-14)) break;
       lu.solve(-R, dP);
     } else {
       Eigen::PartialPivLU<RowMat> lu(J);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "detail/fremond.hpp"
+#include "detail/small_full_piv_lu.hpp"
 #include "detail/small_lu.hpp"
 
 namespace fremond::detail {
@@ -31,6 +32,8 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
   Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r), newton_dP(r);
   RowMat J(r, r);
   SmallLU<ContactSpaceT<N, C>::kMaxRows> small_lu;  // used for the stack-stored sizes only
+  // The same for the singular Newton systems (small_full_piv_lu.hpp); a placeholder size otherwise.
+  SmallFullPivLU<N != Dynamic ? ContactSpaceT<N, C>::kMaxRows : 1> small_full_lu;
   double nr = rows.residual(P, z, R);
   const double target = opt.tolerance * cs.v_scale;
   double nr_10_ago = nr;  // Newton that has not halved the residual in 10 steps is stuck at a
@@ -75,7 +78,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
     bool have_newton = false;
     if constexpr (N != Dynamic) {
       small_lu.compute(J);
-      if (small_lu.rcond() > 1e-12) {
+      if (small_lu.well_conditioned(1e-12)) {
         small_lu.solve(-R, newton_dP);
         have_newton = true;
       }
@@ -93,8 +96,13 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
     // a kink, then the fallbacks, 1 ms in all against 6 steps. An inconsistent system is left to
     // Levenberg–Marquardt.
     if (!have_newton) {
-      const Eigen::FullPivLU<RowMat> full(J);
-      newton_dP = full.solve(-R);
+      if constexpr (N != Dynamic) {
+        small_full_lu.compute(J);
+        small_full_lu.solve(-R, newton_dP);
+      } else {
+        const Eigen::FullPivLU<RowMat> full(J);
+        newton_dP = full.solve(-R);
+      }
       const double miss = (J * newton_dP + R).cwiseAbs().maxCoeff();
       have_newton = newton_dP.allFinite() && miss <= 1e-12 * R.cwiseAbs().maxCoeff();
     }

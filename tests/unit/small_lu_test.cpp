@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <random>
 
+#include "../../src/solvers/detail/small_full_piv_lu.hpp"
 #include "../../src/solvers/detail/small_lu.hpp"
 
 namespace {
@@ -148,6 +149,78 @@ TEST(SmallLU, UnrolledSizesGiveTheRunTimeLoopsBits) {
     for (int i = 0; i < n; ++i) ASSERT_EQ(x(i), y(i)) << trial << " row " << i;
     EXPECT_EQ(fixed.rcond(), dynamic.rcond()) << trial;
   }
+}
+
+TEST(SmallFullPivLU, GivesFullPivLUsRankAndSolutionOnSingularConsistentSystems) {
+  // Semismooth Newton's singular steps (src/solvers/fremond_iterative.cpp): rank-deficient
+  // matrices with repeated rows (two contacts sticking with one tangent), repeated columns and
+  // ties of the largest entry, and right-hand sides in the range. Eigen's FullPivLU is the
+  // reference: the same rank, and the same particular solution (the same pivots, so the same free
+  // unknowns set to zero) to rounding; A x = b to rounding.
+  std::mt19937 gen(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int deficient = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const int n = 1 + trial % 8;
+    const int rank = 1 + static_cast<int>(gen() % n);
+    Eigen::MatrixXd B(n, rank), C(rank, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < rank; ++j) B(i, j) = u(gen);
+    for (int i = 0; i < rank; ++i)
+      for (int j = 0; j < n; ++j) C(i, j) = u(gen);
+    Eigen::MatrixXd A = B * C;
+    if (trial % 3 == 0 && n > 1) A.row(n - 1) = A.row(0);  // an exact repeat of a row
+    if (trial % 5 == 0 && n > 1) A.col(n - 1) = A.col(0);  // an exact repeat of a column
+    if (trial % 7 == 0) A.setConstant(0.5);                // every entry ties
+    const Eigen::VectorXd x0 = Eigen::VectorXd::NullaryExpr(n, [&] { return u(gen); });
+    const Eigen::VectorXd b = A * x0;  // consistent
+    const Eigen::FullPivLU<Eigen::MatrixXd> ref(A);
+    const Eigen::VectorXd xr = ref.solve(b);
+    fremond::detail::SmallFullPivLU<8> lu;
+    lu.compute(Mat(A));
+    Vec x;
+    lu.solve(Vec(b), x);
+    ASSERT_EQ(lu.rank(), ref.rank()) << trial;
+    deficient += ref.rank() < n;
+    const double scale = 1.0 + xr.cwiseAbs().maxCoeff();
+    EXPECT_LE((Eigen::VectorXd(x) - xr).cwiseAbs().maxCoeff(), 1e-9 * scale) << trial;
+    EXPECT_LE((A * Eigen::VectorXd(x) - b).cwiseAbs().maxCoeff(),
+              1e-12 * (1.0 + A.cwiseAbs().maxCoeff() * x.cwiseAbs().maxCoeff()))
+        << trial;
+  }
+  EXPECT_GT(deficient, 800);
+  fremond::detail::SmallFullPivLU<8> zero;
+  zero.compute(Mat::Zero(3, 3));
+  Vec x;
+  zero.solve(Vec::Ones(3), x);
+  EXPECT_EQ(zero.rank(), 0);
+  EXPECT_EQ(x.cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(SmallLU, WellConditionedIsRcondAboveTheThreshold) {
+  // The pivots' screen decides only where rcond is at most half the threshold: on random matrices
+  // made nearly singular by a row close to another (distance 10^-k), the answer is rcond()'s for
+  // every threshold semismooth Newton and the classical refinement use, on both sides of it.
+  std::mt19937 gen(19);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int below = 0, above = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int n = 2 + trial % 7;
+    Mat A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = u(gen);
+    const double delta = std::pow(10.0, -static_cast<double>(trial % 17));
+    for (int j = 0; j < n; ++j) A(n - 1, j) = A(0, j) + delta * u(gen);
+    SmallLU<8> lu;
+    lu.compute(A);
+    for (double t : {1e-12, 1e-14, 64 * std::numeric_limits<double>::epsilon()}) {
+      const bool expected = !lu.singular() && lu.rcond() > t;
+      ASSERT_EQ(lu.well_conditioned(t), expected) << trial << " threshold " << t;
+      (expected ? above : below) += 1;
+    }
+  }
+  EXPECT_GT(below, 1000);
+  EXPECT_GT(above, 1000);
 }
 
 }  // namespace

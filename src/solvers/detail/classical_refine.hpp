@@ -131,7 +131,7 @@ Refinement refine_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>
   }
   SmallLU<kMax> lu;
   lu.compute(K);
-  if (lu.singular() || !(lu.rcond() > 64 * eps)) return Refinement::singular;
+  if (!lu.well_conditioned(64 * eps)) return Refinement::singular;
   const Rows start = P;
   Rows res(r), d(r);
   double previous = std::numeric_limits<double>::infinity();

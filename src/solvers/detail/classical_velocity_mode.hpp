@@ -93,7 +93,7 @@ bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
   SmallLU<kMax> lu;
   auto solve_refined = [&](const Square& K, const Vec& rhs, Vec& y) {
     lu.compute(K);
-    if (lu.singular() || !(lu.rcond() > 64 * eps)) return false;
+    if (!lu.well_conditioned(64 * eps)) return false;
     lu.solve(rhs, y);
     for (int k = 0; k < t; ++k) res(k) = -accurate_dot(K.row(k), y, -rhs(k));
     lu.solve(res, d);
