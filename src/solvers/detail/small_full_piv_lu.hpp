@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "fixed_size.hpp"
+#include "small_lu.hpp"
 
 namespace fremond::detail {
 
@@ -23,9 +24,9 @@ class SmallFullPivLU {
   static_assert(MaxRows != Eigen::Dynamic && MaxRows <= 8, "for the stack-stored sizes only");
 
  public:
-  using Mat =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxRows, MaxRows>;
-  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxRows, 1>;
+  // The storage of SmallLU, whose Newton systems these are.
+  using Mat = typename SmallLU<MaxRows>::Mat;
+  using Vec = typename SmallLU<MaxRows>::Vec;
 
   /// Factorises P A Q = L U of the square A (1 ≤ rows ≤ MaxRows).
   void compute(const Mat& A) {
