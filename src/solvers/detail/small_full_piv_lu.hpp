@@ -5,9 +5,9 @@
 // pivot, the first one met in column-major order on a tie; rank = the pivots above
 // ε·size·|largest pivot|; the free unknowns set to zero — so that the particular solution, hence
 // the split of a percussion between identical rows, is the one FullPivLU gives. Eigen's
-// dynamic-size FullPivLU on the 8×8-capacity storage went through its general blocked code: on the
-// flat bar with the viscous dead zone, where every Newton step is singular, it was the larger part
-// of the solve. Loops of compile-time length (fixed_size.hpp) for sizes 1 … 8.
+// dynamic-size FullPivLU on the 8×8-capacity storage went through its general blocked code, far
+// more than the arithmetic of a 2×2 … 8×8 system. Loops of compile-time length (fixed_size.hpp)
+// for sizes 1 … 8.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
