@@ -80,12 +80,20 @@ inline constexpr int kMaxSolutions = 24;
 
 using small_dense::add_product;
 
-template <int MaxC>
+/// Vectors and matrices of a given scalar: double everywhere but in the extended-precision
+/// decision of a phase's singular modes (decide_in_extended_precision).
+template <int Max, class S>
+using VecS = Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, Max, 1>;
+template <int MaxR, int MaxC, class S>
+using MatS = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxR, MaxC>;
+
+template <int MaxC, class S = double>
 struct Phase {
+  using Scalar = S;
   static constexpr int kMaxRows = times(MaxC, 2);
-  using Rows = VecT<kMaxRows>;
-  using RowMat = MatT<kMaxRows, kMaxRows>;
-  using CVec = VecT<MaxC>;
+  using Rows = VecS<kMaxRows, S>;
+  using RowMat = MatS<kMaxRows, kMaxRows, S>;
+  using CVec = VecS<MaxC, S>;
 
   int a = 0;              ///< contacts that take part
   bool friction = false;  ///< tangential rows present (rows = 2a), else rows = a and t = 0
@@ -536,27 +544,28 @@ bool project_polyhedron(const BMat& B, const Vec1& d, const Vec2& y0, VecT<times
 /// σ = ±1 (t = −σβ, σv ≥ 0).
 enum class Tangential { zero, stick, slide_positive, slide_negative };
 
-template <int MaxC>
+template <int MaxC, class S = double>
 struct ModeSystem {
   static constexpr int kMaxRows = times(MaxC, 2);
   static constexpr int kMaxIneq = times(MaxC, 3);
-  MatT<kMaxRows, kMaxRows> K;
-  VecT<kMaxRows> rhs;
-  MatT<kMaxIneq, kMaxRows> C;
-  VecT<kMaxIneq> g;
+  MatS<kMaxRows, kMaxRows, S> K;
+  VecS<kMaxRows, S> rhs;
+  MatS<kMaxIneq, kMaxRows, S> C;
+  VecS<kMaxIneq, S> g;
   int m = 0;  ///< inequality rows used
 };
 
-template <int MaxC>
-void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangential* tang,
-                ModeSystem<MaxC>& s) {
+template <int MaxC, class S>
+void build_mode(const Phase<MaxC, S>& ph, const int* normal_closed, const Tangential* tang,
+                ModeSystem<MaxC, S>& s) {
+  using Row = VecS<times(MaxC, 2), S>;
   const int a = ph.a, r = ph.rows();
   s.K.setZero(r, r);
   s.rhs.setZero(r);
   s.C.setZero(3 * a, r);
   s.g.setZero(3 * a);
   s.m = 0;
-  auto ineq = [&](auto row, double g) {
+  auto ineq = [&](auto row, S g) {
     s.C.row(s.m) = row;
     s.g(s.m++) = g;
   };
@@ -564,7 +573,7 @@ void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangentia
     if (normal_closed[i]) {
       s.K.row(i) = ph.G.row(i);
       s.rhs(i) = -ph.q(i);
-      ineq(VecT<times(MaxC, 2)>::Unit(r, i).transpose(), 0.0);
+      ineq(Row::Unit(r, i).transpose(), S(0));
     } else {
       s.K(i, i) = 1.0;
       ineq(ph.G.row(i), -ph.q(i));
@@ -578,7 +587,7 @@ void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangentia
       case Tangential::stick: {
         s.K.row(k) = ph.G.row(k);
         s.rhs(k) = -ph.q(k);
-        VecT<times(MaxC, 2)> up = VecT<times(MaxC, 2)>::Zero(r), lo = up;
+        Row up = Row::Zero(r), lo = up;
         up(i) = ph.mu(i);
         up(k) = -1.0;  // μx + b0 − t ≥ 0
         lo(i) = ph.mu(i);
@@ -604,23 +613,27 @@ void build_mode(const Phase<MaxC>& ph, const int* normal_closed, const Tangentia
 /// when K is singular and a direction of its null space changes the velocities (a possible
 /// continuum of solutions); `near_singular` when u is the regular solution of a K singular to the
 /// rank test but not to rounding (a last resort: see enumerate_modes).
-template <int MaxC>
-bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Tolerances& tol,
-                typename Phase<MaxC>::Rows& u, bool& moves, bool& near_singular) {
+template <int MaxC, class S>
+bool solve_mode(const Phase<MaxC, S>& ph, const ModeSystem<MaxC, S>& s, const Tolerances& tol,
+                typename Phase<MaxC, S>::Rows& u, bool& moves, bool& near_singular) {
   constexpr int kMaxRows = times(MaxC, 2);
+  using Rows = typename Phase<MaxC, S>::Rows;
+  constexpr S kEps = std::numeric_limits<S>::epsilon();
+  // The finer rank test below: 1e-14 of the largest singular value in double, as many times the
+  // unit roundoff in a wider type.
+  constexpr S kFine = S(1e-14) * (kEps / std::numeric_limits<double>::epsilon());
   const int r = ph.rows();
   moves = false;
   near_singular = false;
   // A row's tolerance scales with the row: tol.p · ‖row‖∞ is about tol.v for velocity rows (G rows)
   // and tol.p for percussion rows (entries 1 and μ).
-  auto row_tol = [&](int j) { return tol.p * s.C.row(j).cwiseAbs().maxCoeff(); };
+  auto row_tol = [&](int j) -> S { return tol.p * s.C.row(j).cwiseAbs().maxCoeff(); };
   // The mode's inequalities at u, each to its tolerance and to the rounding of its own product:
   // percussions 1e10 times the velocities they make (cond(M) = 1e11, μ = 1e8) leave ε|C_j||u| in
   // C_j u, far above the tolerance (a contact open at D_NE = 0 by 5e-6 of rounding was refused).
-  auto meets_inequalities = [&](const typename Phase<MaxC>::Rows& x) {
+  auto meets_inequalities = [&](const Rows& x) {
     for (int j = 0; j < s.m; ++j) {
-      const double noise = 64 * std::numeric_limits<double>::epsilon() *
-                           (s.C.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.g(j)));
+      const S noise = 64 * kEps * (s.C.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.g(j)));
       if (s.C.row(j).dot(x) - s.g(j) < -(row_tol(j) + noise)) return false;
     }
     return true;
@@ -632,24 +645,24 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   // The scale is capped at 2^1000: a row whose largest entry is subnormal (G = W²/M = 3e-309 with
   // M = 7.7e307) has no finite reciprocal, and a row of ∞ sent the SVD below reading out of
   // bounds (solver fuzz, Poisson on one dof).
-  VecT<kMaxRows> row_scale(r);
+  VecS<kMaxRows, S> row_scale(r);
   for (int j = 0; j < r; ++j) {
-    const double m = s.K.row(j).cwiseAbs().maxCoeff();
-    row_scale(j) = m > 0.0 ? std::min(1.0 / m, 0x1p1000) : 1.0;
+    const S m = s.K.row(j).cwiseAbs().maxCoeff();
+    row_scale(j) = m > 0 ? std::min<S>(S(1) / m, S(0x1p1000)) : S(1);
   }
-  const MatT<kMaxRows, kMaxRows> Ks = row_scale.asDiagonal() * s.K;
-  const VecT<kMaxRows> rhs_s = row_scale.cwiseProduct(s.rhs);
+  const MatS<kMaxRows, kMaxRows, S> Ks = row_scale.asDiagonal() * s.K;
+  const VecS<kMaxRows, S> rhs_s = row_scale.cwiseProduct(s.rhs);
   if (!Ks.allFinite() || !rhs_s.allFinite()) return false;  // no factorisation of ∞ or NaN
-  Eigen::FullPivLU<MatT<kMaxRows, kMaxRows>> lu(Ks);
+  Eigen::FullPivLU<MatS<kMaxRows, kMaxRows, S>> lu(Ks);
   lu.setThreshold(1e-10);
   if (lu.rank() == r) {
     u = lu.solve(rhs_s);
     return meets_inequalities(u);
   }
   // Singular mode (e.g. the flat bar's equal tangents): u = u0 + N y, feasibility by projection.
-  Eigen::JacobiSVD<MatT<kMaxRows, kMaxRows>> svd(Ks, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::JacobiSVD<MatS<kMaxRows, kMaxRows, S>> svd(Ks, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const auto& sv = svd.singularValues();
-  const double smax = sv.size() ? sv(0) : 0.0;
+  const S smax = sv.size() ? sv(0) : S(0);
   int rank = 0;
   while (rank < sv.size() && sv(rank) > 1e-10 * smax) ++rank;
   // Consistent to the tolerance; on the last-resort path below also to the rounding of the
@@ -657,20 +670,19 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   // velocities they make (cond(M) = 1e11), ε|K||u0| is far above the tolerance. (Not on the first
   // test: with μ = 1e8 in a sliding row, ε|K||u0| let a truncated u0 that solves nothing through,
   // and its answer displaced the exact ones of the near-singular modes.)
-  auto consistent = [&](const typename Phase<MaxC>::Rows& x, bool rounding) {
-    const double allowed = std::max(tol.v, tol.p * s.K.cwiseAbs().maxCoeff());
-    const typename Phase<MaxC>::Rows Kx = s.K * x;
+  auto consistent = [&](const Rows& x, bool rounding) {
+    const S allowed = std::max<S>(tol.v, tol.p * s.K.cwiseAbs().maxCoeff());
+    const Rows Kx = s.K * x;
     for (int j = 0; j < r; ++j) {
-      const double noise = rounding
-                               ? 64 * std::numeric_limits<double>::epsilon() *
-                                     (s.K.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.rhs(j)))
-                               : 0.0;
+      const S noise =
+          rounding ? 64 * kEps * (s.K.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.rhs(j)))
+                   : S(0);
       if (!(std::fabs(Kx(j) - s.rhs(j)) <= allowed + noise)) return false;
     }
     return true;
   };
   svd.setThreshold(1e-10);
-  typename Phase<MaxC>::Rows u0 = svd.solve(rhs_s);
+  Rows u0 = svd.solve(rhs_s);
   if (!consistent(u0, false)) {
     // Inconsistent to the rank test, but the singular values from 1e-14 to 1e-10 of the largest
     // may be the data's own: cond(M) = 1e11 spreads G over eleven decades, and the mode's answer
@@ -682,9 +694,9 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
     // near, taken where it meets the mode's inequalities and only as a last resort
     // (enumerate_modes); the law's residual judges it as any other.
     int fine = rank;
-    while (fine < sv.size() && sv(fine) > 1e-14 * smax) ++fine;
+    while (fine < sv.size() && sv(fine) > kFine * smax) ++fine;
     if (fine == rank) return false;
-    svd.setThreshold(1e-14);
+    svd.setThreshold(kFine);
     u0 = svd.solve(rhs_s);
     if (!u0.allFinite()) return false;
     near_singular = true;
@@ -695,9 +707,11 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
     if (!consistent(u0, true)) return false;
     rank = fine;
   }
-  const MatT<kMaxRows, kMaxRows> N = svd.matrixV().rightCols(r - rank);
-  MatT<times(MaxC, 3), kMaxRows> B = s.C.topRows(s.m) * N;
-  VecT<times(MaxC, 3)> d = s.g.head(s.m) - s.C.topRows(s.m) * u0;
+  const MatS<kMaxRows, kMaxRows, S> N = svd.matrixV().rightCols(r - rank);
+  // The projection in double whatever S: its data, the mode's inequalities on the null space,
+  // are not where the precision is needed (K's small singular values are).
+  const MatT<times(MaxC, 3), kMaxRows> B = (s.C.topRows(s.m) * N).template cast<double>();
+  VecT<times(MaxC, 3)> d = (s.g.head(s.m) - s.C.topRows(s.m) * u0).template cast<double>();
   VecT<kMaxRows> y;
   const VecT<kMaxRows> y0 = VecT<kMaxRows>::Zero(r - rank);
   // The inequalities exactly first: relaxed by their tolerance from the start, the projection
@@ -705,31 +719,35 @@ bool solve_mode(const Phase<MaxC>& ph, const ModeSystem<MaxC>& s, const Toleranc
   // cone where a point of the null space meets it exactly). The relaxed set only when the exact
   // one is empty (rounding of u0).
   if (!project_polyhedron<MaxC>(B, d, y0, y)) {
-    for (int j = 0; j < s.m; ++j) d(j) -= row_tol(j);
+    for (int j = 0; j < s.m; ++j) d(j) -= static_cast<double>(row_tol(j));
     if (!project_polyhedron<MaxC>(B, d, y0, y)) return false;
   }
-  u = u0 + N * y;
-  moves = (ph.G * N).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, ph.G.cwiseAbs().maxCoeff());
+  u = u0 + N * y.template cast<S>();
+  // G N entry by entry: a temporary G N of long doubles drew a false maybe-uninitialized warning.
+  S moved = 0;
+  for (int c = 0; c < N.cols(); ++c)
+    for (int j = 0; j < r; ++j) moved = std::max<S>(moved, std::fabs(ph.G.row(j).dot(N.col(c))));
+  moves = moved > 1e-9 * std::max<S>(1, ph.G.cwiseAbs().maxCoeff());
   return true;
 }
 
 /// The phase's own residual at u, in velocity units: the natural map of each complementarity
 /// (min(w_i, G_ii x_i)) and of Coulomb's law (G_kk (t − clamp(t − v/G_kk, −β, β))), as the law's
 /// residual (classical_residual) takes them. Zero exactly at a solution; rounding otherwise.
-template <int MaxC>
-double phase_residual(const Phase<MaxC>& ph, const typename Phase<MaxC>::Rows& u) {
+template <int MaxC, class S>
+double phase_residual(const Phase<MaxC, S>& ph, const typename Phase<MaxC, S>::Rows& u) {
   const int a = ph.a;
-  const typename Phase<MaxC>::Rows v = ph.velocity(u);
-  auto diag = [&](int j) { return ph.G(j, j) > 0.0 ? ph.G(j, j) : 1.0; };
-  double worst = 0.0;
+  const typename Phase<MaxC, S>::Rows v = ph.velocity(u);
+  auto diag = [&](int j) -> S { return ph.G(j, j) > 0 ? ph.G(j, j) : S(1); };
+  S worst = 0;
   for (int i = 0; i < a; ++i) {
-    worst = std::max(worst, std::fabs(std::min(v(i), u(i) == 0.0 ? 0.0 : diag(i) * u(i))));
+    worst = std::max(worst, std::fabs(std::min<S>(v(i), u(i) == 0 ? S(0) : diag(i) * u(i))));
     if (!ph.friction) continue;
     const int k = a + i;
-    const double g = diag(k), t = u(k), b = std::max(0.0, ph.mu(i) * u(i) + ph.b0(i));
+    const S g = diag(k), t = u(k), b = std::max<S>(0, ph.mu(i) * u(i) + ph.b0(i));
     worst = std::max(worst, std::fabs(g * (t - std::clamp(t - v(k) / g, -b, b))));
   }
-  return worst;
+  return static_cast<double>(worst);
 }
 
 /// Whether `candidate` solves the phase clearly more exactly than `kept`: its residual is below
@@ -752,10 +770,11 @@ inline constexpr int kMaxEnumerated = 4;  ///< the most contacts enumerate_modes
 /// contacts the enumeration runs only where Lemke finds no answer.
 inline constexpr int kMaxEnumeratedAlways = 3;
 
-template <int MaxC>
-void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
-                     FixedList<typename Phase<MaxC>::Rows, kMaxSolutions>& out, bool& continuum) {
-  using Rows = typename Phase<MaxC>::Rows;
+template <int MaxC, class S>
+void enumerate_modes(const Phase<MaxC, S>& ph, const Tolerances& tol,
+                     FixedList<typename Phase<MaxC, S>::Rows, kMaxSolutions>& out,
+                     bool& continuum) {
+  using Rows = typename Phase<MaxC, S>::Rows;
   const int a = ph.a;
   continuum = false;
   constexpr int kMaxEnum = kMaxEnumerated;
@@ -777,7 +796,7 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
     }
     count[i] = c;
   }
-  ModeSystem<MaxC> sys;
+  ModeSystem<MaxC, S> sys;
   Rows u;
   std::array<double, kMaxSolutions> residual{}, fallback_residual{};  // of out[k], fallback[k]
   FixedList<Rows, kMaxSolutions> fallback;  // the answers of near-singular modes
@@ -808,7 +827,7 @@ void enumerate_modes(const Phase<MaxC>& ph, const Tolerances& tol,
     build_mode(ph, normal_closed, tang, sys);
     bool moves = false, near_singular = false;
     if (solve_mode(ph, sys, tol, u, moves, near_singular)) {
-      for (int i = 0; i < a; ++i) u(i) = std::max(0.0, u(i));
+      for (int i = 0; i < a; ++i) u(i) = std::max<S>(0, u(i));
       // A mode singular to the rank test but not to rounding is a last resort, taken only where
       // no mode has an answer by the rank test: on 4 contacts of 2 dofs with cond(M) = 1e10 such
       // a mode's answer, 1e-6 off, took the place of the enumeration's exact one.

@@ -14,7 +14,7 @@ template <class Mat, class VecX, class VecY>
 void add_product(const Mat& A, const VecX& x, VecY& y) {
   const Eigen::Index rows = A.rows(), cols = A.cols();
   for (Eigen::Index j = 0; j < cols; ++j) {
-    const double xj = x(j);
+    const typename VecX::Scalar xj = x(j);  // double but in classical's extended precision
     for (Eigen::Index i = 0; i < rows; ++i) y(i) += A(i, j) * xj;
   }
 }
