@@ -215,6 +215,15 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   else if (lo.exhaustive && found > 1)
     out.solver.message =
         "several solutions; the most dissipative that satisfies the law is returned";
+  else if (lo.extended)
+    out.solver.message =
+        lo.percussion_unique
+            ? "no contact mode solves the law in double precision (a mode's small singular values "
+              "lie below its rounding); solved by the modes with G = W^T M^-1 W in extended "
+              "precision"
+            : "no contact mode solves the law in double precision (a mode's small singular values "
+              "lie below its rounding); solved by the modes with G = W^T M^-1 W in extended "
+              "precision; the percussions are not unique (G singular)";
   else if (!lo.compression_unique)
     out.solver.message =
         "Poisson: the compression percussion is not unique; the minimum-norm one is used";

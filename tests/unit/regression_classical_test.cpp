@@ -853,15 +853,16 @@ TEST(RegressionClassical, LargeMuOnARepeatedRowIsSolvedToItsRounding) {
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
-// OPEN: a 3-dof body with cond(M) ≈ 1e12 under Newton + Coulomb; two contacts take part, one
+// A 3-dof body with cond(M) ≈ 1e12 under Newton + Coulomb; two contacts take part, one
 // frictionless (μ = 0), one sticking with μ = 558. The quad reference's answer (a singular mode's
 // vertex, residual 1.5e-19) has percussions 1.8e8 for velocities of 1e-5: 1e13 times what they
-// make. The library's mode is singular to 1e-14 of its largest singular value (5e-15) and its
-// answer at that rank inconsistent, so every mode is refused and the law says `no_solution`
-// (stress newton_coulomb #9756 of seed 23; 21 such in 100,000 problems, 2 under Poisson +
-// Coulomb). In double precision such an answer could only be `stalled`, its velocities known to
-// ε·1e13; left for a mode solve in higher precision.
-TEST(RegressionClassical, DISABLED_AnswerOfPercussions1e13TimesTheVelocitiesIsFound) {
+// make. In double the mode's equations are singular to 1e-14 of their largest singular value
+// (5e-15), below what rounding resolves, and their answer at that rank inconsistent, so every
+// mode was refused and the law said `no_solution` (stress newton_coulomb #9756 of seed 23; 21
+// such in 100,000 problems, 2 under Poisson + Coulomb). With G in extended precision
+// (decide_in_extended_precision) the mode is decided, and the answer agrees with the reference
+// to 2e-16 of the velocities and 5e-16 of the percussions.
+TEST(RegressionClassical, AnswerOfPercussions1e13TimesTheVelocitiesIsFound) {
   const auto file = io::parse_problem_file(R"({
     "M": [[40656616161.159271, -31998518739.046356, 8191674304.1358089],
           [-31998518739.046356, 29047337182.909676, 6447359804.3207989],
@@ -884,10 +885,20 @@ TEST(RegressionClassical, DISABLED_AnswerOfPercussions1e13TimesTheVelocitiesIsFo
   const auto& s = found.singular_example[0];
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, file.law, opt);
-  ASSERT_NE(r.solver.status, SolverStatus::no_solution) << r.solver.message;
-  double scale = 0.0;
-  for (int i = 0; i < 3; ++i) scale = std::max(scale, std::fabs(r.D_NA(i)));
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.D_NE(i), ref::to_double(s.D_NE[i]), 1e-2 * scale) << i;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  double scale = 0.0, p_scale = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    scale = std::max(scale, std::fabs(r.D_NA(i)));
+    p_scale = std::max(p_scale, std::fabs(ref::to_double(s.P_N[i])));
+  }
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(r.D_NE(i), ref::to_double(s.D_NE[i]), 1e-12 * scale) << i;
+    EXPECT_NEAR(r.D_TE(i), ref::to_double(s.D_TE[i]), 1e-12 * scale) << i;
+    EXPECT_NEAR(r.P_N(i), ref::to_double(s.P_N[i]), 1e-12 * p_scale) << i;
+    EXPECT_NEAR(r.P_T(i), ref::to_double(s.P_T[i]), 1e-12 * p_scale) << i;
+  }
+  EXPECT_NE(r.solver.message.find("extended precision"), std::string::npos) << r.solver.message;
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
 // Newton + Coulomb with μ = 1e8 on two contacts taking part has three solutions (the quad
@@ -899,8 +910,8 @@ TEST(RegressionClassical, DISABLED_AnswerOfPercussions1e13TimesTheVelocitiesIsFo
 // rank tests now run on the mode's equations with every row scaled to a largest entry of 1. (That
 // also turned answers of near-singular modes into `no_solution` until those modes were solved to
 // a finer rank and their inequalities allowed their products' rounding; the reference's linear
-// programs, deciding its singular modes, now agree but on 21 of 100,000 problems, cond(M) of 4e8
-// and more: DISABLED_AnswerOfPercussions1e13TimesTheVelocitiesIsFound.)
+// programs, deciding its singular modes, then agreed but on 21 of 100,000 problems, cond(M) of 4e8
+// and more: AnswerOfPercussions1e13TimesTheVelocitiesIsFound.)
 TEST(RegressionClassical, EveryModeOfALargeMuIsSolved) {
   const auto file = io::parse_problem_file(R"({
     "M": [[3012.7566428340924, -4659.0323437871175, 82440.6809237579, -16826.035147921924],

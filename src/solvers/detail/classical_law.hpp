@@ -9,6 +9,7 @@
 
 #include "classical_phase.hpp"
 #include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/detail/accurate_dot.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
 #include "fremond/solvers/solver_status.hpp"
 
@@ -44,6 +45,7 @@ struct PhaseOutcome {
   bool percussion_unique = true;  ///< false when a minimum-norm choice was made
   bool continuum = false;         ///< a singular mode may hold a continuum of velocities
   bool unsupported = false;       ///< the method forced does not apply to this phase
+  bool extended = false;          ///< u was found by the modes in extended precision (see below)
 };
 
 /// G once per law: its Cholesky factor (the eq. 6 guess) and, when it is singular, null(G) (the
@@ -234,13 +236,14 @@ struct LawOutcome {
   /// ray_is_proof): G lost its small eigenvalues to rounding. Then exhaustive is false.
   bool beyond_precision = false;
   bool unsupported = false;  ///< the method forced does not apply to a phase
+  bool extended = false;     ///< a phase was decided in extended precision
 
   void reset() {
     solutions.clear();
     method = SolverMethod::closed_form;
     pivots = fallbacks = 0;
     exhaustive = percussion_unique = compression_unique = true;
-    continuum = beyond_precision = unsupported = false;
+    continuum = beyond_precision = unsupported = extended = false;
   }
 };
 
@@ -278,6 +281,90 @@ bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph) {
   typename Phase<C>::Rows u(a);
   int pivots = 0;
   return lemke_phase(wp, LemkeOptions{}, u, pivots) != LcpStatus::solved;
+}
+
+/// The extended precision of decide_in_extended_precision: the x87 format's 64-bit significand
+/// where the platform has it (ε = 1.1e-19), else double-double would be needed and the decision
+/// stays double's.
+using Extended = long double;
+inline constexpr bool kHaveExtended =
+    std::numeric_limits<Extended>::digits > std::numeric_limits<double>::digits;
+
+/// G = Wᵀ M⁻¹ W of the first r rows of `cs` in extended precision. M⁻¹W is solved by M's Cholesky
+/// factor in extended precision and refined against residuals W − M X summed in twice double
+/// precision (X split into two doubles, the first part by accurate_dot), which leaves X accurate
+/// to the extended format whatever cond(M) below 1/ε_extended; G is then summed in that format.
+/// (A Cholesky solve alone is accurate only to cond(M)·ε: with cond(M) = 1e12 that is 1e-7, far
+/// above the small singular values of the modes it is for.) False when M's factor or G is not
+/// usable.
+template <int N, int C>
+bool extended_delassus(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, int r,
+                       MatS<times(C, 2), times(C, 2), Extended>& G) {
+  using X =
+      Eigen::Matrix<Extended, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, N, times(C, 2)>;
+  using Split = MatT<N, times(C, 2)>;
+  const int n = static_cast<int>(pb.M.rows());
+  const auto W = cs.W.leftCols(r);
+  const Eigen::Matrix<Extended, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, N, N> Me =
+      pb.M.template cast<Extended>();
+  const Eigen::LLT<std::remove_const_t<decltype(Me)>> llt(Me);
+  if (llt.info() != Eigen::Success) return false;
+  X x = llt.solve(W.template cast<Extended>());
+  X residual(n, r);
+  Split hi(n, r), lo(n, r);
+  constexpr Extended kEps = std::numeric_limits<Extended>::epsilon();
+  for (int sweep = 0; sweep < 6 && x.allFinite(); ++sweep) {
+    hi = x.template cast<double>();
+    lo = (x - hi.template cast<Extended>()).template cast<double>();  // x = hi + lo exactly
+    for (int c = 0; c < r; ++c)
+      for (int i = 0; i < n; ++i)
+        residual(i, c) =
+            -(Extended(accurate_dot(pb.M.row(i), hi.col(c), -W(i, c))) +
+              pb.M.row(i).template cast<Extended>().dot(lo.col(c).template cast<Extended>()));
+    const X delta = llt.solve(residual);
+    x += delta;
+    if (!(delta.cwiseAbs().maxCoeff() > 4 * kEps * x.cwiseAbs().maxCoeff())) break;
+  }
+  G.resize(r, r);
+  for (int j = 0; j < r; ++j)
+    for (int k = 0; k <= j; ++k)
+      G(j, k) = G(k, j) = Extended(0.5) * (W.col(j).template cast<Extended>().dot(x.col(k)) +
+                                           W.col(k).template cast<Extended>().dot(x.col(j)));
+  return G.allFinite();
+}
+
+/// A phase with friction whose contact modes, every one solved in double precision, gave no
+/// answer, solved again by its modes with G in extended precision. Where M is ill-conditioned
+/// (cond(M) from 4e8 to 1e12) a mode's equations can have singular values from 1e-15 to 1e-14 of
+/// their largest: in double, below what rounding resolves (G is accurate to ε of its entries), so
+/// the mode was refused as singular and inconsistent and the law said `no_solution` where the quad
+/// reference's modes have an answer, with percussions 1e13 times the velocities they make (stress
+/// newton_coulomb #9756 of seed 23). In extended precision those singular values stand 1e4 above
+/// rounding and the mode is decided. An answer found so is known only to the precision of the
+/// data's double rounding, and is judged by the law's residual like any other.
+template <int N, int C>
+void decide_in_extended_precision(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                                  const Phase<C>& ph, const Tolerances& tol, PhaseOutcome<C>& out) {
+  if constexpr (kHaveExtended) {
+    if (frictionless(ph) || out.u.size > 0 || !out.exhaustive || ph.a > kMaxEnumerated) return;
+    Phase<C, Extended> ext;
+    ext.a = ph.a;
+    ext.friction = ph.friction;
+    if (!extended_delassus(pb, cs, ph.rows(), ext.G)) return;
+    ext.q = ph.q.template cast<Extended>();
+    ext.mu = ph.mu.template cast<Extended>();
+    ext.b0 = ph.b0.template cast<Extended>();
+    FixedList<typename Phase<C, Extended>::Rows, kMaxSolutions> found;
+    bool continuum = false;
+    enumerate_modes(ext, tol, found, continuum);
+    if (found.size == 0) return;
+    for (int k = 0; k < found.size; ++k) out.u.push(found[k].template cast<double>());
+    out.continuum = out.continuum || continuum;
+    out.exhaustive = !found.overflow;
+    out.extended = true;
+    out.fallbacks += 1;
+    out.primary = out.others = SolverMethod::mode_enumeration;
+  }
 }
 
 /// One contact: the whole law on scalars with the closed forms of one_contact (eqs. 7-8 with eq. 5
@@ -408,6 +495,14 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   if (!poisson) ph.q.head(a) = ph.q.head(a).cwiseProduct((e.array() + 1.0).matrix());
   PhaseOutcome<C> first;
   solve_phase(ph, tol, list_up_to, fg, zero, first, force);
+  // The minimum-norm choice among percussions of equal velocities (solve_phase) needs G's null
+  // space in double and is not made for answers found in extended precision.
+  auto in_extended_precision = [&](const Phase<C>& phase, PhaseOutcome<C>& o) {
+    if (force != SolverMethod::automatic && force != SolverMethod::mode_enumeration) return;
+    decide_in_extended_precision(pb, cs, phase, tol, o);
+    if (o.extended && fg.null.cols() > 0) o.percussion_unique = false;
+  };
+  in_extended_precision(ph, first);
   if (first.unsupported) {
     out.unsupported = true;
     out.exhaustive = false;
@@ -416,6 +511,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   out.pivots = first.pivots;
   out.fallbacks = first.fallbacks;
   out.exhaustive = first.exhaustive;
+  out.extended = first.extended;
   out.continuum = first.continuum;
   if (poisson)
     out.compression_unique = first.percussion_unique;
@@ -448,6 +544,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     if (ph.friction) ex.b0 = ph.mu.cwiseProduct(shift.head(a));
     PhaseOutcome<C> second;
     solve_phase(ex, tol, list_up_to, fg, shift, second, force);
+    in_extended_precision(ex, second);
     if (second.unsupported) {
       out.solutions.clear();
       out.unsupported = true;
@@ -456,6 +553,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
     }
     out.pivots += second.pivots;
     out.fallbacks += second.fallbacks;
+    out.extended = out.extended || second.extended;
     out.exhaustive = out.exhaustive && second.exhaustive;
     if (frictionless(ex) && second.u.size == 0 && !ray_is_proof(cs, ex)) {
       out.exhaustive = false;
