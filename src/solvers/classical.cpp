@@ -215,6 +215,11 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   else if (lo.exhaustive && found > 1)
     out.solver.message =
         "several solutions; the most dissipative that satisfies the law is returned";
+  else if (lo.in_velocities)
+    out.solver.message =
+        "no contact mode solves the law with G = W^T M^-1 W (G carries cond(M) below rounding); "
+        "a mode whose velocities W alone fixes, solved for them, does; other solutions not looked "
+        "for";
   else if (lo.extended)
     out.solver.message =
         lo.percussion_unique
@@ -419,6 +424,27 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     return;
   }
   if (lo.solutions.size == 0) {
+    // Newton's laws: no mode solved in contact space, where G carries cond(M); the modes that fix
+    // the velocities by W alone, solved for them (classical_velocity_mode.hpp). Kept only when the
+    // law's residual then converges; else the failure as it was.
+    LawOutcome<C> lv;
+    typename ContactSpaceT<N, C>::Rows P;
+    VecT<N> q;
+    if (!is_poisson(law) && !lo.beyond_precision &&
+        (options.method == SolverMethod::automatic ||
+         options.method == SolverMethod::mode_enumeration) &&
+        classical::solve_modes_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q) > 0) {
+      lv.method = SolverMethod::mode_enumeration;
+      lv.pivots = lo.pivots;
+      lv.fallbacks = lo.fallbacks + 1;
+      lv.exhaustive = false;
+      lv.in_velocities = true;
+      LawSolution<C>* s = lv.solutions.emplace();
+      s->P = P;
+      s->method = SolverMethod::mode_enumeration;
+      fill_best(pb, cs, law, options, lv, out);
+      if (out.solver.status == SolverStatus::converged) return;
+    }
     fill_failure(pb, cs, law, lo, out);
     return;
   }

@@ -1100,6 +1100,44 @@ TEST(RegressionClassical, StickingAnswerOfAnIllConditionedBodyMatchesTheExactOne
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
+// One contact of a two-dof body with cond(M) = 1.3e10 whose W_T is 2e-4 from parallel to W_N
+// (beside a contact with W = 0 that touches nothing) under Newton + Coulomb, μ = 364: G = WᵀM⁻¹W
+// is singular to 3e-19 of its entries, below even extended precision, so no contact mode solved
+// with it, and the law said `no_solution` (stress newton_coulomb #27360 of seed 7). The exact
+// answer of the double data sticks, its velocities fixed by W alone, with percussions 1e19 times
+// them; every figure below is by hand in 80-digit arithmetic from the doubles: q̇_E from
+// W_Nᵀq̇_E = −e D_NA and W_Tᵀq̇_E = 0, P from G P = (−(1+e) D_NA, −D_TA), and T_E − T_A.
+TEST(RegressionClassical, StickWhoseVelocitiesWAloneFixesIsSolvedForThem) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[981269641470.98816, 970489115089.82495], [970489115089.82495, 959827027149.10107]],
+    "W_N": [[0.20163561517241435, -0.32095446070548417, 0],
+            [-0.25091745888601713, 0.62219170204100838, 0]],
+    "W_T": [[-0.75166658614064752, -0.63585589272220189, 0],
+            [0.93580679323334826, 0.57670768609085199, 0]],
+    "qdot_A": [0.00022582010865437554, 0.0015352238264868881],
+    "law": {"type": "newton_coulomb", "e": 0.51711164524735909,
+            "mu": [364.18382086196135, 0.38346046646089915, 0.1491666600845577]}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_FALSE(r.unique);
+  const double q0 = 1.91786001938456090232, q1 = 1.54047962024887837782;
+  const double P_N = 6.6128203967213048168e16, P_T = 1.7734493042468338919e16;
+  const double gain = 5810753694882.9263744;
+  EXPECT_NEAR(r.qdot_E(0), q0, 1e-14 * q0);
+  EXPECT_NEAR(r.qdot_E(1), q1, 1e-14 * q0);
+  EXPECT_NEAR(r.P_N(0), P_N, 1e-12 * P_N);
+  EXPECT_NEAR(r.P_T(0), P_T, 1e-12 * P_N);
+  EXPECT_NEAR(r.energy_change, gain, 1e-10 * gain);
+  for (int i : {1, 2}) {
+    EXPECT_EQ(r.P_N(i), 0.0) << i;
+    EXPECT_EQ(r.P_T(i), 0.0) << i;
+  }
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+}
+
 // Poisson + Coulomb on four contacts (three taking part) of a 3-dof body with cond(M) = 6e9,
 // e = 0 and μ = 1e8 on one contact: the quad reference finds one solution; the library, its modes
 // in double and then in extended precision, finds none and says `no_solution` (stress

@@ -237,13 +237,16 @@ struct LawOutcome {
   bool beyond_precision = false;
   bool unsupported = false;  ///< the method forced does not apply to a phase
   bool extended = false;     ///< a phase was decided in extended precision
+  /// Newton's laws: the answer is a mode solved for its velocities, no mode in contact space having
+  /// one (classical_velocity_mode.hpp, solve_modes_in_velocities).
+  bool in_velocities = false;
 
   void reset() {
     solutions.clear();
     method = SolverMethod::closed_form;
     pivots = fallbacks = 0;
     exhaustive = percussion_unique = compression_unique = true;
-    continuum = beyond_precision = unsupported = extended = false;
+    continuum = beyond_precision = unsupported = extended = in_velocities = false;
   }
 };
 
