@@ -4,6 +4,7 @@
 
 #include "../solvers/detail/fremond_rows.hpp"
 #include "detail/admissibility.hpp"
+#include "fremond/core/detail/cholesky.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -259,6 +260,41 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
 
   const double tol = rep.tolerance;
   const double rel = std::max(options.admissibility_tolerance, 1e-12);
+  // (15) in sum once more, from the velocities: for fixed obstacles T_E − T_A = P·z (eq. 9), but
+  // P·z is known only to the percussions times the rounding of z, which can dwarf the energies
+  // (a stick held by percussions 1e19 times the velocities on cond(M) = 1e10: an allowance of
+  // 3e26 beside T_A = 1.5e6), while T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A) is known to ε cond(M)
+  // times its terms (velocities made through M⁻¹ carry that). Where that is the sharper test, an
+  // energy gain beyond it fails (15) whatever P·z reads. Only on that path is cond(M) estimated
+  // (from M's Cholesky factor, as velocity_rounding does), so a certificate pays nothing for it
+  // otherwise. The allowance also holds the relative tolerance on T_A and the solver's tolerance
+  // on the impact's energy scale.
+  bool gains_energy = false;
+  const double base_allowed =
+      std::max(std::max(options.admissibility_tolerance, 64 * eps) *
+                   std::max(rep.kinetic_energy_A, std::numeric_limits<double>::min()),
+               2 * solved_to * energy);
+  bool fixed_obstacles = true;
+  for (int i = 0; i < pb.w_N.size(); ++i) fixed_obstacles = fixed_obstacles && pb.w_N(i) == 0.0;
+  for (int i = 0; i < pb.w_T.size(); ++i) fixed_obstacles = fixed_obstacles && pb.w_T(i) == 0.0;
+  if (fixed_obstacles && base_allowed < tol && r.energy_change > base_allowed &&
+      std::isfinite(r.energy_change) && pb.M.rows() == pb.dofs() && pb.qdot_A.size() == pb.dofs()) {
+    double terms = 0.0;
+    for (int i = 0; i < pb.dofs(); ++i) {
+      double row = 0.0;
+      for (int j = 0; j < pb.dofs(); ++j)
+        row += std::fabs(pb.M(i, j)) * (std::fabs(r.qdot_E(j)) + std::fabs(pb.qdot_A(j)));
+      terms += std::fabs(r.qdot_E(i) - pb.qdot_A(i)) * row;
+    }
+    const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
+    if (llt.info() == Eigen::Success) {
+      const auto L = llt.matrixLLT().diagonal().cwiseAbs();
+      const double ratio = L.minCoeff() > 0.0 ? L.maxCoeff() / L.minCoeff() : 0.0;
+      const double allowed =
+          std::max(base_allowed, 16 * eps * std::max(1.0, ratio * ratio) * terms);
+      gains_energy = ratio > 0.0 && allowed < tol && r.energy_change > allowed;
+    }
+  }
   auto fail = [&](Inequality what, double by, int contact = -1) {
     rep.failed = what;
     rep.violation = by;
@@ -266,6 +302,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   };
   if (!std::isfinite(rep.total) || rep.total < -tol)
     fail(Inequality::total_15, rep.total);
+  else if (gains_energy)
+    fail(Inequality::total_15, -r.energy_change);
   else if (worst_contact >= 0 && worst_contact_value < -tol)
     fail(Inequality::per_contact_15, worst_contact_value, worst_contact);
   else if (fremond && rep.reaction < -tol)

@@ -504,7 +504,26 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     }
     if (v > 0.0)
       allowed = std::max(allowed, 64 * std::numeric_limits<double>::epsilon() * floor / v);
-    if (!(best <= allowed))
+    // (15) in sum read from the velocities (admissibility.cpp): where the certificate says the
+    // answer gains energy, the reference's answer must gain it too, T_E − T_A in quad precision
+    // from its own velocities above 1e-9 of T_A (one reference solution, matched).
+    if (best <= allowed && sols.size() == 1 && !r.admissibility.admissible &&
+        r.admissibility.failed == Inequality::total_15 &&
+        r.admissibility.violation == -r.energy_change) {
+      const ref::Solution& s = sols[0];
+      ref::quad gain = 0, t_a = 0;
+      for (int i = 0; i < pb.dofs(); ++i)
+        for (int j = 0; j < pb.dofs(); ++j) {
+          const ref::quad m = pb.M(i, j), qa_i = pb.qdot_A(i), qa_j = pb.qdot_A(j);
+          gain += ref::quad(0.5) * (s.qdot_E[i] - qa_i) * m * (s.qdot_E[j] + qa_j);
+          t_a += ref::quad(0.5) * qa_i * m * qa_j;
+        }
+      if (!(gain > ref::quad(1e-9) * t_a))
+        problem = "the certificate says (15) fails from the velocities (T_E - T_A = " +
+                  fmt(r.energy_change) + "), the reference's answer gains " +
+                  fmt(ref::to_double(gain)) + " (T_A = " + fmt(ref::to_double(t_a)) + ")";
+    }
+    if (problem.empty() && !(best <= allowed))
       problem = nearest_only
                     ? "velocities after impact differ from the exact solution nearest to the "
                       "library's answer (Frémond + Coulomb) by " +

@@ -41,5 +41,39 @@ TEST(AdmissibilityAtRounding, PlasticImpactWithPNearOneIsAdmissible) {
   }
 }
 
+// (15) in sum read from the velocities (where P·z is known only to its percussions' rounding)
+// must allow the velocities' own rounding, ε cond(M) of their terms where they are made through
+// M⁻¹: Frémond's law with a viscous dead zone on a body with cond(M) = 1e9 and velocities of
+// 1e-9, whose converged answer read T_E − T_A = +2e-16 from its velocities (stress fremond_viscous
+// #17863 of seed 23). A gain of 1e6 times that, put into the velocities by hand, must still fail.
+constexpr const char* kViscousIllConditioned = R"json(
+{"M": [[3379367688.6563826, 3642833700.9920492], [3642833700.9920492, 3926840348.6629505]],
+ "W_N": [[-0.5951261346455895, 0.29599473459251646, -0.92467994526524688], [0.89902497483908439, 0.80840276986419957, -0.95523592983870642]],
+ "W_T": [[-0.52287981282183593, -0.19176027659296246, 0.85243388845608403], [0.78324720667678283, -0.30709292258393617, 0.33674148898937184]],
+ "qdot_A": [-7.6097544096671249e-10, -5.2958729456075704e-10],
+ "law": {"type": "fremond", "normal": {"potential": "power", "k": [278.78742352833683, 42693.876811742397, 0.25574431219565313], "p": [1.0017091186894231, 1.0000014876113934, 1.98146866835582]}, "tangential": {"potential": "deadzone_power", "k": 0.0036140059196925682, "q": 2.591160105759359, "r": 2.7839642005530262e-12}}}
+)json";
+
+TEST(AdmissibilityAtRounding, EnergyFromIllConditionedVelocitiesAllowsTheirRounding) {
+  const io::ProblemFile f =
+      io::parse_problem_file(kViscousIllConditioned, PotentialRegistry::with_builtins());
+  const SolverOptions o;
+  const ImpactResult r = solve_impact(f.problem, f.law, o);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible)
+      << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
+  // The velocities scaled up by 1 + 1e-3: T_E grows by 2e-3 of itself, far above any rounding,
+  // with the percussions untouched (so P·z reads as before).
+  ImpactResult wrong = r;
+  wrong.qdot_E *= 1.001;
+  wrong.energy_change = 0.5 * (wrong.qdot_E.dot(f.problem.M * wrong.qdot_E) -
+                               f.problem.qdot_A.dot(f.problem.M * f.problem.qdot_A));
+  ASSERT_GT(wrong.energy_change, 0.0);
+  const auto rep = check_admissibility(f.problem, f.law, wrong, o);
+  EXPECT_FALSE(rep.admissible);
+  EXPECT_EQ(rep.failed, Inequality::total_15);
+  EXPECT_EQ(rep.violation, -wrong.energy_change);
+}
+
 }  // namespace
 }  // namespace fremond
