@@ -250,6 +250,82 @@ double velocity_error(const ImpactResult& r, const ref::Solution& s) {
   return e / std::max(v, std::numeric_limits<double>::min());
 }
 
+/// Newton's laws (with or without Coulomb): what the library's answer, its own velocities and
+/// percussions read in quad precision, misses of the law, "" when nothing: the momentum balance
+/// M(q̇_E − q̇_A) = W_N P_N + W_T P_T to 64ε of each row's terms; on the contacts that take part
+/// 0 ≤ P_N ⊥ D_NE + e D_NA ≥ 0 and Coulomb on (P_T, D_TE) with the bound μ P_N, at D_E = Wᵀq̇_E + w,
+/// to 1e-12 of the scales beyond the rounding of q̇_E's components (16ε of each velocity's terms);
+/// no percussion elsewhere. For answers whose modes the reference cannot decide: it checks the
+/// answer itself, by a second method (no M⁻¹), not that it is the only one.
+std::string newton_answer_violation(const ImpactProblem& pb, const ImpactLaw& law,
+                                    const ImpactResult& r) {
+  using ref::quad;
+  const int n = pb.dofs(), c = pb.contacts();
+  const bool tangential = pb.has_tangential() && law.has_friction();
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int k = 0; k < n; ++k) {
+    quad imbalance = 0, terms = 0;
+    for (int j = 0; j < n; ++j) {
+      const quad m = pb.M(k, j), dq = quad(r.qdot_E(j)) - quad(pb.qdot_A(j));
+      imbalance += m * dq;
+      terms += fabsq(m) * (fabsq(quad(r.qdot_E(j))) + fabsq(quad(pb.qdot_A(j))));
+    }
+    for (int i = 0; i < c; ++i) {
+      const quad fn = quad(pb.W_N(k, i)) * quad(r.P_N(i));
+      imbalance -= fn;
+      terms += fabsq(fn);
+      if (pb.has_tangential()) {
+        const quad ft = quad(pb.W_T(k, i)) * quad(r.P_T(i));
+        imbalance -= ft;
+        terms += fabsq(ft);
+      }
+    }
+    if (!(fabsq(imbalance) <= 64 * eps * terms))
+      return "momentum balance off by " + fmt(ref::to_double(fabsq(imbalance) / terms)) +
+             " of its terms in row " + std::to_string(k);
+  }
+  quad vs = 0, Ps = 0;
+  for (int i = 0; i < c; ++i) {
+    if (r.takes_part(i)) vs = fmaxq(vs, fmaxq(fabsq(quad(r.D_NA(i))), fabsq(quad(r.D_TA(i)))));
+    Ps = fmaxq(Ps, fmaxq(fabsq(quad(r.P_N(i))), fabsq(quad(r.P_T(i)))));
+  }
+  if (vs == 0 || Ps == 0) return "";
+  auto velocity = [&](const Eigen::MatrixXd& W, const Eigen::VectorXd& w, int i, quad& terms) {
+    quad v = w.size() ? quad(w(i)) : quad(0);
+    terms = fabsq(v);
+    for (int k = 0; k < n; ++k) {
+      const quad x = quad(W(k, i)) * quad(r.qdot_E(k));
+      v += x;
+      terms += fabsq(x);
+    }
+    return v;
+  };
+  for (int i = 0; i < c; ++i) {
+    if (!r.takes_part(i)) {
+      if (r.P_N(i) != 0.0 || r.P_T(i) != 0.0) return "a percussion on a contact that takes no part";
+      continue;
+    }
+    quad tn = 0, tt = 0;
+    const quad dne = velocity(pb.W_N, pb.w_N, i, tn);
+    const quad v_tol = quad(1e-12) + 16 * eps * tn / vs;
+    const quad e = law.e[i];
+    const quad dna = r.D_NA(i);
+    const quad normal = fminq(quad(r.P_N(i)) / Ps, (dne + e * dna) / vs);
+    if (!(fabsq(normal) <= v_tol))
+      return "contact " + std::to_string(i) + ": Newton's complementarity off by " +
+             fmt(ref::to_double(fabsq(normal)));
+    if (!tangential) continue;
+    const quad dte = velocity(pb.W_T, pb.w_T, i, tt);
+    const quad t_tol = quad(1e-12) + 16 * eps * tt / vs;
+    const quad coulomb =
+        ref::detail::coulomb_error(r.P_T(i), dte, quad(law.mu[i]) * quad(r.P_N(i)), Ps, vs);
+    if (!(coulomb <= t_tol))
+      return "contact " + std::to_string(i) + ": Coulomb's law off by " +
+             fmt(ref::to_double(coulomb));
+  }
+  return "";
+}
+
 /// The largest condition (about 1/pivot) of the classical reference's modes over its solutions.
 double max_mode_cond(const std::vector<ref::Solution>& sols) {
   double c = 1.0;
@@ -346,9 +422,21 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
                      "2^-64 it solves them, and the library's answer is one of those solutions");
             return;
           }
+          // Nothing at 2^-64 either (G singular to 1e-20 of its entries: cond(M) 1e12 with W_T
+          // 3e-4 from W_N): the library's answer itself is checked, its velocities and percussions
+          // read in quad precision, where Newton's law is one equation set in them.
+          const std::string missed =
+              poisson ? std::string("Poisson") : newton_answer_violation(pb, law, r);
+          if (missed.empty() && !std::isfinite(best)) {
+            out.line(
+                "R checked 0\tthe reference's modes cannot decide (G singular below 2^-64); the "
+                "library's answer satisfies the law and the momentum balance in quad precision");
+            return;
+          }
           problem =
               "the reference finds no solution (every singular mode's polyhedron is empty), the "
               "library converged to one" +
+              (poisson ? std::string() : " (" + missed + ")") +
               (std::isfinite(best) ? " " + fmt(best) +
                                          " of the velocity scale from the nearest solution at a "
                                          "pivot of 2^-64"
