@@ -402,6 +402,38 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   if (!all_finite(out)) fill_failure(pb, cs, law, lo, out, true);
 }
 
+// Newton's laws where the law's modes in contact space gave no solution (`lo` empty), G carrying
+// cond(M): the modes that fix the velocities by W alone, solved for them
+// (classical_velocity_mode.hpp). True, with the answer in `out`, only when the law's residual
+// then converges.
+template <int N, int C>
+bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                             const ImpactLaw& law, const SolverOptions& options,
+                             const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
+  if (is_poisson(law) || lo.beyond_precision ||
+      (options.method != SolverMethod::automatic &&
+       options.method != SolverMethod::mode_enumeration))
+    return false;
+  typename ContactSpaceT<N, C>::Rows P;
+  VecT<N> q;
+  if (classical::solve_modes_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q) == 0)
+    return false;
+  LawOutcome<C> lv;
+  lv.method = SolverMethod::mode_enumeration;
+  lv.pivots = lo.pivots;
+  lv.fallbacks = lo.fallbacks + 1;
+  lv.exhaustive = false;
+  lv.in_velocities = true;
+  LawSolution<C>* s = lv.solutions.emplace();
+  s->P = P;
+  s->method = SolverMethod::mode_enumeration;
+  ImpactResultT<N, C> r;
+  fill_best(pb, cs, law, options, lv, r);
+  if (r.solver.status != SolverStatus::converged) return false;
+  out = std::move(r);
+  return true;
+}
+
 }  // namespace
 
 template <int N, int C>
@@ -424,27 +456,7 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     return;
   }
   if (lo.solutions.size == 0) {
-    // Newton's laws: no mode solved in contact space, where G carries cond(M); the modes that fix
-    // the velocities by W alone, solved for them (classical_velocity_mode.hpp). Kept only when the
-    // law's residual then converges; else the failure as it was.
-    LawOutcome<C> lv;
-    typename ContactSpaceT<N, C>::Rows P;
-    VecT<N> q;
-    if (!is_poisson(law) && !lo.beyond_precision &&
-        (options.method == SolverMethod::automatic ||
-         options.method == SolverMethod::mode_enumeration) &&
-        classical::solve_modes_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q) > 0) {
-      lv.method = SolverMethod::mode_enumeration;
-      lv.pivots = lo.pivots;
-      lv.fallbacks = lo.fallbacks + 1;
-      lv.exhaustive = false;
-      lv.in_velocities = true;
-      LawSolution<C>* s = lv.solutions.emplace();
-      s->P = P;
-      s->method = SolverMethod::mode_enumeration;
-      fill_best(pb, cs, law, options, lv, out);
-      if (out.solver.status == SolverStatus::converged) return;
-    }
+    if (solve_in_velocity_modes(pb, cs, law, options, lo, out)) return;
     fill_failure(pb, cs, law, lo, out);
     return;
   }
@@ -497,6 +509,13 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
     return all;
   }
   if (lo.solutions.size == 0) {
+    // The answer solve_impact finds in the velocities, where it finds one (not unique: other
+    // solutions not looked for).
+    ImpactResultT<N, C> r;
+    if (solve_in_velocity_modes(pb, cs, law, options, lo, r)) {
+      all.push_back(std::move(r));
+      return all;
+    }
     // An empty list means "no solution"; when that is not proven, say so in one failed result.
     if (!lo.exhaustive) fill_failure(pb, cs, law, lo, all.emplace_back());
     return all;

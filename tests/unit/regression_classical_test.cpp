@@ -1141,6 +1141,13 @@ TEST(RegressionClassical, StickWhoseVelocitiesWAloneFixesIsSolvedForThem) {
   EXPECT_EQ(r.admissibility.failed, Inequality::total_15);
   EXPECT_NEAR(r.admissibility.violation, -gain, 1e-10 * gain);
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+  // The list of every solution gives the same one (not "no solution").
+  const auto all = solve_impact_all(pb, file.law, opt);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].solver.status, SolverStatus::converged);
+  EXPECT_EQ(all[0].qdot_E, r.qdot_E);
+  EXPECT_EQ(all[0].P_N, r.P_N);
+  EXPECT_EQ(all[0].P_T, r.P_T);
 }
 
 // Poisson + Coulomb on four contacts (three taking part) of a 3-dof body with cond(M) = 6e9,
