@@ -14,6 +14,17 @@ namespace fremond {
 
 namespace {
 
+/// κ(M) estimated from M's Cholesky factor L: (max L_ii / min L_ii)², a lower bound (at least 1)
+/// that has the order of κ in practice, for the price of a look at the diagonal. 0 where the
+/// factor has no positive diagonal.
+template <class Factor>
+double condition_estimate(const Factor& llt) {
+  const auto L = llt.matrixLLT().diagonal().cwiseAbs();
+  if (L.size() == 0 || !(L.minCoeff() > 0.0)) return 0.0;
+  const double ratio = L.maxCoeff() / L.minCoeff();
+  return ratio * ratio;
+}
+
 // f at x and at x ∓ d: each value is computed once and shared by the noise estimate and the
 // resolvability test below (a potential's value may cost a pow).
 struct Around {
@@ -108,11 +119,8 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
     P(cs.normal_row(k)) = r.P_N(cs.index(k));
     if (cs.tangential) P(cs.tangential_row(k)) = r.P_T(cs.index(k));
   }
-  // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative: κ(M) estimated from the
-  // factor's diagonal, (max L_ii / min L_ii)², a lower bound that has the order of κ in practice.
-  const auto L = cs.llt.matrixLLT().diagonal().cwiseAbs();
-  const double ratio = L.size() && L.minCoeff() > 0 ? L.maxCoeff() / L.minCoeff() : 1.0;
-  const double kappa = ratio * ratio;
+  // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative.
+  const double kappa = std::max(1.0, condition_estimate(cs.llt));
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
@@ -287,12 +295,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       terms += std::fabs(r.qdot_E(i) - pb.qdot_A(i)) * row;
     }
     const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
-    if (llt.info() == Eigen::Success) {
-      const auto L = llt.matrixLLT().diagonal().cwiseAbs();
-      const double ratio = L.minCoeff() > 0.0 ? L.maxCoeff() / L.minCoeff() : 0.0;
-      const double allowed =
-          std::max(base_allowed, 16 * eps * std::max(1.0, ratio * ratio) * terms);
-      gains_energy = ratio > 0.0 && allowed < tol && r.energy_change > allowed;
+    const double kappa = llt.info() == Eigen::Success ? condition_estimate(llt) : 0.0;
+    if (kappa > 0.0) {
+      const double allowed = std::max(base_allowed, 16 * eps * kappa * terms);
+      gains_energy = allowed < tol && r.energy_change > allowed;
     }
   }
   auto fail = [&](Inequality what, double by, int contact = -1) {
