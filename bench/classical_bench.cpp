@@ -221,7 +221,7 @@ void BM_Classical_Kernel(benchmark::State& state, const Case* c) {
       // G's factor (none for the flat bar: more rows than degrees of freedom) is in the loop; its
       // null space, which only the minimum-norm choice needs, is not.
       detail::classical::Factored<kSmallContacts> fg;
-      fg.compute(ph.G, p.dofs(), false);
+      fg.compute(ph.G, p.dofs());
       bool solved = false;
       benchmark::DoNotOptimize(detail::classical::exact_phase(ph, tol, fg, u, pivots, solved));
       benchmark::DoNotOptimize(u.data());

@@ -242,6 +242,18 @@ TEST(ClassicalCoulomb, FlatBarWithSingularGSticksWithTheMinimumNormSplit) {
     EXPECT_NEAR(s.qdot_E(0), 2 - 0.2 * 5.7, 1e-13);
   }
   EXPECT_TRUE(solve_impact(p, ImpactLaw::newton_coulomb(0.9, 0.2)).unique);
+  // μ at the bound, μ ΣP_N = 2 = D_TA: the bar just sticks, and only P_T,i = −μ P_N,i sums to −2
+  // inside both cones: the line of percussions with these velocities is pinned to one point, so
+  // the answer is unique (the minimum-norm choice says so, however the stick was found).
+  for (const SolverOptions& o : {SolverOptions{}, lemke_only}) {
+    const double mu = 2 / 5.7;
+    const ImpactResult b = solve_impact(p, ImpactLaw::newton_coulomb(0.9, mu), o);
+    ASSERT_TRUE(b.ok()) << b.solver.message;
+    EXPECT_NEAR(b.P_T(0), -mu * 1.9 * 19 / 12, 1e-13);
+    EXPECT_NEAR(b.P_T(1), -mu * 1.9 * 17 / 12, 1e-13);
+    EXPECT_NEAR(b.qdot_E(0), 0.0, 1e-13);
+    EXPECT_EQ(b.unique, o.check_uniqueness) << b.solver.message;
+  }
   // Poisson + Coulomb on the same bar: compression P_NC = G_NN⁻¹ (3.5, 2.5) = (19, 17)/12 with
   // bound μ ΣP_NC = 3 ≥ 2: sticks with the split (−1, −1); the expansion starts at rest
   // tangentially (bound e μ ΣP_NC > 0) and stays there: P_TE = 0.

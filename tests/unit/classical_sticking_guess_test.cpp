@@ -129,4 +129,59 @@ TEST(ClassicalStickingGuess, RandomSemidefinitePhasesGiveTheNearestFeasiblePoint
   EXPECT_LT(min_norm_inside, 450);
 }
 
+TEST(ClassicalStickingGuess, ItsMinimumNormChoiceIsTheGeneralOne) {
+  // The law takes the guess's answer as its own minimum-norm choice, without computing null(G)
+  // (GuessNorm). Checked against minimum_norm itself, from null(G) and Lemke's projection, on
+  // random semidefinite phases: sticking inside the cone (a whole interval of answers: not
+  // unique), on its boundary at every contact (the interval pinned to a point, or not, as the
+  // line's direction meets the boundaries), and with μ = 0 at one contact (its t pinned to 0).
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u01(0.0, 1.0), sym(-1.0, 1.0);
+  int compared = 0, unique = 0, several = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const int a = 2 + trial % 2, r = 2 * a, n = r - 1, kind = (trial / 2) % 3;
+    Eigen::MatrixXd W(n, r), A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < r; ++j) W(i, j) = sym(gen);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = sym(gen);
+    const Eigen::MatrixXd M = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd G = W.transpose() * M.llt().solve(W);
+    Eigen::VectorXd mu(a), ut(r);
+    for (int i = 0; i < a; ++i) {
+      mu(i) = kind == 2 && i == 0 ? 0.0 : 0.2 + 2 * u01(gen);
+      ut(i) = 0.1 + u01(gen);
+      const double side = sym(gen) < 0 ? -1.0 : 1.0;
+      ut(a + i) = kind == 1 ? side * mu(i) * ut(i) : 0.9 * mu(i) * ut(i) * sym(gen);
+    }
+    Phase ph;
+    ph.a = a;
+    ph.friction = true;
+    ph.G = G;
+    ph.q = -G * ut;
+    ph.mu = mu;
+    ph.b0.setZero(a);
+    const auto tol = tolerances(ph);
+    Phase::Rows u;
+    detail::classical::GuessNorm norm;
+    if (!detail::classical::closed_sticking_semidefinite(ph, tol, u, &norm)) {
+      // Only where ut sits on the cone's boundary may rounding leave no sticking answer.
+      EXPECT_EQ(kind, 1) << trial;
+      continue;
+    }
+    ASSERT_TRUE(norm.minimum) << trial;  // G of rank r − 1 by a wide margin
+    const Phase::Rows zero = Phase::Rows::Zero(r);
+    Phase::Rows general = u;
+    const bool general_unique = detail::classical::minimum_norm<4>(
+        ph, tol, detail::classical::null_space<4>(ph.G), zero, general);
+    ++compared;
+    EXPECT_LE((general - u).cwiseAbs().maxCoeff(), 1e-10 * ut.cwiseAbs().maxCoeff()) << trial;
+    EXPECT_EQ(norm.unique, general_unique) << trial;
+    (norm.unique ? unique : several)++;
+  }
+  EXPECT_GT(compared, 500);
+  EXPECT_GT(unique, 50);  // both verdicts were exercised
+  EXPECT_GT(several, 50);
+}
+
 }  // namespace

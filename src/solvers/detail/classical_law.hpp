@@ -49,39 +49,48 @@ struct PhaseOutcome {
 };
 
 /// G once per law: its Cholesky factor (the eq. 6 guess) and, when it is singular, null(G) (the
-/// minimum-norm choice).
+/// minimum-norm choice), computed on first use: the semidefinite guess's answer needs none
+/// (GuessNorm), and null(G) was half the law's work on the flat bar.
 template <int C>
 struct Factored {
   using RowMat = typename Phase<C>::RowMat;
   CholeskyT<RowMat::MaxRowsAtCompileTime> llt;
   bool regular = false;
-  RowMat null;  ///< orthonormal basis of null(G), no columns when G is regular
 
   /// `dofs`: the number of degrees of freedom, a bound on G's rank (G = Wᵀ M⁻¹ W).
-  /// `with_null`: false leaves null empty (the exact methods alone do not need it).
-  void compute(const RowMat& G, int dofs, bool with_null = true) {
+  void compute(const RowMat& G, int dofs) {
     regular = false;
-    null.resize(G.rows(), 0);
-    if (G.rows() > dofs) {  // singular for sure: skip the factor, whose pivots would be rounding
-      if (with_null) null = null_space<C>(G);
-      return;
-    }
+    null_known = false;
+    null_.resize(G.rows(), 0);
+    if (G.rows() > dofs) return;  // singular for sure: skip the factor, whose pivots are rounding
     llt.compute(G);
     if (llt.info() == Eigen::Success && G.rows() > 0) {
       const auto d = llt.matrixLLT().diagonal();
       regular = d.minCoeff() > 1e-7 * d.maxCoeff();
     }
-    // A small pivot is only a hint: the eigenvalues decide what null(G) is.
-    if (!regular && with_null) null = null_space<C>(G);
   }
+
+  /// An orthonormal basis of null(G) (the G given to compute), no columns when G is regular. A
+  /// small pivot of the factor is only a hint: the eigenvalues decide what null(G) is.
+  const RowMat& kernel(const RowMat& G) {
+    if (!null_known && !regular) null_ = null_space<C>(G);
+    null_known = true;
+    return null_;
+  }
+
+ private:
+  bool null_known = false;
+  RowMat null_;
 };
 
 /// The eq. 6 guess on several contacts, every contact closed (and sticking): with G's factor where
 /// G is regular, else in its semidefinite form (a line of solutions). True when it solves the
 /// phase.
+/// `norm`, when given: see GuessNorm (a regular G has no choice to make: its default).
 template <int C>
 bool closed_guess(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& fg,
-                  typename Phase<C>::Rows& u) {
+                  typename Phase<C>::Rows& u, GuessNorm* norm = nullptr) {
+  if (norm) *norm = GuessNorm{};
   if (fg.regular) return all_closed_guess(ph, tol, fg.llt, true, u);
   // On a singular G only with friction and without a fixed bound b0 (Newton's phase, Poisson's
   // compression). Without friction Lemke's LCP is symmetric semidefinite and cheap; and from
@@ -89,7 +98,7 @@ bool closed_guess(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& 
   // `stalled` where Lemke's and the enumeration's converged (stress poisson_coulomb seed 23,
   // #616: cond(M) ~ 1e9). Restricted so, stress seed 23 against the library without the guess:
   // newton, poisson and newton_coulomb statuses identical, poisson_coulomb 2 fewer stalled.
-  return !frictionless(ph) && ph.b0.isZero(0.0) && closed_sticking_semidefinite(ph, tol, u);
+  return !frictionless(ph) && ph.b0.isZero(0.0) && closed_sticking_semidefinite(ph, tol, u, norm);
 }
 
 /// The exact method of a phase on several contacts that finds one solution: the eq. 6 guess, then
@@ -113,12 +122,13 @@ SolverMethod exact_phase(const Phase<C>& ph, const Tolerances& tol, const Factor
 /// (unsupported where it does not apply: no closed form, or more contacts than the enumeration
 /// takes).
 template <int C>
-void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, const Factored<C>& fg,
+void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, Factored<C>& fg,
                  const typename Phase<C>::Rows& shift, PhaseOutcome<C>& out,
                  SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
   const int r = ph.rows();
   Rows u(r);
+  GuessNorm guess_norm;  // of the eq. 6 guess's answer, u[0] where it answered
   bool enumerate = false;
   const bool automatic = force == SolverMethod::automatic;
   if (force == SolverMethod::mode_enumeration) {
@@ -155,7 +165,7 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
   } else {
     const bool friction = !frictionless(ph);
     bool have = false;
-    if (force != SolverMethod::lemke && closed_guess(ph, tol, fg, u)) {
+    if (force != SolverMethod::lemke && closed_guess(ph, tol, fg, u, &guess_norm)) {
       have = true;
       out.primary = SolverMethod::closed_form;
     } else if (force == SolverMethod::closed_form) {
@@ -206,10 +216,17 @@ void solve_phase(const Phase<C>& ph, const Tolerances& tol, int list_up_to, cons
     }
     out.exhaustive = !found.overflow && !out.u.overflow;
   }
-  if (fg.null.cols() > 0)
-    for (int k = 0; k < out.u.size; ++k)
-      out.percussion_unique =
-          minimum_norm<C>(ph, tol, fg.null, shift, out.u[k]) && out.percussion_unique;
+  if (fg.regular) return;
+  // The guess's answer is its own minimum-norm choice where GuessNorm says so; the shift (of
+  // Poisson's expansion) must be zero for that, as the guess minimises ‖u‖.
+  const bool guessed = out.primary == SolverMethod::closed_form && guess_norm.minimum &&
+                       shift.isZero(0.0) && out.u.size > 0;
+  for (int k = 0; k < out.u.size; ++k) {
+    const bool unique = k == 0 && guessed
+                            ? guess_norm.unique
+                            : minimum_norm<C>(ph, tol, fg.kernel(ph.G), shift, out.u[k]);
+    out.percussion_unique = unique && out.percussion_unique;
+  }
 }
 
 template <int C>
@@ -481,7 +498,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   }
   const Tolerances tol = tolerances(ph, cs.v_scale);
   Factored<C> fg;
-  fg.compute(ph.G, pb.dofs());
+  fg.compute(ph.G, pb.dofs());  // null(G) only where a minimum-norm choice asks for it
   // T_E − T_A = Pᵀ Wᵀq̇_A + ½ PᵀGP (eq. 9 with the obstacle terms w taken out of D_A).
   // By hand loops: Eigen's dynamic-size products on these few rows go through its GEMV kernel.
   Rows Wq(r);
@@ -503,7 +520,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   auto in_extended_precision = [&](const Phase<C>& phase, PhaseOutcome<C>& o) {
     if (force != SolverMethod::automatic && force != SolverMethod::mode_enumeration) return;
     decide_in_extended_precision(pb, cs, phase, tol, o);
-    if (o.extended && fg.null.cols() > 0) o.percussion_unique = false;
+    if (o.extended && fg.kernel(ph.G).cols() > 0) o.percussion_unique = false;
   };
   in_extended_precision(ph, first);
   if (first.unsupported) {

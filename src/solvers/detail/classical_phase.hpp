@@ -212,6 +212,17 @@ bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Llt& l
   return true;
 }
 
+/// What the semidefinite guess (closed_sticking_semidefinite) knows of the minimum-norm choice
+/// among the percussions with its answer's velocities (minimum_norm). With every contact closed and
+/// sticking, all velocities are zero, and where null(G) is the line's direction d those
+/// percussions are the points u0 + s d inside Coulomb's cone: an interval of s, whose point
+/// nearest the line's minimum-norm point is the one the guess returns. Where G's rank is decided
+/// clearly, that is minimum_norm's answer, and null(G) need not be computed for it.
+struct GuessNorm {
+  bool minimum = false;  ///< the answer is the minimum-norm one (G's rank decided clearly)
+  bool unique = true;    ///< and no other percussion has its velocities (the interval is a point)
+};
+
 namespace semidefinite {
 
 // The body for r = R rows, R known to the compiler: on these few rows the loops unroll, and loop
@@ -221,7 +232,8 @@ namespace semidefinite {
 // storage of runtime size, up to 64 rows, and in that form (runtime sizes) this guess cost 115-128
 // ns on the flat bar against 88 ns here, the kernel's target being 100 ns.
 template <int R, int MaxC>
-bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u) {
+bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u,
+                     GuessNorm* norm) {
   const int a = ph.a;
   // S: the Schur complement still to factor (kept whole, both triangles); L: the unit lower
   // factor's columns so far; D: the pivots' reciprocals. P G Pᵀ = L D Lᵀ on the first `rank`
@@ -237,11 +249,17 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
   }
   if (!(dmax > 0.0) || !std::isfinite(dmax)) return false;
   int rank = 0;
+  // The smallest pivot taken and the first refused (relative to dmax), for GuessNorm::minimum.
+  double kept = 1.0, refused = 0.0;
   for (int k = 0; k < R; ++k) {
     int m = k;
     for (int i = k + 1; i < R; ++i)
       if (S[i][i] > S[m][m]) m = i;
-    if (!(S[m][m] > 1e-10 * dmax)) break;
+    if (!(S[m][m] > 1e-10 * dmax)) {
+      refused = S[m][m];
+      break;
+    }
+    kept = std::min(kept, S[m][m] / dmax);
     if (m != k) {  // symmetric swap of rows and columns k, m
       for (int j = 0; j < R; ++j) std::swap(S[k][j], S[m][j]);
       for (int i = 0; i < R; ++i) std::swap(S[i][k], S[i][m]);
@@ -332,6 +350,30 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
     }
     if (!(std::fabs(v) <= std::min(tol.v, kRounding * size))) return false;
   }
+  if (norm) {
+    // The rank decided with a margin of 10 on both sides of psd_null_space's threshold (the same
+    // pivots, up to rounding): null(G) is then {0} or the line's direction, and u is the point
+    // minimum_norm would choose. Unique when the inequalities active at u (within tol.p, as
+    // minimum_norm reads them) bound s from both sides.
+    norm->minimum = kept > 1e-9 && (!line || refused < 1e-11 * dmax);
+    norm->unique = true;
+    if (norm->minimum && line) {
+      bool below = false, above = false;
+      auto active = [&](double alpha, double beta) {
+        if (!(alpha + beta * s <= tol.p)) return;
+        below = below || beta > 0.0;
+        above = above || beta < 0.0;
+      };
+      for (int i = 0; i < a; ++i) {
+        active(u0[i], d[i]);
+        if (!ph.friction) continue;
+        const double cap = ph.mu(i) * u0[i] + ph.b0(i), dcap = ph.mu(i) * d[i];
+        active(cap - u0[a + i], dcap - d[a + i]);
+        active(cap + u0[a + i], dcap + d[a + i]);
+      }
+      norm->unique = below && above;
+    }
+  }
   return true;
 }
 
@@ -346,14 +388,18 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
 /// point of the line is taken. True when that interval is not empty and the mode holds: G u + q
 /// vanishes to rounding (q in G's range). Null spaces of two or more dimensions, and
 /// phases of more than 8 rows, are left to Lemke (false). No allocation: stack arrays only.
+///
+/// `norm`, when given, says whether u is also the answer of minimum_norm (and then whether it is
+/// unique), so that the law need not compute null(G) for it (see GuessNorm).
 template <int MaxC>
 bool closed_sticking_semidefinite(const Phase<MaxC>& ph, const Tolerances& tol,
-                                  typename Phase<MaxC>::Rows& u) {
+                                  typename Phase<MaxC>::Rows& u, GuessNorm* norm = nullptr) {
+  if (norm) *norm = GuessNorm{};
   return with_fixed_size<8>(ph.rows(), [&](auto rows) {
     if constexpr (decltype(rows)::value == 0)
       return false;
     else
-      return semidefinite::closed_sticking<decltype(rows)::value>(ph, tol, u);
+      return semidefinite::closed_sticking<decltype(rows)::value>(ph, tol, u, norm);
   });
 }
 
