@@ -36,6 +36,34 @@ Phase newton_phase(const ImpactProblem& p, double e, double mu) {
   return ph;
 }
 
+/// G = Wᵀ M⁻¹ W of `a` contacts with friction (r = 2a rows) on a body of r − 1 degrees of
+/// freedom, W and M random (M symmetric positive definite): rank r − 1, one line of null space.
+Eigen::MatrixXd random_semidefinite_G(std::mt19937& gen, int a) {
+  std::uniform_real_distribution<double> sym(-1.0, 1.0);
+  const int r = 2 * a, n = r - 1;
+  Eigen::MatrixXd W(n, r), A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < r; ++j) W(i, j) = sym(gen);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = sym(gen);
+  const Eigen::MatrixXd M = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
+  return W.transpose() * M.llt().solve(W);
+}
+
+/// The phase whose percussion u_true makes every velocity zero (q = −G u_true), friction μ per
+/// contact and no fixed bound: every contact closed and sticking solves it where u_true does.
+Phase sticking_phase(const Eigen::MatrixXd& G, const Eigen::VectorXd& mu,
+                     const Eigen::VectorXd& u_true) {
+  Phase ph;
+  ph.a = static_cast<int>(mu.size());
+  ph.friction = true;
+  ph.G = G;
+  ph.q = -G * u_true;
+  ph.mu = mu;
+  ph.b0.setZero(ph.a);
+  return ph;
+}
+
 detail::classical::Tolerances tolerances(const Phase& ph) {
   return detail::classical::tolerances(ph, ph.q.cwiseAbs().maxCoeff());
 }
@@ -83,27 +111,15 @@ TEST(ClassicalStickingGuess, RandomSemidefinitePhasesGiveTheNearestFeasiblePoint
   std::uniform_real_distribution<double> u01(0.0, 1.0), sym(-1.0, 1.0);
   int min_norm_inside = 0, found = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    const int a = 2 + trial % 2, r = 2 * a, n = r - 1;
-    Eigen::MatrixXd W(n, r), A(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < r; ++j) W(i, j) = sym(gen);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) A(i, j) = sym(gen);
-    const Eigen::MatrixXd M = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
-    const Eigen::MatrixXd G = W.transpose() * M.llt().solve(W);
+    const int a = 2 + trial % 2, r = 2 * a;
+    const Eigen::MatrixXd G = random_semidefinite_G(gen, a);
     const double mu = 0.2 + 2 * u01(gen);
     Eigen::VectorXd ut(r);
     for (int i = 0; i < a; ++i) {
       ut(i) = 0.1 + u01(gen);
       ut(a + i) = 0.9 * mu * ut(i) * sym(gen);
     }
-    Phase ph;
-    ph.a = a;
-    ph.friction = true;
-    ph.G = G;
-    ph.q = -G * ut;
-    ph.mu.setConstant(a, mu);
-    ph.b0.setZero(a);
+    const Phase ph = sticking_phase(G, Eigen::VectorXd::Constant(a, mu), ut);
     const auto tol = tolerances(ph);
     Phase::Rows u;
     ASSERT_TRUE(detail::classical::closed_sticking_semidefinite(ph, tol, u)) << trial;
@@ -139,14 +155,8 @@ TEST(ClassicalStickingGuess, ItsMinimumNormChoiceIsTheGeneralOne) {
   std::uniform_real_distribution<double> u01(0.0, 1.0), sym(-1.0, 1.0);
   int compared = 0, unique = 0, several = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    const int a = 2 + trial % 2, r = 2 * a, n = r - 1, kind = (trial / 2) % 3;
-    Eigen::MatrixXd W(n, r), A(n, n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < r; ++j) W(i, j) = sym(gen);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) A(i, j) = sym(gen);
-    const Eigen::MatrixXd M = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
-    const Eigen::MatrixXd G = W.transpose() * M.llt().solve(W);
+    const int a = 2 + trial % 2, r = 2 * a, kind = (trial / 2) % 3;
+    const Eigen::MatrixXd G = random_semidefinite_G(gen, a);
     Eigen::VectorXd mu(a), ut(r);
     for (int i = 0; i < a; ++i) {
       mu(i) = kind == 2 && i == 0 ? 0.0 : 0.2 + 2 * u01(gen);
@@ -154,13 +164,7 @@ TEST(ClassicalStickingGuess, ItsMinimumNormChoiceIsTheGeneralOne) {
       const double side = sym(gen) < 0 ? -1.0 : 1.0;
       ut(a + i) = kind == 1 ? side * mu(i) * ut(i) : 0.9 * mu(i) * ut(i) * sym(gen);
     }
-    Phase ph;
-    ph.a = a;
-    ph.friction = true;
-    ph.G = G;
-    ph.q = -G * ut;
-    ph.mu = mu;
-    ph.b0.setZero(a);
+    const Phase ph = sticking_phase(G, mu, ut);
     const auto tol = tolerances(ph);
     Phase::Rows u;
     detail::classical::GuessNorm norm;

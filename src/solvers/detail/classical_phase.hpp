@@ -287,6 +287,20 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
   if (rank < R) y[R - 1] = 0.0;
   for (int i = 0; i < R; ++i) u0[perm[i]] = y[i];
   const bool line = rank == R - 1;
+  // The inequalities x ≥ 0 and μx + b0 ∓ t ≥ 0 on the line u0 + s d, each as α + β s ≥ 0. (With
+  // friction a phase has 2a ≥ 2 rows; said to the compiler, which otherwise warns of u0[a + i]
+  // past the end of a single row.)
+  auto each_inequality = [&](auto&& f) {
+    for (int i = 0; i < a; ++i) {
+      f(u0[i], d[i]);
+      if constexpr (R >= 2) {
+        if (!ph.friction) continue;
+        const double cap = ph.mu(i) * u0[i] + ph.b0(i), dcap = ph.mu(i) * d[i];
+        f(cap - u0[a + i], dcap - d[a + i]);
+        f(cap + u0[a + i], dcap + d[a + i]);
+      }
+    }
+  };
   double s = 0.0;
   if (line) {
     // d = Pᵀ [−L11⁻ᵀ l; 1] with l the free row of L: G d = 0 to rounding.
@@ -311,13 +325,7 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
       else if (alpha < 0.0)
         feasible = false;
     };
-    for (int i = 0; i < a; ++i) {
-      bound(u0[i], d[i]);
-      if (!ph.friction) continue;
-      const double cap = ph.mu(i) * u0[i] + ph.b0(i), dcap = ph.mu(i) * d[i];
-      bound(cap - u0[a + i], dcap - d[a + i]);
-      bound(cap + u0[a + i], dcap + d[a + i]);
-    }
+    each_inequality(bound);
     if (!feasible || !(lo <= hi)) return false;
     double ud = 0.0, dd = 0.0;
     for (int i = 0; i < R; ++i) {
@@ -364,13 +372,7 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
         below = below || beta > 0.0;
         above = above || beta < 0.0;
       };
-      for (int i = 0; i < a; ++i) {
-        active(u0[i], d[i]);
-        if (!ph.friction) continue;
-        const double cap = ph.mu(i) * u0[i] + ph.b0(i), dcap = ph.mu(i) * d[i];
-        active(cap - u0[a + i], dcap - d[a + i]);
-        active(cap + u0[a + i], dcap + d[a + i]);
-      }
+      each_inequality(active);
       norm->unique = below && above;
     }
   }
