@@ -249,7 +249,7 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
   }
   if (!(dmax > 0.0) || !std::isfinite(dmax)) return false;
   int rank = 0;
-  // The smallest pivot taken and the first refused (relative to dmax), for GuessNorm::minimum.
+  // The smallest pivot taken (relative to dmax) and the first refused, for GuessNorm::minimum.
   double kept = 1.0, refused = 0.0;
   for (int k = 0; k < R; ++k) {
     int m = k;
