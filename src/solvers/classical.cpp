@@ -110,7 +110,7 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
   return expansion == Refinement::converged ? compression : expansion;
 }
 
-// Newton's laws: the answer's mode solved for its velocities first where they fix them
+// Newton's laws: the answer's mode solved for its velocities and percussions together
 // (classical_velocity_mode.hpp). P and q are the new answer when true.
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
@@ -120,12 +120,14 @@ bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
 }
 
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
+// `velocities`, where given, are the solution's q̇_E, solved for with its percussions
+// (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
 template <int N, int C>
 void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                  const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
-                 int pick, ImpactResultT<N, C>& out) {
+                 int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr) {
   const LawSolution<C>& s = lo.solutions[pick];
-  write_classical_answer(pb, cs, law, s.P, s.P_C, out);
+  write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities);
   double residual = classical_residual(pb, law, out);
   // Within the tolerance, or within the rounding of the contact velocities' own terms (criterion
   // `rounding`: a grazing contact of a spinning body, whose D_NA = −6e-4 is summed from terms of
@@ -133,7 +135,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // met one every 20 runs).
   double beyond_rounding = 0.0;
   if (!(residual <= options.tolerance))  // the floors, on this failure path only
-    classical_residual(pb, law, out, &beyond_rounding);
+    classical_residual(pb, law, out, &beyond_rounding, velocities != nullptr);
   // Beyond rounding: the percussions may carry cond(G)·ε (W_T nearly parallel to W_N). Refined in
   // their mode, the better of the two answers (by the law's residual) is kept. A refined answer
   // that solves its mode to rounding is also allowed the rounding of the percussions themselves,
@@ -141,7 +143,7 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // rounded, 1.4e-13 beside the original's 1.1e-13); a mode misread at a stick-slip boundary
   // leaves the law's residual beyond that allowance.
   typename ContactSpaceT<N, C>::Rows best = s.P;  // the percussions of the answer in `out`
-  if (!(beyond_rounding <= options.tolerance)) {
+  if (!(beyond_rounding <= options.tolerance) && !velocities) {
     typename ContactSpaceT<N, C>::Rows P = s.P, P_C = s.P_C;
     const auto refined = refine_answer(pb, cs, law, P, P_C);
     if (refined != classical::Refinement::singular) {
@@ -182,14 +184,15 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     }
   }
   // Still above the tolerance (beyond rounding, or within it only by the allowance for the
-  // percussions' rounding): where the mode fixes the velocities, they are solved for without M,
-  // and the percussions from them; kept when the law's residual then reads smaller and within
-  // rounding. (Two contacts closing on a two-dof body with cond(M) = 1e9, stress newton #1280 of
-  // seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity scale from the
-  // quad reference; solved for the velocities, 1e-16.)
+  // percussions' rounding): Newton's laws solve the answer's mode for the velocities and the
+  // percussions together, M only multiplied; kept when the law's residual then reads smaller and
+  // within rounding. (Two contacts closing on a two-dof body with cond(M) = 1e9, stress newton
+  // #1280 of seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity scale
+  // from the quad reference; solved for the velocities, 1e-16. At stress seeds 23 and 41 it turns
+  // 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
   VecT<N> q;
   typename ContactSpaceT<N, C>::Rows P = best;
-  if (!(residual <= options.tolerance) && solve_in_velocities(pb, cs, law, P, q)) {
+  if (!(residual <= options.tolerance) && !velocities && solve_in_velocities(pb, cs, law, P, q)) {
     ImpactResultT<N, C> trial;
     write_classical_answer(pb, cs, law, P, s.P_C, trial, &q);
     double trial_beyond = 0.0;
@@ -218,8 +221,8 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   else if (lo.in_velocities)
     out.solver.message =
         "no contact mode solves the law with G = W^T M^-1 W (G carries cond(M) below rounding); "
-        "a mode whose velocities W alone fixes, solved for them, does; other solutions not looked "
-        "for";
+        "a mode solved for the velocities and percussions together, M only multiplied, does; "
+        "other solutions not looked for";
   else if (lo.extended)
     out.solver.message =
         lo.percussion_unique
@@ -403,9 +406,9 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
 }
 
 // Newton's laws where the law's modes in contact space gave no solution (`lo` empty), G carrying
-// cond(M): the modes that fix the velocities by W alone, solved for them
-// (classical_velocity_mode.hpp). True, with the answer in `out`, only when the law's residual
-// then converges.
+// cond(M): every mode solved for the velocities and percussions together
+// (classical_velocity_mode.hpp), the velocities kept as solved. True, with the answer in `out`,
+// only when the law's residual then converges.
 template <int N, int C>
 bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                              const ImpactLaw& law, const SolverOptions& options,
@@ -428,8 +431,8 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
   s->P = P;
   s->method = SolverMethod::mode_enumeration;
   ImpactResultT<N, C> r;
-  fill_best(pb, cs, law, options, lv, r);
-  if (r.solver.status != SolverStatus::converged) return false;
+  fill_result(pb, cs, law, options, lv, 0, r, &q);
+  if (r.solver.status != SolverStatus::converged || !all_finite(r)) return false;
   out = std::move(r);
   return true;
 }

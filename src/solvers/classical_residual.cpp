@@ -246,7 +246,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   // At the velocities the percussions make; and, where those miss the law beyond 64ε, at the
   // result's own q̇_E if it balances the percussions, M(q̇_E − q̇_A) = W_N P_N + W_T P_T, to the
   // rounding of that equation's terms, the smaller of the two. P and q̇_E are each the exact
-  // answer rounded where the contact mode fixes the velocities without M
+  // answer rounded where the contact mode was solved for both, M only multiplied
   // (classical_velocity_mode.hpp), and on an ill-conditioned M (cond 1e9) the velocities made
   // from the rounded P are then 1e-6 off the law that q̇_E meets to 1e-16. Velocities that do
   // not balance P (or none) are not read: the result is judged by its P.

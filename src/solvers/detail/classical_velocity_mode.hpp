@@ -1,260 +1,239 @@
 #pragma once
-// A Newton-type answer whose contact mode fixes the velocities, solved for the velocities first
-// (SPEC §2, eqs. 5-6 with Coulomb's stick and slip).
+// A Newton-type answer solved for its velocities and its percussions together, in one contact
+// mode (SPEC §2, eqs. 5-6 with Coulomb's stick and slip), without M⁻¹.
 //
-// The mode's velocity equations (closed normal rows, sticking tangential rows) fix q̇_E on their
-// directions: W_kᵀ q̇_E = −w_k − e_k D_NA,k on the closed rows, W_jᵀ q̇_E = −w_T,j on the sticking
-// ones. Where they are as many as the degrees of freedom the contacts touch (and M does not couple
-// those to the others, which keep q̇_A: a second body in the problem), they fix q̇_E, and M plays
-// no part. The percussions then follow from the momentum balance M(q̇_E − q̇_A) = W P, with the
-// mode's percussion relations (open rows: none; sliding rows: P_T = s μ P_N).
+// The unknowns are q̇_E and the mode's free percussions p (the closed normal rows' P_N, the
+// sticking rows' P_T; a sliding row's P_T = s μ P_N is carried by its normal column). The
+// equations are the momentum balance M(q̇_E − q̇_A) = F p (F: W's columns, a closed normal row's
+// plus s μ times its sliding tangential row's) and the mode's velocity rows: W_kᵀ q̇_E = −w_k −
+// e_k D_NA,k on the closed normal rows, W_jᵀ q̇_E = −w_T,j on the sticking ones. A square system
+// of n + m rows, solved for Δ = q̇_E − q̇_A (the momentum rows then exact), its rows and columns
+// equilibrated (powers of two) before an LU with partial pivoting and a refinement with the
+// residual in twice the precision.
 //
-// Why: the exact methods and the refinement (classical_refine.hpp) work on the percussions, and
-// the velocities are made from them through M⁻¹W. On an ill-conditioned M the last bit of each
-// percussion moves the velocities by far more than their own last bit: two contacts closed on a
-// two-dof body with cond(M) = 2e9 (stress, Newton, seed 41 #48) missed D_NE = −e D_NA by 6e-7 of
-// the velocity scale, at the best double percussions, and ended `stalled`. Solved here, both
-// equations hold to 1e-16 and the percussions are the exact ones rounded; the law's residual
-// (classical_residual) reads the velocities returned, since they balance the percussions to
-// rounding.
+// Why: the exact methods and the refinement (classical_refine.hpp) work on the percussions
+// through G = WᵀM⁻¹W, and make the velocities from them through M⁻¹W. G carries cond(M): two
+// contacts closed on a two-dof body with cond(M) = 2e9 (stress, Newton, seed 41 #48) missed
+// D_NE = −e D_NA by 6e-7 of the velocity scale at the best double percussions; one contact of a
+// two-dof body with cond(M) = 1.3e10 and W_T 2e-4 from parallel to W_N has G singular to 3e-19
+// of its entries (newton_coulomb #27360 of seed 7); and on four dofs with cond(M) = 2.1e11 and
+// μ = 1e8 (newton_coulomb #7063 of seed 2) the one mode that has an answer is beyond extended
+// precision through G, while this system, equilibrated, has condition 1.2e5. Here M is only
+// multiplied. The law's residual (classical_residual) reads the velocities returned, since they
+// balance the percussions to rounding.
 //
 // Not for Poisson: its expansion starts from the compression's velocities, which are made from
 // percussions again.
+#include <Eigen/LU>
 #include <cmath>
 #include <limits>
 
 #include "classical_refine.hpp"
 #include "fremond/solvers/detail/accurate_dot.hpp"
-#include "small_lu.hpp"
 
 namespace fremond::detail::classical {
 
-/// The degrees of freedom some row of the contacts touches, into `dof` (their count returned), or
-/// -1 where M couples one of them to an untouched one. The others keep q̇_A exactly, provided M does
-/// not couple them to the touched ones (two bodies in one problem: a group of contacts of one of
-/// them, independent_groups.hpp). Where it does, the velocities would depend on M, whose
-/// conditioning the answer would then carry, and the mode read from it might be one that holds
-/// only to that (RegressionClassical.RoundingAllowanceDoesNotAcceptAWrongModeAsConverged).
-template <int N, int C>
-int touched_dofs(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                 Eigen::Matrix<int, Eigen::Dynamic, 1, 0, N, 1>& dof) {
-  const int n = cs.dofs, r = cs.rows();
-  dof.resize(n);
-  int t = 0;
-  for (int i = 0; i < n; ++i) {
-    bool touched = false;
-    for (int j = 0; j < r && !touched; ++j) touched = cs.W(i, j) != 0.0;
-    if (touched) dof(t++) = i;
-  }
-  for (int i = 0, u = 0; i < n; ++i) {
-    if (u < t && dof(u) == i) {
-      ++u;
-      continue;
-    }
-    for (int k = 0; k < t; ++k)
-      if (pb.M(i, dof(k)) != 0.0 || pb.M(dof(k), i) != 0.0) return -1;
-  }
-  return t;
-}
+/// The largest size of a mode's system in (q̇_E, p): n dofs and at most as many velocity rows.
+template <int N>
+inline constexpr int kMaxModeSystem = N == Eigen::Dynamic ? Eigen::Dynamic : 2 * N;
 
 /// Solves contact mode `mode` (`off` as refine_answer builds it: target = e D_NA, no fixed part)
-/// for q̇_E, then P, on the t touched dofs `dof` (touched_dofs). Returns false, with P and q
-/// untouched, unless the mode's velocity equations are as many as those dofs, the equations are
-/// regular to working precision (reciprocal condition number above 64ε), each closed row's
-/// percussion and each sticking row's slack in the cone exceed what rounding can move them by,
-/// and the answer is finite. The rows the mode does not fix (open normals, sliding tangents) are
-/// not checked here.
+/// for q̇_E and the percussions together. Returns false, with P and q untouched, unless the
+/// mode's velocity rows are at most n, its system is regular to working precision (reciprocal
+/// condition number of the equilibrated system above 64ε), each closed row's percussion and each
+/// sticking row's slack in the cone exceed what rounding can move them by, the rows the mode
+/// leaves free (open normals, sliding tangents) meet the law to their rounding, and the answer is
+/// finite.
 template <int N, int C>
-bool solve_velocity_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
-                         const Eigen::Matrix<int, Eigen::Dynamic, 1, 0, N, 1>& dof, int t,
-                         typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
+bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                                const ImpactLaw& law, const ModeOffsets<N, C>& off,
+                                const Mode<N, C>& mode, typename ContactSpaceT<N, C>::Rows& P,
+                                VecT<N>& q) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
-  constexpr int kMax = ContactSpaceT<N, C>::kMaxRows;
-  using Square = typename SmallLU<kMax>::Mat;
-  using Vec = typename SmallLU<kMax>::Vec;
+  constexpr int kMaxRows = ContactSpaceT<N, C>::kMaxRows;
+  constexpr int S = kMaxModeSystem<N>;
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, S, S>;
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, S, 1>;
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  const int a = cs.active, r = cs.rows();
+  const int a = cs.active, r = cs.rows(), n = cs.dofs;
   // The velocity rows, in order; `column(j)` is row j's unknown percussion, −1 for the others.
-  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMax, 1> rows(r), column(r);
+  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMaxRows, 1> rows(r), column(r);
   int m = 0;
   for (int j = 0; j < r; ++j) {
     column(j) = mode.kind(j) == 0 ? m : -1;
-    if (mode.kind(j) == 0) rows(m++) = j;
+    if (mode.kind(j) == 0) {
+      if (m == n) return false;  // more velocity rows than dofs: singular
+      rows(m++) = j;
+    }
   }
-  if (m != t) return false;
+  for (int j = a; j < r; ++j)  // sticking on an open contact: not a mode of the law
+    if (column(j) >= 0 && column(j - a) < 0) return false;
   auto offset = [&](int j) {  // w of row j's contact
     const int i = cs.index(j < a ? j : j - a);
     const auto& w = j < a ? pb.w_N : pb.w_T;
     return w.size() ? w(i) : 0.0;
   };
-  // Wᵀ q̇_E = b on the velocity rows (touched dofs).
-  Square A(t, t);
-  Vec b(t), x(t), res(t), d(t);
-  for (int k = 0; k < t; ++k) {
-    const int j = rows(k);
-    for (int l = 0; l < t; ++l) A(k, l) = cs.W(dof(l), j);
-    b(k) = -offset(j) - (j < a ? off.target(j) : 0.0);
-  }
-  // K y = rhs by LU (left in `lu`), refined once with the residual in twice the precision; false
-  // where K is singular to working precision.
-  SmallLU<kMax> lu;
-  auto solve_refined = [&](const Square& K, const Vec& rhs, Vec& y) {
-    lu.compute(K);
-    if (!lu.well_conditioned(64 * eps)) return false;
-    lu.solve(rhs, y);
-    for (int k = 0; k < t; ++k) res(k) = -accurate_dot(K.row(k), y, -rhs(k));
-    lu.solve(res, d);
-    y += d;
-    return true;
-  };
-  if (!solve_refined(A, b, x)) return false;
-  // M(q̇_E − q̇_A) = F p with P = T p: a closed normal row's column is W_N,k plus s μ W_T,k of its
-  // sliding tangential row; a sticking row's is W_T,j. Open rows and rows held at zero add nothing.
   Rows slide_of = Rows::Zero(r);  // s μ on a closed normal row whose tangential row slides
   if (cs.tangential)
     for (int k = 0; k < a; ++k)
       if (mode.slide(a + k) != 0.0) slide_of(k) = mode.slide(a + k) * Mode<N, C>::mu(cs, law, k);
-  Square F(t, t), Mt(t, t);
-  for (int k = 0; k < t; ++k) {
+  // K y = rhs, y = (Δ, p) with Δ = q̇_E − q̇_A: [M, −F; Aᵀ, 0], rhs = (0, b − Aᵀq̇_A). In Δ the
+  // momentum rows are exact (M q̇_A rounded would be an error of ε|M q̇_A|, which cond(M) brings
+  // into the velocities), and the velocity rows' right-hand sides are contact velocities computed
+  // to their last bit (accurate_dot).
+  const int s = n + m;
+  Mat K = Mat::Zero(s, s);
+  Vec rhs(s);
+  K.topLeftCorner(n, n) = pb.M;
+  for (int k = 0; k < m; ++k) {
     const int j = rows(k);
-    for (int l = 0; l < t; ++l) {
-      F(l, k) =
-          cs.W(dof(l), j) + (j < a && slide_of(j) != 0.0 ? slide_of(j) * cs.W(dof(l), a + j) : 0.0);
-      Mt(k, l) = pb.M(dof(k), dof(l));
+    for (int l = 0; l < n; ++l) {
+      K(l, n + k) =
+          -(cs.W(l, j) + (j < a && slide_of(j) != 0.0 ? slide_of(j) * cs.W(l, a + j) : 0.0));
+      K(n + k, l) = cs.W(l, j);
+    }
+    rhs(n + k) = -(accurate_dot(cs.W.col(j), pb.qdot_A, offset(j)) + (j < a ? off.target(j) : 0.0));
+  }
+  rhs.head(n).setZero();
+  if (!K.allFinite() || !rhs.allFinite()) return false;
+  // Equilibrated by powers of two (exact): rows, then columns, to unit largest entries, a few
+  // passes (Ruiz). The momentum rows are of M's size and the velocity rows of W's, the percussions
+  // of M times velocities: 1e11 apart at cond(M) = 2e11.
+  Vec dr = Vec::Ones(s), dc = Vec::Ones(s);
+  auto power = [](double x) { return std::ldexp(1.0, -std::ilogb(x) / 2); };  // ~ 1/sqrt(x)
+  for (int pass = 0; pass < 6; ++pass) {
+    for (int i = 0; i < s; ++i) {
+      double big = 0.0;
+      for (int l = 0; l < s; ++l) big = std::max(big, std::fabs(dr(i) * K(i, l) * dc(l)));
+      if (!(big > 0.0)) return false;  // a zero row: singular
+      dr(i) *= power(big);
+    }
+    for (int l = 0; l < s; ++l) {
+      double big = 0.0;
+      for (int i = 0; i < s; ++i) big = std::max(big, std::fabs(dr(i) * K(i, l) * dc(l)));
+      if (!(big > 0.0)) return false;
+      dc(l) *= power(big);
     }
   }
-  Vec dq(t), p(t);
-  for (int k = 0; k < t; ++k) dq(k) = x(k) - pb.qdot_A(dof(k));
-  for (int k = 0; k < t; ++k) b(k) = accurate_dot(Mt.row(k), dq);
-  if (!solve_refined(F, b, p)) return false;
-  // The mode must be the data's, not rounding's: M(q̇_E − q̇_A) is known to 16ε Σ|M|(|q̇_E| +
-  // |q̇_A|) per row, which moves p by up to |F⁻¹| times that. Where M is ill-conditioned and the
+  const Mat Ke = dr.asDiagonal() * K * dc.asDiagonal();
+  const Eigen::PartialPivLU<Mat> lu(Ke);
+  const Mat inv = lu.inverse();  // exact rcond below, and the rounding bound
+  if (!inv.allFinite()) return false;
+  const double rcond =
+      1.0 / (Ke.cwiseAbs().colwise().sum().maxCoeff() * inv.cwiseAbs().colwise().sum().maxCoeff());
+  if (!(rcond > 64 * eps)) return false;
+  // y = Dc Ke⁻¹ Dr rhs, refined twice with the residual in twice the precision.
+  Vec y = dc.asDiagonal() * lu.solve((dr.asDiagonal() * rhs).eval()), res(s);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < s; ++i) res(i) = -accurate_dot(K.row(i), y, -rhs(i));
+    y += dc.asDiagonal() * lu.solve((dr.asDiagonal() * res).eval());
+  }
+  // The mode must be the data's, not rounding's: each equation is known to 16ε of its terms,
+  // which moves y by up to |K⁻¹| = Dc |Ke⁻¹| Dr times that. Where M is ill-conditioned and the
   // velocity change lies along its soft directions, that can exceed p itself; a closed row whose
   // percussion, or a sticking row whose slack in the cone, is within it is not accepted.
-  Vec known(t), unit(t), col(t), moved = Vec::Zero(t);
-  for (int k = 0; k < t; ++k) {
-    double size = 0.0;
-    for (int l = 0; l < t; ++l)
-      size += std::fabs(Mt(k, l)) * (std::fabs(x(l)) + std::fabs(pb.qdot_A(dof(l))));
-    known(k) = 16 * eps * size + 4 * eps * std::fabs(b(k));
+  Vec known(s);
+  for (int i = 0; i < s; ++i) {
+    double size = std::fabs(rhs(i));
+    for (int l = 0; l < s; ++l) size += std::fabs(K(i, l) * y(l));
+    known(i) = 16 * eps * size;
   }
-  for (int l = 0; l < t; ++l) {  // |F⁻¹| known, column by column of F⁻¹
-    unit.setZero();
-    unit(l) = 1.0;
-    lu.solve(unit, col);
-    moved += col.cwiseAbs() * known(l);
-  }
-  for (int k = 0; k < t; ++k) {
+  const Vec moved = dc.asDiagonal() * (inv.cwiseAbs() * (dr.asDiagonal() * known).eval());
+  for (int k = 0; k < m; ++k) {
     const int j = rows(k);
     if (j < a) {
-      if (!(p(k) > moved(k))) return false;  // closed, beyond doubt
-    } else if (column(j - a) >= 0) {         // sticking, inside the cone beyond doubt
-      const int kn = column(j - a);
+      if (!(y(n + k) > moved(n + k))) return false;  // closed, beyond doubt
+    } else {                                         // sticking, inside the cone beyond doubt
+      const int kn = n + column(j - a);
       const double mu = Mode<N, C>::mu(cs, law, j - a);
-      if (!(std::fabs(p(k)) + moved(k) < mu * (p(kn) - moved(kn)))) return false;
-    } else {
-      return false;  // sticking on an open contact: not a mode of the law
+      if (!(std::fabs(y(n + k)) + moved(n + k) < mu * (y(kn) - moved(kn)))) return false;
     }
+  }
+  if (!y.allFinite()) return false;
+  // The rows the mode leaves free must meet the law to their rounding (16ε of their terms): an
+  // open row D_NE + e D_NA ≥ 0, a sliding row's D_TE against its percussion. The answer's own
+  // mode read wrongly (an open contact whose true percussion is 5 % of the others, cond(M) = 3e10)
+  // would otherwise pass the law's residual within the allowance for rounded percussions
+  // (RegressionClassical.RoundingAllowanceDoesNotAcceptAWrongModeAsConverged).
+  const VecT<N> qE = pb.qdot_A + y.head(n);
+  for (int j = 0; j < r; ++j) {
+    const bool normal = j < a;
+    if (normal ? mode.kind(j) != 1 : mode.slide(j) == 0.0) continue;
+    const double D = contact_velocity(cs.W.col(j), qE, offset(j));
+    const double floor =
+        16 * eps *
+        (std::fabs(offset(j)) + cs.W.col(j).cwiseAbs().dot(qE.cwiseAbs() + pb.qdot_A.cwiseAbs()));
+    if (!(normal ? D + off.target(j) >= -floor : -mode.slide(j) * D >= -floor)) return false;
   }
   Rows out = Rows::Zero(r);
   for (int j = 0; j < r; ++j)
-    if (column(j) >= 0) out(j) = p(column(j));
+    if (column(j) >= 0) out(j) = y(n + column(j));
   for (int k = 0; k < a && cs.tangential; ++k)
     if (slide_of(k) != 0.0) out(a + k) = slide_of(k) * out(k);
-  if (!x.allFinite() || !out.allFinite()) return false;
+  if (!out.allFinite()) return false;
   P = out;
-  q = pb.qdot_A;
-  for (int k = 0; k < t; ++k) q(dof(k)) = x(k);
+  q = qE;
   return true;
 }
 
 /// Solves the mode of the Newton-type answer P (`off` as refine_answer builds it: target = e D_NA,
-/// no fixed part) for q̇_E, then P. Returns false, with P and q untouched, unless the mode's
-/// velocity equations are as many as the degrees of freedom the contacts touch, those dofs are
-/// not coupled by M to the others, and solve_velocity_mode accepts the answer.
+/// no fixed part) for q̇_E and P together (solve_mode_with_velocities). Returns false, with P and
+/// q untouched, where that does not accept the answer.
 template <int N, int C>
 bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, const ModeOffsets<N, C>& off,
                               typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
   if (cs.rows() == 0) return false;
-  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, N, 1> dof;
-  const int t = touched_dofs(pb, cs, dof);
-  if (t < 0) return false;
   const Mode<N, C> mode = read_mode(cs, law, off, P, accurate_row_velocities(pb, cs, P));
-  return solve_velocity_mode(pb, cs, law, off, mode, dof, t, P, q);
+  return solve_mode_with_velocities(pb, cs, law, off, mode, P, q);
 }
 
 /// Newton's laws where no contact mode solves the law in contact space, not even with G in
 /// extended precision: every mode of up to 4 active contacts (each open, or closed and sticking,
-/// or closed and sliding either way; closed with P_T = 0 where μ = 0) whose velocity equations fix
-/// the touched dofs, solved for the velocities first (solve_velocity_mode), M only multiplied.
-/// G = WᵀM⁻¹W inherits cond(M) where those velocities do not: one contact of a two-dof body with
-/// cond(M) = 1.3e10 and W_T 2e-4 from parallel to W_N has G singular to 3e-19 of its entries,
-/// below even extended precision, while the exact answer sticks with velocities fixed by W alone
-/// and percussions 1e19 times them (stress newton_coulomb #27360 of seed 7). A mode is kept when
-/// the rows it leaves free meet the law to their rounding (16ε of their terms): an open row
-/// D_NE + e D_NA ≥ 0, a sliding row's D_TE against its percussion. Of those kept, the most
-/// dissipative (T_E − T_A from the velocities). Returns the number of modes kept; P and q hold
-/// the answer when it is not zero.
+/// or closed and sliding either way; closed with P_T = 0 where μ = 0), solved for q̇_E and the
+/// percussions together (solve_mode_with_velocities), M only multiplied. G = WᵀM⁻¹W inherits
+/// cond(M) where that system does not: one contact of a two-dof body with cond(M) = 1.3e10 and W_T
+/// 2e-4 from parallel to W_N has G singular to 3e-19 of its entries, below even extended
+/// precision, while the exact answer sticks with velocities fixed by W alone and percussions 1e19
+/// times them (stress newton_coulomb #27360 of seed 7); on four dofs with cond(M) = 2.1e11 the one
+/// mode with an answer (newton_coulomb #7063 of seed 2) is not fixed by W alone. Of the modes that
+/// solver accepts, the most dissipative (T_E − T_A from the velocities). Returns the number of
+/// modes kept; P and q hold the answer when it is not zero.
 template <int N, int C>
 int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, const ModeOffsets<N, C>& off,
                               typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
-  constexpr double eps16 = 16 * std::numeric_limits<double>::epsilon();
   const int a = cs.active, r = cs.rows(), n = cs.dofs;
   if (r == 0 || a > 4) return 0;
-  Eigen::Matrix<int, Eigen::Dynamic, 1, 0, N, 1> dof;
-  const int t = touched_dofs(pb, cs, dof);
-  if (t <= 0) return 0;
   const int kinds = cs.tangential ? 4 : 2;  // open, stick (closed), slide +, slide −
   int combinations = 1;
   for (int k = 0; k < a; ++k) combinations *= kinds;
   Mode<N, C> mode;
   mode.kind.resize(r);
   mode.slide.resize(r);
-  auto offset = [&](int j) {  // w of row j's contact
-    const int i = cs.index(j < a ? j : j - a);
-    const auto& w = j < a ? pb.w_N : pb.w_T;
-    return w.size() ? w(i) : 0.0;
-  };
   int kept = 0;
   double best_energy = 0.0;
   for (int code = 0; code < combinations; ++code) {
     mode.slide.setZero();
-    int fixed = 0;
     bool repeated = false;  // μ = 0: the sliding kinds repeat the closed one
     for (int k = 0, rest = code; k < a; ++k, rest /= kinds) {
       const int kind = rest % kinds;
       mode.kind(k) = kind == 0 ? 1 : 0;  // open: P_N = 0; else D_NE = −e D_NA
-      if (kind != 0) ++fixed;
       if (!cs.tangential) continue;
       const bool friction = Mode<N, C>::mu(cs, law, k) > 0.0;
       if (kind == 1 && friction) {
         mode.kind(a + k) = 0;  // stick: D_TE = 0
-        ++fixed;
       } else {
         mode.kind(a + k) = 1;  // t = s μ P_N, or t = 0 (open, or μ = 0)
         if (kind >= 2 && friction) mode.slide(a + k) = kind == 2 ? 1.0 : -1.0;
       }
       repeated = repeated || (!friction && kind >= 2);
     }
-    if (repeated || fixed != t) continue;
+    if (repeated) continue;
     Rows Pm = Rows::Zero(r);
     VecT<N> qm;
-    if (!solve_velocity_mode(pb, cs, law, off, mode, dof, t, Pm, qm)) continue;
-    bool holds = true;
-    for (int j = 0; j < r && holds; ++j) {
-      const bool normal = j < a;
-      if (normal ? mode.kind(j) != 1 : mode.slide(j) == 0.0) continue;
-      const double D = contact_velocity(cs.W.col(j), qm, offset(j));
-      const double floor =
-          eps16 *
-          (std::fabs(offset(j)) + cs.W.col(j).cwiseAbs().dot(qm.cwiseAbs() + pb.qdot_A.cwiseAbs()));
-      holds = normal ? D + off.target(j) >= -floor : -mode.slide(j) * D >= -floor;
-    }
-    if (!holds) continue;
+    if (!solve_mode_with_velocities(pb, cs, law, off, mode, Pm, qm)) continue;
     double energy = 0.0;  // T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A), eq. 9
     for (int i = 0; i < n; ++i) {
       double Ms = 0.0;

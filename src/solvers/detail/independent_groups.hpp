@@ -151,9 +151,9 @@ class GroupMerge {
 
   /// Writes the whole answer into `out`: Frémond's velocities from the gathered percussions (as
   /// its methods write their own); a classical law's as q̇_A plus each group's velocity change,
-  /// since a group whose mode fixes its velocities has them more accurately than its percussions
-  /// make them (classical_velocity_mode.hpp); the report of the groups. False, with `out`
-  /// untouched, where the velocities or the energy are not finite.
+  /// since a group whose mode was solved for its velocities has them more accurately than its
+  /// percussions make them (classical_velocity_mode.hpp); the report of the groups. False, with
+  /// `out` untouched, where the velocities or the energy are not finite.
   bool write(const ImpactLaw& law, ImpactResultT<N, C>& out) const {
     ImpactResultT<N, C> merged;
     if (law.type == LawType::fremond) {
