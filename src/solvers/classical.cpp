@@ -92,31 +92,36 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
                                     const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
                                     typename ContactSpaceT<N, C>::Rows& P_C) {
   using classical::Refinement;
-  const int a = cs.active;
   classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
   Refinement compression = Refinement::converged;
   if (is_poisson(law)) {
     off.target.setZero();  // both phases hold D = 0 on closed rows, from a fixed part
     compression = classical::refine_mode(pb, cs, law, off, P_C);  // D_NC = 0 where closed
     if (compression == Refinement::singular) return compression;
-    for (int k = 0; k < a; ++k) {  // expansion: P_NE = e P_NC + ΔP, bound μ P_NE (SPEC table)
-      const double e = law.e[cs.index(k)];
-      off.cN(k) = (1.0 + e) * P_C(k);
-      off.cB(k) = P_C(k);
-      if (cs.tangential) off.cT(k) = P_C(a + k);
-    }
+    classical::hold_compression(cs, law, P_C, off);
   }
   const Refinement expansion = classical::refine_mode(pb, cs, law, off, P);
   return expansion == Refinement::converged ? compression : expansion;
 }
 
-// Newton's laws: the answer's mode solved for its velocities and percussions together
-// (classical_velocity_mode.hpp). P and q are the new answer when true.
+// The answer's mode solved for its velocities and percussions together
+// (classical_velocity_mode.hpp); Poisson's compression first, then its expansion around the
+// compression so solved. P, P_C and q (q̇_E) are the new answer when true.
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
-  if (is_poisson(law)) return false;
-  return classical::solve_mode_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q);
+                         const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
+                         typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q) {
+  classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
+  if (!is_poisson(law)) return classical::solve_mode_in_velocities(pb, cs, law, off, P, q);
+  off.target.setZero();
+  typename ContactSpaceT<N, C>::Rows PC = P_C, PE = P;
+  VecT<N> qC;
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qC)) return false;
+  classical::hold_compression(cs, law, PC, off);
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qC, &PC)) return false;
+  P = PE;
+  P_C = PC;
+  return true;
 }
 
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
@@ -142,7 +147,8 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // and is kept when within it, even where its residual is not smaller (the exact mode solution
   // rounded, 1.4e-13 beside the original's 1.1e-13); a mode misread at a stick-slip boundary
   // leaves the law's residual beyond that allowance.
-  typename ContactSpaceT<N, C>::Rows best = s.P;  // the percussions of the answer in `out`
+  // The percussions of the answer in `out`.
+  typename ContactSpaceT<N, C>::Rows best = s.P, best_C = s.P_C;
   if (!(beyond_rounding <= options.tolerance) && !velocities) {
     typename ContactSpaceT<N, C>::Rows P = s.P, P_C = s.P_C;
     const auto refined = refine_answer(pb, cs, law, P, P_C);
@@ -180,26 +186,28 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
         residual = trial_residual;
         beyond_rounding = trial_beyond;
         best = P;
+        best_C = P_C;
       }
     }
   }
   // Still above the tolerance (beyond rounding, or within it only by the allowance for the
-  // percussions' rounding): Newton's laws solve the answer's mode for the velocities and the
-  // percussions together, M only multiplied; kept when the law's residual then reads smaller and
-  // within rounding. (Two contacts closing on a two-dof body with cond(M) = 1e9, stress newton
-  // #1280 of seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity scale
-  // from the quad reference; solved for the velocities, 1e-16. At stress seeds 23 and 41 it turns
-  // 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
+  // percussions' rounding): the answer's mode is solved for the velocities and the percussions
+  // together, M only multiplied (Poisson's: each phase); kept when the law's residual then reads
+  // smaller and within rounding. (Two contacts closing on a two-dof body with cond(M) = 1e9, stress
+  // newton #1280 of seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity
+  // scale from the quad reference; solved for the velocities, 1e-16. At stress seeds 23 and 41 it
+  // turns 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
   VecT<N> q;
-  typename ContactSpaceT<N, C>::Rows P = best;
-  if (!(residual <= options.tolerance) && !velocities && solve_in_velocities(pb, cs, law, P, q)) {
+  typename ContactSpaceT<N, C>::Rows P = best, P_C = best_C;
+  if (!(residual <= options.tolerance) && !velocities &&
+      solve_in_velocities(pb, cs, law, P, P_C, q)) {
     ImpactResultT<N, C> trial;
-    write_classical_answer(pb, cs, law, P, s.P_C, trial, &q);
+    write_classical_answer(pb, cs, law, P, P_C, trial, &q);
     double trial_beyond = 0.0;
     const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
     if (trial_beyond <= options.tolerance &&
         (!(beyond_rounding <= options.tolerance) || trial_residual < residual)) {
-      write_classical_answer(pb, cs, law, P, s.P_C, out, &q);
+      write_classical_answer(pb, cs, law, P, P_C, out, &q);
       residual = trial_residual;
       beyond_rounding = trial_beyond;
     }
@@ -405,21 +413,21 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   if (!all_finite(out)) fill_failure(pb, cs, law, lo, out, true);
 }
 
-// Newton's laws where the law's modes in contact space gave no solution (`lo` empty), G carrying
-// cond(M): every mode solved for the velocities and percussions together
-// (classical_velocity_mode.hpp), the velocities kept as solved. True, with the answer in `out`,
-// only when the law's residual then converges.
+// Where the law's modes in contact space gave no solution (`lo` empty), G carrying cond(M):
+// every mode solved for the velocities and percussions together (classical_velocity_mode.hpp;
+// Poisson's in both phases), the velocities kept as solved. True, with the answer in `out`, only
+// when the law's residual then converges.
 template <int N, int C>
 bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                              const ImpactLaw& law, const SolverOptions& options,
                              const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
-  if (is_poisson(law) || lo.beyond_precision ||
-      (options.method != SolverMethod::automatic &&
-       options.method != SolverMethod::mode_enumeration))
+  if (lo.beyond_precision || (options.method != SolverMethod::automatic &&
+                              options.method != SolverMethod::mode_enumeration))
     return false;
-  typename ContactSpaceT<N, C>::Rows P;
+  typename ContactSpaceT<N, C>::Rows P, P_C;
   VecT<N> q;
-  if (classical::solve_modes_in_velocities(pb, cs, law, newton_offsets(cs, law), P, q) == 0)
+  if (classical::solve_modes_in_velocities(pb, cs, law, is_poisson(law), newton_offsets(cs, law), P,
+                                           P_C, q) == 0)
     return false;
   LawOutcome<C> lv;
   lv.method = SolverMethod::mode_enumeration;
@@ -429,6 +437,7 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
   lv.in_velocities = true;
   LawSolution<C>* s = lv.solutions.emplace();
   s->P = P;
+  if (is_poisson(law)) s->P_C = P_C;
   s->method = SolverMethod::mode_enumeration;
   ImpactResultT<N, C> r;
   fill_result(pb, cs, law, options, lv, 0, r, &q);

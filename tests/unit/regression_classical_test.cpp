@@ -1222,6 +1222,36 @@ TEST(RegressionClassical, KeptAnswerOfASingularPhaseIsNotCalledUnique) {
   EXPECT_NEAR(r.P_N.sum(), 40.447935995402013 * 0.95131265082735694, 1e-10 * 38.5);
 }
 
+// Poisson on two contacts of a 3-dof body with M's entries near 1e13 (cond(M) far above 1e9):
+// both close in compression and in expansion. The percussions Lemke finds, and their refinement,
+// were 2e-9 from the exact ones, and the velocities they make through M⁻¹ missed the law: `stalled`
+// (stress poisson #151 of seed 23). Each phase solved for its velocities and percussions together
+// (classical_velocity_mode.hpp: the compression from q̇_A, the expansion from the compression),
+// the percussions agree with a 60-digit enumeration of both phases' modes (mpmath) to 1e-16 and
+// the velocities to 1.3e-15 in the kinetic norm.
+TEST(RegressionClassical, PoissonPhasesOfAnIllConditionedBodyAreSolvedInVelocities) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[8609603899640.5957, 1475549676818.6101, -8155708616677.6445], [1475549676818.6101, 252989558510.0553, -1398080483018.7959], [-8155708616677.6445, -1398080483018.7959, 7726737569685.5654]],
+ "W_N": [[-0.23297867023900942, -0.80749040975348896], [0.28313528590774295, -0.14329132250352483], [0.79557201737631855, 0.28739082817719441]],
+ "qdot_A": [1.2125017427721635e-10, 2.3220780361486868e-11, -4.9461693007024558e-11],
+ "law": {"type": "poisson", "e": 0.72001693529570499}})",
+      PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+  const double P_NC[] = {0.47175540043848014, 1.5084916903923052};
+  const double P_N[] = {0.81142727807139274, 2.5946312542276104};
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(r.P_NC(i), P_NC[i], 1e-14 * P_N[1]) << i;
+    EXPECT_NEAR(r.P_N(i), P_N[i], 1e-14 * P_N[1]) << i;
+  }
+  const Eigen::Vector3d qE(-4.6876699503332207e-10, 1.1068878032858381e-9, -4.7597587769476306e-10);
+  const Eigen::Vector3d d = r.qdot_E - qE;
+  EXPECT_LE(std::sqrt(d.dot(pb.M * d)), 1e-13 * std::sqrt(pb.qdot_A.dot(pb.M * pb.qdot_A)));
+}
+
 // Poisson + Coulomb on four contacts (three taking part) of a 3-dof body with cond(M) = 6e9,
 // e = 0 and μ = 1e8 on one contact: the quad reference finds one solution; the library, its modes
 // in double and then in extended precision, finds none and says `no_solution` (stress

@@ -59,6 +59,21 @@ struct ModeOffsets {
   Rows cN, cT, cB, target;  ///< cN, cB, target: active contacts; cT: active contacts
 };
 
+/// Poisson's expansion around the compression P_C (SPEC table): P_NE = e P_NC + ΔP with bound
+/// μ P_NE, so P_N = (1 + e) P_NC + ΔP and P_T = P_TC + t with |t| ≤ μ (P_N − P_NC); target 0.
+template <int N, int C>
+void hold_compression(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+                      const typename ContactSpaceT<N, C>::Rows& P_C, ModeOffsets<N, C>& off) {
+  const int a = cs.active;
+  off.target.setZero(a);
+  for (int k = 0; k < a; ++k) {
+    const double e = law.e[cs.index(k)];
+    off.cN(k) = (1.0 + e) * P_C(k);
+    off.cB(k) = P_C(k);
+    if (cs.tangential) off.cT(k) = P_C(a + k);
+  }
+}
+
 /// How a refinement ended: the mode's equations singular to working precision (G singular: the
 /// percussions are not unique and the minimum-norm choice must stay; P untouched), corrections
 /// that stopped shrinking before reaching rounding, or P the mode's exact solution to rounding.

@@ -1,6 +1,6 @@
 #pragma once
-// A Newton-type answer solved for its velocities and its percussions together, in one contact
-// mode (SPEC §2, eqs. 5-6 with Coulomb's stick and slip), without M⁻¹.
+// A classical law's answer solved for its velocities and its percussions together, in one
+// contact mode (SPEC §2, eqs. 5-6 with Coulomb's stick and slip), without M⁻¹.
 //
 // The unknowns are q̇_E and the mode's free percussions p (the closed normal rows' P_N, the
 // sticking rows' P_T; a sliding row's P_T = s μ P_N is carried by its normal column). The
@@ -22,8 +22,12 @@
 // multiplied. The law's residual (classical_residual) reads the velocities returned, since they
 // balance the percussions to rounding.
 //
-// Not for Poisson: its expansion starts from the compression's velocities, which are made from
-// percussions again.
+// Poisson's phases are each such a mode, around a fixed part (ModeOffsets): the compression as
+// Newton's with target 0, the expansion with P_N = (1 + e) P_NC + ΔP, P_T = P_TC + t and bound
+// μ (P_N − P_NC), written from the compression's velocities and percussions (M(q̇_E − q̇_C) =
+// W(P − P_C)): where the compression stops the body (q̇_C = 0, three rows on three dofs), the
+// expansion of e = 0 then keeps q̇_C exactly, which M⁻¹W P_C made from q̇_A would miss by
+// cond(M) ε.
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
@@ -37,18 +41,19 @@ namespace fremond::detail::classical {
 template <int N>
 inline constexpr int kMaxModeSystem = N == Eigen::Dynamic ? Eigen::Dynamic : 2 * N;
 
-/// Solves contact mode `mode` (`off` as refine_answer builds it: target = e D_NA, no fixed part)
-/// for q̇_E and the percussions together. Returns false, with P and q untouched, unless the
-/// mode's velocity rows are at most n, its system is regular to working precision (reciprocal
-/// condition number of the equilibrated system above 64ε), each closed row's percussion and each
-/// sticking row's slack in the cone exceed what rounding can move them by, the rows the mode
-/// leaves free (open normals, sliding tangents) meet the law to their rounding, and the answer is
-/// finite.
+/// Solves contact mode `mode` around the fixed part and target of `off` (as refine_answer builds
+/// them: Newton's, or either of Poisson's phases) for q̇ and the percussions together. Returns
+/// false, with P and q untouched, unless the mode's velocity rows are at most n, its system is
+/// regular to working precision (reciprocal condition number of the equilibrated system above 64ε),
+/// each closed row's percussion and each sticking row's slack in the cone exceed what rounding can
+/// move them by, the rows the mode leaves free (open normals, sliding tangents) meet the law to
+/// their rounding, and the answer is finite.
 template <int N, int C>
 bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                                 const ImpactLaw& law, const ModeOffsets<N, C>& off,
                                 const Mode<N, C>& mode, typename ContactSpaceT<N, C>::Rows& P,
-                                VecT<N>& q) {
+                                VecT<N>& q, const VecT<N>* q_from = nullptr,
+                                const typename ContactSpaceT<N, C>::Rows* P_from = nullptr) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
   constexpr int kMaxRows = ContactSpaceT<N, C>::kMaxRows;
   constexpr int S = kMaxModeSystem<N>;
@@ -66,21 +71,31 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
       rows(m++) = j;
     }
   }
-  for (int j = a; j < r; ++j)  // sticking on an open contact: not a mode of the law
-    if (column(j) >= 0 && column(j - a) < 0) return false;
   auto offset = [&](int j) {  // w of row j's contact
     const int i = cs.index(j < a ? j : j - a);
     const auto& w = j < a ? pb.w_N : pb.w_T;
     return w.size() ? w(i) : 0.0;
   };
-  Rows slide_of = Rows::Zero(r);  // s μ on a closed normal row whose tangential row slides
-  if (cs.tangential)
-    for (int k = 0; k < a; ++k)
-      if (mode.slide(a + k) != 0.0) slide_of(k) = mode.slide(a + k) * Mode<N, C>::mu(cs, law, k);
-  // K y = rhs, y = (Δ, p) with Δ = q̇_E − q̇_A: [M, −F; Aᵀ, 0], rhs = (0, b − Aᵀq̇_A). In Δ the
-  // momentum rows are exact (M q̇_A rounded would be an error of ε|M q̇_A|, which cond(M) brings
-  // into the velocities), and the velocity rows' right-hand sides are contact velocities computed
-  // to their last bit (accurate_dot).
+  // P = P0 + T p: the fixed part P0 of the offsets (cN on every normal row; cT, plus s μ (cN − cB)
+  // where the row slides, on every tangential one), and p the velocity rows' increments (x on a
+  // closed normal row, with s μ x on its sliding tangential row; t on a sticking row).
+  Rows slide_of = Rows::Zero(r);  // s μ on a normal row whose tangential row slides
+  Rows P0(r);
+  for (int k = 0; k < a; ++k) {
+    P0(k) = off.cN(k);
+    if (!cs.tangential) continue;
+    slide_of(k) = mode.slide(a + k) * Mode<N, C>::mu(cs, law, k);
+    P0(a + k) = off.cT(k) + (slide_of(k) != 0.0 ? slide_of(k) * (off.cN(k) - off.cB(k)) : 0.0);
+  }
+  const VecT<N>& q0 = q_from ? *q_from : pb.qdot_A;
+  Rows dP(r);  // P0 − P_0
+  for (int j = 0; j < r; ++j) dP(j) = P0(j) - (P_from ? (*P_from)(j) : 0.0);
+  // K y = rhs, y = (Δ, p) with Δ = q̇ − q̇_0: [M, −F; Aᵀ, 0], rhs = (W (P0 − P_0), b − Aᵀq̇_0),
+  // from the velocities q̇_0 = q_from made by the percussions P_0 = P_from (q̇_A and 0 unless
+  // given: Poisson's expansion starts from its compression). In Δ the momentum rows are exact
+  // where P0 = P_0 (Newton's laws; M q̇_A rounded would be an error of ε|M q̇_A|, which cond(M)
+  // brings into the velocities; and Poisson's open rows at e = 0), and the velocity rows'
+  // right-hand sides are contact velocities computed to their last bit (accurate_dot).
   const int s = n + m;
   Mat K = Mat::Zero(s, s);
   Vec rhs(s);
@@ -92,9 +107,9 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
           -(cs.W(l, j) + (j < a && slide_of(j) != 0.0 ? slide_of(j) * cs.W(l, a + j) : 0.0));
       K(n + k, l) = cs.W(l, j);
     }
-    rhs(n + k) = -(accurate_dot(cs.W.col(j), pb.qdot_A, offset(j)) + (j < a ? off.target(j) : 0.0));
+    rhs(n + k) = -(accurate_dot(cs.W.col(j), q0, offset(j)) + (j < a ? off.target(j) : 0.0));
   }
-  rhs.head(n).setZero();
+  for (int i = 0; i < n; ++i) rhs(i) = accurate_dot(cs.W.row(i), dP);
   if (!K.allFinite() || !rhs.allFinite()) return false;
   // Equilibrated by powers of two (exact): rows, then columns, to unit largest entries, a few
   // passes (Ruiz). The momentum rows are of M's size and the velocity rows of W's, the percussions
@@ -136,6 +151,7 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
   for (int i = 0; i < s; ++i) {
     double size = std::fabs(rhs(i));
     for (int l = 0; l < s; ++l) size += std::fabs(K(i, l) * y(l));
+    if (i < n) size += cs.W.row(i).cwiseAbs().dot(dP.cwiseAbs());
     known(i) = 16 * eps * size;
   }
   const Vec moved = dc.asDiagonal() * (inv.cwiseAbs() * (dr.asDiagonal() * known).eval());
@@ -143,10 +159,11 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
     const int j = rows(k);
     if (j < a) {
       if (!(y(n + k) > moved(n + k))) return false;  // closed, beyond doubt
-    } else {                                         // sticking, inside the cone beyond doubt
-      const int kn = n + column(j - a);
-      const double mu = Mode<N, C>::mu(cs, law, j - a);
-      if (!(std::fabs(y(n + k)) + moved(n + k) < mu * (y(kn) - moved(kn)))) return false;
+    } else {  // sticking, inside the cone μ (P_N − cB) beyond doubt
+      const int kn = column(j - a), kc = j - a;
+      const double x = kn >= 0 ? y(n + kn) - moved(n + kn) : 0.0;
+      const double mu = Mode<N, C>::mu(cs, law, kc);
+      if (!(std::fabs(y(n + k)) + moved(n + k) < mu * (off.cN(kc) - off.cB(kc) + x))) return false;
     }
   }
   if (!y.allFinite()) return false;
@@ -155,98 +172,145 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
   // mode read wrongly (an open contact whose true percussion is 5 % of the others, cond(M) = 3e10)
   // would otherwise pass the law's residual within the allowance for rounded percussions
   // (RegressionClassical.RoundingAllowanceDoesNotAcceptAWrongModeAsConverged).
-  const VecT<N> qE = pb.qdot_A + y.head(n);
+  const VecT<N> qE = q0 + y.head(n);
   for (int j = 0; j < r; ++j) {
     const bool normal = j < a;
     if (normal ? mode.kind(j) != 1 : mode.slide(j) == 0.0) continue;
     const double D = contact_velocity(cs.W.col(j), qE, offset(j));
     const double floor =
         16 * eps *
-        (std::fabs(offset(j)) + cs.W.col(j).cwiseAbs().dot(qE.cwiseAbs() + pb.qdot_A.cwiseAbs()));
+        (std::fabs(offset(j)) + cs.W.col(j).cwiseAbs().dot(qE.cwiseAbs() + q0.cwiseAbs()));
     if (!(normal ? D + off.target(j) >= -floor : -mode.slide(j) * D >= -floor)) return false;
   }
-  Rows out = Rows::Zero(r);
-  for (int j = 0; j < r; ++j)
-    if (column(j) >= 0) out(j) = y(n + column(j));
+  Rows out(r);
+  for (int j = 0; j < r; ++j) out(j) = P0(j) + (column(j) >= 0 ? y(n + column(j)) : 0.0);
   for (int k = 0; k < a && cs.tangential; ++k)
-    if (slide_of(k) != 0.0) out(a + k) = slide_of(k) * out(k);
+    if (slide_of(k) != 0.0 && column(k) >= 0) out(a + k) += slide_of(k) * y(n + column(k));
   if (!out.allFinite()) return false;
   P = out;
   q = qE;
   return true;
 }
 
-/// Solves the mode of the Newton-type answer P (`off` as refine_answer builds it: target = e D_NA,
-/// no fixed part) for q̇_E and P together (solve_mode_with_velocities). Returns false, with P and
+/// Solves the mode of the answer P (`off` as refine_answer builds it) for q̇ and P together
+/// (solve_mode_with_velocities). Returns false, with P and
 /// q untouched, where that does not accept the answer.
 template <int N, int C>
 bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, const ModeOffsets<N, C>& off,
-                              typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
+                              typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q,
+                              const VecT<N>* q_from = nullptr,
+                              const typename ContactSpaceT<N, C>::Rows* P_from = nullptr) {
   if (cs.rows() == 0) return false;
   const Mode<N, C> mode = read_mode(cs, law, off, P, accurate_row_velocities(pb, cs, P));
-  return solve_mode_with_velocities(pb, cs, law, off, mode, P, q);
+  return solve_mode_with_velocities(pb, cs, law, off, mode, P, q, q_from, P_from);
 }
 
-/// Newton's laws where no contact mode solves the law in contact space, not even with G in
-/// extended precision: every mode of up to 4 active contacts (each open, or closed and sticking,
-/// or closed and sliding either way; closed with P_T = 0 where μ = 0), solved for q̇_E and the
-/// percussions together (solve_mode_with_velocities), M only multiplied. G = WᵀM⁻¹W inherits
-/// cond(M) where that system does not: one contact of a two-dof body with cond(M) = 1.3e10 and W_T
-/// 2e-4 from parallel to W_N has G singular to 3e-19 of its entries, below even extended
-/// precision, while the exact answer sticks with velocities fixed by W alone and percussions 1e19
-/// times them (stress newton_coulomb #27360 of seed 7); on four dofs with cond(M) = 2.1e11 the one
-/// mode with an answer (newton_coulomb #7063 of seed 2) is not fixed by W alone. Of the modes that
-/// solver accepts, the most dissipative (T_E − T_A from the velocities). Returns the number of
-/// modes kept; P and q hold the answer when it is not zero.
-template <int N, int C>
-int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                              const ImpactLaw& law, const ModeOffsets<N, C>& off,
-                              typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q) {
-  using Rows = typename ContactSpaceT<N, C>::Rows;
-  const int a = cs.active, r = cs.rows(), n = cs.dofs;
-  if (r == 0 || a > 4) return 0;
-  const int kinds = cs.tangential ? 4 : 2;  // open, stick (closed), slide +, slide −
-  int combinations = 1;
-  for (int k = 0; k < a; ++k) combinations *= kinds;
+/// Calls visit(mode) for every contact mode of up to 4 active contacts around `off`: each normal
+/// row open or closed; each tangential row, where its bound μ (P_N − cB) can be positive (μ > 0,
+/// and the normal closed or cN > cB: Poisson's expansion keeps μ e P_NC on an open row),
+/// sticking or sliding either way, else t = 0. Nothing where there are more than 4.
+template <int N, int C, class Visit>
+void for_each_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+                   const ModeOffsets<N, C>& off, Visit&& visit) {
+  const int a = cs.active, r = cs.rows();
+  if (r == 0 || a > 4) return;
+  auto frictional = [&](int k, bool closed) {  // 3 tangential kinds, else 1 (t = 0)
+    return cs.tangential && Mode<N, C>::mu(cs, law, k) > 0.0 && (closed || off.cN(k) > off.cB(k))
+               ? 3
+               : 1;
+  };
+  int choices[4], combinations = 1;
+  for (int k = 0; k < a; ++k) {
+    choices[k] = frictional(k, false) + frictional(k, true);
+    combinations *= choices[k];
+  }
   Mode<N, C> mode;
   mode.kind.resize(r);
   mode.slide.resize(r);
-  int kept = 0;
-  double best_energy = 0.0;
   for (int code = 0; code < combinations; ++code) {
     mode.slide.setZero();
-    bool repeated = false;  // μ = 0: the sliding kinds repeat the closed one
-    for (int k = 0, rest = code; k < a; ++k, rest /= kinds) {
-      const int kind = rest % kinds;
-      mode.kind(k) = kind == 0 ? 1 : 0;  // open: P_N = 0; else D_NE = −e D_NA
+    for (int k = 0, rest = code; k < a; rest /= choices[k], ++k) {
+      const int choice = rest % choices[k], open_kinds = frictional(k, false);
+      const bool closed = choice >= open_kinds;
+      mode.kind(k) = closed ? 0 : 1;  // closed: D_N + target = 0; open: P_N = cN
       if (!cs.tangential) continue;
-      const bool friction = Mode<N, C>::mu(cs, law, k) > 0.0;
-      if (kind == 1 && friction) {
-        mode.kind(a + k) = 0;  // stick: D_TE = 0
+      const int t = closed ? choice - open_kinds : choice;
+      if (frictional(k, closed) == 1) {
+        mode.kind(a + k) = 1;  // t = 0
+      } else if (t == 0) {
+        mode.kind(a + k) = 0;  // stick: D_T = 0
       } else {
-        mode.kind(a + k) = 1;  // t = s μ P_N, or t = 0 (open, or μ = 0)
-        if (kind >= 2 && friction) mode.slide(a + k) = kind == 2 ? 1.0 : -1.0;
+        mode.kind(a + k) = 1;  // slide: t = s μ (P_N − cB)
+        mode.slide(a + k) = t == 1 ? 1.0 : -1.0;
       }
-      repeated = repeated || (!friction && kind >= 2);
     }
-    if (repeated) continue;
-    Rows Pm = Rows::Zero(r);
-    VecT<N> qm;
-    if (!solve_mode_with_velocities(pb, cs, law, off, mode, Pm, qm)) continue;
-    double energy = 0.0;  // T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A), eq. 9
-    for (int i = 0; i < n; ++i) {
-      double Ms = 0.0;
-      for (int l = 0; l < n; ++l) Ms += pb.M(i, l) * (qm(l) + pb.qdot_A(l));
-      energy += 0.5 * (qm(i) - pb.qdot_A(i)) * Ms;
-    }
+    visit(static_cast<const Mode<N, C>&>(mode));
+  }
+}
+
+/// T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A) (eq. 9), from the velocities.
+template <int N, int C>
+double energy_change(const ImpactProblemT<N, C>& pb, const VecT<N>& q) {
+  const int n = pb.dofs();
+  double energy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double Ms = 0.0;
+    for (int l = 0; l < n; ++l) Ms += pb.M(i, l) * (q(l) + pb.qdot_A(l));
+    energy += 0.5 * (q(i) - pb.qdot_A(i)) * Ms;
+  }
+  return energy;
+}
+
+/// The classical laws where no contact mode solves the law in contact space, not even with G in
+/// extended precision: every mode (for_each_mode; Poisson's: every expansion mode around every
+/// compression mode accepted) solved for the velocities and the percussions together
+/// (solve_mode_with_velocities), M only multiplied. G = WᵀM⁻¹W inherits cond(M) where that system
+/// does not: one contact of a two-dof body with cond(M) = 1.3e10 and W_T 2e-4 from parallel to W_N
+/// has G singular to 3e-19 of its entries, below even extended precision, while the exact answer
+/// sticks with velocities fixed by W alone and percussions 1e19 times them (stress newton_coulomb
+/// #27360 of seed 7); on four dofs with cond(M) = 2.1e11 the one mode with an answer
+/// (newton_coulomb #7063 of seed 2) is not fixed by W alone. Of the answers accepted, the most
+/// dissipative (T_E − T_A from the velocities). `off` is Newton's (newton_offsets); Poisson's
+/// phases are built from it. Returns the number of answers accepted; P, P_C (Poisson) and q hold
+/// the one kept when it is not zero.
+template <int N, int C>
+int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                              const ImpactLaw& law, bool poisson, const ModeOffsets<N, C>& off,
+                              typename ContactSpaceT<N, C>::Rows& P,
+                              typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q) {
+  using Rows = typename ContactSpaceT<N, C>::Rows;
+  int kept = 0;
+  double best_energy = 0.0;
+  auto keep = [&](const Rows& Pm, const Rows& PCm, const VecT<N>& qm) {
+    const double energy = energy_change(pb, qm);
     if (kept == 0 || energy < best_energy) {
       best_energy = energy;
       P = Pm;
+      P_C = PCm;
       q = qm;
     }
     ++kept;
+  };
+  Rows Pm, PCm;
+  VecT<N> qm, qC;
+  if (!poisson) {
+    for_each_mode(cs, law, off, [&](const Mode<N, C>& mode) {
+      if (solve_mode_with_velocities(pb, cs, law, off, mode, Pm, qm)) keep(Pm, Rows(), qm);
+    });
+    return kept;
   }
+  ModeOffsets<N, C> compression = off;
+  compression.target.setZero();
+  for_each_mode(cs, law, compression, [&](const Mode<N, C>& mc) {
+    if (!solve_mode_with_velocities(pb, cs, law, compression, mc, PCm, qC)) return;
+    ModeOffsets<N, C> expansion = compression;
+    hold_compression(cs, law, PCm, expansion);
+    for_each_mode(cs, law, expansion, [&](const Mode<N, C>& me) {
+      if (solve_mode_with_velocities(pb, cs, law, expansion, me, Pm, qm, &qC, &PCm))
+        keep(Pm, PCm, qm);
+    });
+  });
   return kept;
 }
 
