@@ -162,6 +162,7 @@ ojson result_json(const ImpactResultT<N, C>& r) {
     j["P_TC"] = numbers(r.P_TC);
     j["D_NC"] = numbers(r.D_NC);
     j["D_TC"] = numbers(r.D_TC);
+    j["qdot_C"] = numbers(r.qdot_C);
   }
   j["unique"] = r.unique;
   j["solutions_found"] = r.solutions_found;

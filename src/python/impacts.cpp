@@ -191,6 +191,7 @@ void bind_impacts(py::module_& m) {
       .def_readonly("P_TC", &ImpactResult::P_TC)
       .def_readonly("D_NC", &ImpactResult::D_NC)
       .def_readonly("D_TC", &ImpactResult::D_TC)
+      .def_readonly("qdot_C", &ImpactResult::qdot_C)
       .def_readonly("takes_part", &ImpactResult::takes_part)
       .def_readonly("energy_change", &ImpactResult::energy_change)
       .def_readonly("unique", &ImpactResult::unique)

@@ -29,7 +29,7 @@ template <int N, int C>
 void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                             const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
                             const typename ContactSpaceT<N, C>::Rows& P_C, ImpactResultT<N, C>& out,
-                            const VecT<N>* velocities) {
+                            const VecT<N>* velocities, const VecT<N>* compression_velocities) {
   const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
   if (velocities) {
     out.qdot_E = *velocities;
@@ -38,6 +38,7 @@ void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<
     scatter_solution(pb, cs, P, out);
   }
   out.has_phases = poisson;
+  if (!poisson) out.qdot_C.resize(0);
   if (poisson) {
     const int c = cs.contacts, a = cs.active;
     out.P_NC.setZero(c);
@@ -46,8 +47,11 @@ void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<
       out.P_NC(cs.index(k)) = P_C(k);
       if (cs.tangential) out.P_TC(cs.index(k)) = P_C(a + k);
     }
-    typename ImpactResultT<N, C>::Vec qdot_C;
-    velocity_after(pb, cs, P_C, qdot_C);
+    auto& qdot_C = out.qdot_C;
+    if (compression_velocities)
+      qdot_C = *compression_velocities;
+    else
+      velocity_after(pb, cs, P_C, qdot_C);
     out.D_NC.resize(c);
     out.D_TC.setZero(c);
     for (int i = 0; i < c; ++i) {
@@ -106,33 +110,36 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
 
 // The answer's mode solved for its velocities and percussions together
 // (classical_velocity_mode.hpp); Poisson's compression first, then its expansion around the
-// compression so solved. P, P_C and q (q̇_E) are the new answer when true.
+// compression so solved. P, P_C, q (q̇_E) and qC (Poisson's q̇_C) are the new answer when true.
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                          const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
-                         typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q) {
+                         typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& qC) {
   classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
   if (!is_poisson(law)) return classical::solve_mode_in_velocities(pb, cs, law, off, P, q);
   off.target.setZero();
   typename ContactSpaceT<N, C>::Rows PC = P_C, PE = P;
-  VecT<N> qC;
-  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qC)) return false;
+  VecT<N> qc;
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qc)) return false;
   classical::hold_compression(cs, law, PC, off);
-  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qC, &PC)) return false;
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qc, &PC)) return false;
   P = PE;
   P_C = PC;
+  qC = qc;
   return true;
 }
 
 // Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
-// `velocities`, where given, are the solution's q̇_E, solved for with its percussions
-// (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
+// `velocities` (and Poisson's `compression_velocities`), where given, are the solution's q̇_E
+// (q̇_C), solved for with its percussions (classical_velocity_mode.hpp): kept as they are, the
+// percussions allowed their rounding.
 template <int N, int C>
 void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                  const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
-                 int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr) {
+                 int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr,
+                 const VecT<N>* compression_velocities = nullptr) {
   const LawSolution<C>& s = lo.solutions[pick];
-  write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities);
+  write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
   double residual = classical_residual(pb, law, out);
   // Within the tolerance, or within the rounding of the contact velocities' own terms (criterion
   // `rounding`: a grazing contact of a spinning body, whose D_NA = −6e-4 is summed from terms of
@@ -197,17 +204,17 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // newton #1280 of seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity
   // scale from the quad reference; solved for the velocities, 1e-16. At stress seeds 23 and 41 it
   // turns 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
-  VecT<N> q;
+  VecT<N> q, qC;
   typename ContactSpaceT<N, C>::Rows P = best, P_C = best_C;
   if (!(residual <= options.tolerance) && !velocities &&
-      solve_in_velocities(pb, cs, law, P, P_C, q)) {
+      solve_in_velocities(pb, cs, law, P, P_C, q, qC)) {
     ImpactResultT<N, C> trial;
-    write_classical_answer(pb, cs, law, P, P_C, trial, &q);
+    write_classical_answer(pb, cs, law, P, P_C, trial, &q, &qC);
     double trial_beyond = 0.0;
     const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
     if (trial_beyond <= options.tolerance &&
         (!(beyond_rounding <= options.tolerance) || trial_residual < residual)) {
-      write_classical_answer(pb, cs, law, P, P_C, out, &q);
+      write_classical_answer(pb, cs, law, P, P_C, out, &q, &qC);
       residual = trial_residual;
       beyond_rounding = trial_beyond;
     }
@@ -269,6 +276,7 @@ void fill_trivial(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.P_TC.setZero(cs.contacts);
     out.D_NC = out.D_NA;
     out.D_TC = out.D_TA;
+    out.qdot_C = pb.qdot_A;
   }
   out.unique = true;
   out.solutions_found = 1;
@@ -296,6 +304,7 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.P_TC.setZero(cs.contacts);
     out.D_NC = out.D_NA;
     out.D_TC = out.D_TA;
+    out.qdot_C = pb.qdot_A;
   }
   out.unique = false;
   out.solutions_found = 0;
@@ -425,9 +434,9 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
                               options.method != SolverMethod::mode_enumeration))
     return false;
   typename ContactSpaceT<N, C>::Rows P, P_C;
-  VecT<N> q;
+  VecT<N> q, qC;
   if (classical::solve_modes_in_velocities(pb, cs, law, is_poisson(law), newton_offsets(cs, law), P,
-                                           P_C, q) == 0)
+                                           P_C, q, qC) == 0)
     return false;
   LawOutcome<C> lv;
   lv.method = SolverMethod::mode_enumeration;
@@ -440,7 +449,7 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
   if (is_poisson(law)) s->P_C = P_C;
   s->method = SolverMethod::mode_enumeration;
   ImpactResultT<N, C> r;
-  fill_result(pb, cs, law, options, lv, 0, r, &q);
+  fill_result(pb, cs, law, options, lv, 0, r, &q, &qC);
   if (r.solver.status != SolverStatus::converged || !all_finite(r)) return false;
   out = std::move(r);
   return true;
@@ -551,7 +560,7 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
   template void write_classical_answer(                                                        \
       const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const ImpactLaw&,               \
       const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
-      ImpactResultT<N, C>&, const VecT<N>*);                                                   \
+      ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                   \
   template std::vector<ImpactResultT<N, C>> solve_classical_all(                               \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)

@@ -34,36 +34,38 @@ double coulomb(double t, double v, double b, double g) {
   return scaled(g, t - std::clamp(t - v / g, -b, b));
 }
 
-/// Whether the result's q̇_E satisfies M(q̇_E − q̇_A) = W_N P_N + W_T P_T to 16ε times the size of
-/// each row's terms (Σ_j |M_kj|(|q̇_E,j| + |q̇_A,j|) + Σ_i |W_ki P_i|): the backward error of a
-/// momentum balance whose every term is rounded once. Each row summed by Dot2 (accurate_dot.hpp),
-/// since its terms cancel to the velocity change.
+/// Whether q satisfies M(q − q̇_A) = W_N P_N + W_T P_T to 16ε times the size of each row's terms
+/// (Σ_j |M_kj|(|q_j| + |q̇_A,j|) + Σ_i |W_ki P_i|): the backward error of a momentum balance whose
+/// every term is rounded once. Each row summed by Dot2 (accurate_dot.hpp), since its terms cancel
+/// to the velocity change. For q̇_E with P, and Poisson's q̇_C with P_C.
 template <int N, int C>
-bool balances_percussions(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r) {
+bool balances_percussions(const ImpactProblemT<N, C>& pb, const VecT<N>& q, const VecT<C>& PN,
+                          const VecT<C>& PT) {
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
-  if (r.qdot_E.size() != n || !r.qdot_E.allFinite()) return false;
+  if (q.size() != n || !q.allFinite() || PN.size() != c || (tangential && PT.size() != c))
+    return false;
   const int terms = n + (tangential ? 2 * c : c);
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N == Dynamic ? Dynamic : N + times2(C), 1> row(terms),
       x(terms);
-  for (int j = 0; j < n; ++j) x(j) = r.qdot_E(j) - pb.qdot_A(j);
+  for (int j = 0; j < n; ++j) x(j) = q(j) - pb.qdot_A(j);
   for (int i = 0; i < c; ++i) {
-    x(n + i) = -r.P_N(i);
-    if (tangential) x(n + c + i) = -r.P_T(i);
+    x(n + i) = -PN(i);
+    if (tangential) x(n + c + i) = -PT(i);
   }
   constexpr double eps16 = 16 * std::numeric_limits<double>::epsilon();
   for (int k = 0; k < n; ++k) {
     double size = 0.0;
     for (int j = 0; j < n; ++j) {
       row(j) = pb.M(k, j);
-      size += std::fabs(pb.M(k, j)) * (std::fabs(r.qdot_E(j)) + std::fabs(pb.qdot_A(j)));
+      size += std::fabs(pb.M(k, j)) * (std::fabs(q(j)) + std::fabs(pb.qdot_A(j)));
     }
     for (int i = 0; i < c; ++i) {
       row(n + i) = pb.W_N(k, i);
-      size += std::fabs(pb.W_N(k, i) * r.P_N(i));
+      size += std::fabs(pb.W_N(k, i) * PN(i));
       if (!tangential) continue;
       row(n + c + i) = pb.W_T(k, i);
-      size += std::fabs(pb.W_T(k, i) * r.P_T(i));
+      size += std::fabs(pb.W_T(k, i) * PT(i));
     }
     const double imbalance = accurate_dot(row, x);
     if (!std::isfinite(size) || !(std::fabs(imbalance) <= eps16 * size)) return false;
@@ -152,8 +154,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     llt.solve_lower_in_place(MinvW_all);
     llt.solve_upper_in_place(MinvW_all);
   }
-  // The law at velocities qE (and the floors, into *beyond when asked).
-  auto evaluate = [&](const VecT<N>& qE, double* beyond_rounding) {
+  // The law at velocities qE and Poisson's qC (and the floors, into *beyond when asked).
+  auto evaluate = [&](const VecT<N>& qE, const VecT<N>& q_C, double* beyond_rounding) {
     // |W_i|ᵀ(|q̇_A| + |q̇_E| + |q̇_C|): the size of the terms every velocity of contact i is summed
     // from. A grazing contact of a spinning body (D_NA = −6e-4 from terms of 1.2) is known only to
     // ε times that, far above ε|D_NA|.
@@ -161,7 +163,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     VecT<N> q_abs(n);
     if (beyond_rounding) {
       q_abs = pb.qdot_A.cwiseAbs() + qE.cwiseAbs();
-      if (poisson) q_abs += qC.cwiseAbs();
+      if (poisson) q_abs += q_C.cwiseAbs();
     }
     // Σ_k |W_jᵀ M⁻¹W_k| |P_k| for the direction W_j; zero percussions add nothing (also where their
     // column overflows).
@@ -225,8 +227,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
         continue;
       }
       // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
-      const double dnc = contact_velocity(pb.W_N.col(i), qC, wn(i));
-      const double dtc = tangential ? contact_velocity(pb.W_T.col(i), qC, wt(i)) : 0.0;
+      const double dnc = contact_velocity(pb.W_N.col(i), q_C, wn(i));
+      const double dtc = tangential ? contact_velocity(pb.W_T.col(i), q_C, wt(i)) : 0.0;
       keep(complementarity(dnc, r.P_NC(i), gn));
       if (tangential) keep(coulomb(r.P_TC(i), dtc, mu * r.P_NC(i), gt));
       const double pne = r.P_N(i) - r.P_NC(i), pte = r.P_T(i) - r.P_TC(i);
@@ -244,21 +246,28 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     return worst / v_scale;
   };
   // At the velocities the percussions make; and, where those miss the law beyond 64ε, at the
-  // result's own q̇_E if it balances the percussions, M(q̇_E − q̇_A) = W_N P_N + W_T P_T, to the
-  // rounding of that equation's terms, the smaller of the two. P and q̇_E are each the exact
-  // answer rounded where the contact mode was solved for both, M only multiplied
-  // (classical_velocity_mode.hpp), and on an ill-conditioned M (cond 1e9) the velocities made
-  // from the rounded P are then 1e-6 off the law that q̇_E meets to 1e-16. Velocities that do
-  // not balance P (or none) are not read: the result is judged by its P.
+  // result's own q̇_E (and Poisson's q̇_C) where it balances its percussions, M(q̇_E − q̇_A) =
+  // W_N P_N + W_T P_T, to the rounding of that equation's terms, the smaller of the two. P and q̇_E
+  // are each the exact answer rounded where the contact mode was solved for both, M only
+  // multiplied (classical_velocity_mode.hpp), and on an ill-conditioned M (cond 1e9) the
+  // velocities made from the rounded P are then 1e-6 off the law that q̇_E meets to 1e-16.
+  // Velocities that do not balance their percussions (or none) are not read: the result is judged
+  // by its percussions there.
+  const VecT<N> qE_P = velocity(r.P_N, r.P_T);
   double beyond_P = 0.0;
-  const double at_P = evaluate(velocity(r.P_N, r.P_T), beyond_rounding ? &beyond_P : nullptr);
+  const double at_P = evaluate(qE_P, qC, beyond_rounding ? &beyond_P : nullptr);
   double residual = at_P;
-  if (!(at_P <= 64 * std::numeric_limits<double>::epsilon()) && balances_percussions(pb, r)) {
-    double beyond_E = 0.0;
-    const double at_E = evaluate(r.qdot_E, beyond_rounding ? &beyond_E : nullptr);
-    if (at_E < at_P) {
-      residual = at_E;
-      beyond_P = beyond_E;
+  if (!(at_P <= 64 * std::numeric_limits<double>::epsilon())) {
+    const bool own_E = balances_percussions(pb, r.qdot_E, r.P_N, r.P_T);
+    const bool own_C = poisson && balances_percussions(pb, r.qdot_C, r.P_NC, r.P_TC);
+    if (own_E || own_C) {
+      double beyond_E = 0.0;
+      const double at_E = evaluate(own_E ? r.qdot_E : qE_P, own_C ? r.qdot_C : qC,
+                                   beyond_rounding ? &beyond_E : nullptr);
+      if (at_E < at_P) {
+        residual = at_E;
+        beyond_P = beyond_E;
+      }
     }
   }
   if (beyond_rounding) *beyond_rounding = beyond_P;

@@ -46,6 +46,7 @@ ImpactResultT<N, C> convert(const ImpactResultT<N0, C0>& s) {
   d.P_TC = s.P_TC;
   d.D_NC = s.D_NC;
   d.D_TC = s.D_TC;
+  d.qdot_C = s.qdot_C;
   d.takes_part = s.takes_part;
   d.energy_change = s.energy_change;
   d.unique = s.unique;
@@ -65,7 +66,7 @@ ImpactResult to_dynamic(const SmallImpactResult& result) {
 }
 
 bool fits_small(const ImpactResult& r) {
-  if (r.qdot_E.size() > kSmallDofs) return false;
+  if (r.qdot_E.size() > kSmallDofs || r.qdot_C.size() > kSmallDofs) return false;
   for (const Eigen::VectorXd* v :
        {&r.P_N, &r.P_T, &r.D_NA, &r.D_TA, &r.D_NE, &r.D_TE, &r.P_N_reaction, &r.P_NC, &r.P_TC,
         &r.D_NC, &r.D_TC, &r.admissibility.per_contact})

@@ -105,6 +105,8 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                               {"D_NC", r.D_NC.size()},
                               {"D_TC", r.D_TC.size()}})
       if (size != c) return std::string(name) + " has " + std::to_string(size) + " entries" + tag;
+  if (r.has_phases && r.qdot_C.size() != n)
+    return "qdot_C has " + std::to_string(r.qdot_C.size()) + " entries" + tag;
 
   for (auto [name, ok] : {std::pair{"qdot_E", all_finite(r.qdot_E)},
                           {"P_N", all_finite(r.P_N)},
@@ -123,7 +125,8 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     for (auto [name, ok] : {std::pair{"P_NC", all_finite(r.P_NC)},
                             {"P_TC", all_finite(r.P_TC)},
                             {"D_NC", all_finite(r.D_NC)},
-                            {"D_TC", all_finite(r.D_TC)}})
+                            {"D_TC", all_finite(r.D_TC)},
+                            {"qdot_C", all_finite(r.qdot_C)}})
       if (!ok) return std::string("not finite: ") + name + tag;
   const auto& a = r.admissibility;
   for (auto [name, v] : {std::pair{"total", a.total},

@@ -293,7 +293,7 @@ int heap_blocks(const ImpactResult& r) {
   int k = 0;
   for (const Eigen::VectorXd* v :
        {&r.qdot_E, &r.P_N, &r.P_T, &r.D_NA, &r.D_TA, &r.D_NE, &r.D_TE, &r.P_N_reaction, &r.P_NC,
-        &r.P_TC, &r.D_NC, &r.D_TC, &r.admissibility.per_contact})
+        &r.P_TC, &r.D_NC, &r.D_TC, &r.qdot_C, &r.admissibility.per_contact})
     k += v->size() > 0 ? 1 : 0;
   return k + (r.takes_part.size() > 0 ? 1 : 0);
 }

@@ -95,6 +95,7 @@ void expect_same(const ImpactResult& h, const SmallImpactResult& s) {
   expect_same_vector(h.P_TC, s.P_TC, "P_TC");
   expect_same_vector(h.D_NC, s.D_NC, "D_NC");
   expect_same_vector(h.D_TC, s.D_TC, "D_TC");
+  expect_same_vector(h.qdot_C, s.qdot_C, "qdot_C");
   expect_same_vector(h.takes_part, s.takes_part, "takes_part");
   EXPECT_EQ(h.energy_change, s.energy_change);
   EXPECT_EQ(h.unique, s.unique);

@@ -29,9 +29,11 @@ struct ImpactResultT {
   CVec P_N, P_T;                ///< percussions on the body (P_N ≥ 0 pushes apart).
   CVec D_NA, D_TA, D_NE, D_TE;  ///< contact velocities before and after.
   CVec P_N_reaction;            ///< Frémond: the reaction part of P_N (−I_reac ≥ 0); else 0.
-  /// Poisson's phases (has_phases): compression percussions and the velocities at its end.
+  /// Poisson's phases (has_phases): compression percussions and the velocities at its end, of
+  /// the body (qdot_C) and of the contacts.
   bool has_phases = false;
   CVec P_NC, P_TC, D_NC, D_TC;
+  Vec qdot_C;
   Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, MaxContacts, 1>
       takes_part;              ///< 1 if D_NA ≤ 0
   double energy_change = 0.0;  ///< T_E − T_A.

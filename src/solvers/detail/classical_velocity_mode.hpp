@@ -272,23 +272,24 @@ double energy_change(const ImpactProblemT<N, C>& pb, const VecT<N>& q) {
 /// #27360 of seed 7); on four dofs with cond(M) = 2.1e11 the one mode with an answer
 /// (newton_coulomb #7063 of seed 2) is not fixed by W alone. Of the answers accepted, the most
 /// dissipative (T_E − T_A from the velocities). `off` is Newton's (newton_offsets); Poisson's
-/// phases are built from it. Returns the number of answers accepted; P, P_C (Poisson) and q hold
-/// the one kept when it is not zero.
+/// phases are built from it. Returns the number of answers accepted; P, q and Poisson's P_C, q_C
+/// hold the one kept when it is not zero.
 template <int N, int C>
 int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, bool poisson, const ModeOffsets<N, C>& off,
                               typename ContactSpaceT<N, C>::Rows& P,
-                              typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q) {
+                              typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& q_C) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
   int kept = 0;
   double best_energy = 0.0;
-  auto keep = [&](const Rows& Pm, const Rows& PCm, const VecT<N>& qm) {
+  auto keep = [&](const Rows& Pm, const Rows& PCm, const VecT<N>& qm, const VecT<N>& qCm) {
     const double energy = energy_change(pb, qm);
     if (kept == 0 || energy < best_energy) {
       best_energy = energy;
       P = Pm;
       P_C = PCm;
       q = qm;
+      q_C = qCm;
     }
     ++kept;
   };
@@ -296,7 +297,7 @@ int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
   VecT<N> qm, qC;
   if (!poisson) {
     for_each_mode(cs, law, off, [&](const Mode<N, C>& mode) {
-      if (solve_mode_with_velocities(pb, cs, law, off, mode, Pm, qm)) keep(Pm, Rows(), qm);
+      if (solve_mode_with_velocities(pb, cs, law, off, mode, Pm, qm)) keep(Pm, Rows(), qm, qm);
     });
     return kept;
   }
@@ -308,7 +309,7 @@ int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
     hold_compression(cs, law, PCm, expansion);
     for_each_mode(cs, law, expansion, [&](const Mode<N, C>& me) {
       if (solve_mode_with_velocities(pb, cs, law, expansion, me, Pm, qm, &qC, &PCm))
-        keep(Pm, PCm, qm);
+        keep(Pm, PCm, qm, qC);
     });
   });
   return kept;

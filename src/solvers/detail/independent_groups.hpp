@@ -116,6 +116,7 @@ class GroupMerge {
         P_(Rows::Zero(cs.rows())),
         P_C_(Rows::Zero(cs.rows())),
         dq_(VecT<N>::Zero(cs.dofs)),
+        dqC_(VecT<N>::Zero(cs.dofs)),
         reaction_(VecT<C>::Zero(cs.contacts)) {}
 
   /// Takes group g's answer r for its contacts (group(k) == g) and its solver report.
@@ -134,6 +135,7 @@ class GroupMerge {
       }
     }
     dq_ += r.qdot_E - pb_.qdot_A;
+    if (r.has_phases) dqC_ += r.qdot_C - pb_.qdot_A;
     // The report kept is the first group's not converged, else the one that worked most.
     const bool converged = r.solver.status == SolverStatus::converged;
     if (!have_ || (report_.status == SolverStatus::converged &&
@@ -160,8 +162,8 @@ class GroupMerge {
       scatter_solution(pb_, cs_, P_, merged);
       merged.P_N_reaction = reaction_;
     } else {
-      const VecT<N> q = pb_.qdot_A + dq_;
-      write_classical_answer(pb_, cs_, law, P_, P_C_, merged, &q);
+      const VecT<N> q = pb_.qdot_A + dq_, qC = pb_.qdot_A + dqC_;
+      write_classical_answer(pb_, cs_, law, P_, P_C_, merged, &q, &qC);
     }
     if (!(merged.qdot_E.allFinite() && std::isfinite(merged.energy_change))) return false;
     merged.solver = report_;
@@ -180,7 +182,7 @@ class GroupMerge {
   const ImpactProblemT<N, C>& pb_;
   const ContactSpaceT<N, C>& cs_;
   Rows P_, P_C_;
-  VecT<N> dq_;  ///< the sum of the groups' velocity changes
+  VecT<N> dq_, dqC_;  ///< the sum of the groups' velocity changes (dqC_: Poisson's compression)
   VecT<C> reaction_;
   SolverReport report_;
   bool have_ = false, rounding_ = false, unique_ = true;

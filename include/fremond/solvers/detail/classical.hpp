@@ -18,15 +18,17 @@ void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
 
 /// Writes the percussions P (and Poisson's compression P_C) of the rows that take part (`cs`'s
 /// row order) into `out`: velocities, percussions, contact velocities and, for Poisson, the phases.
-/// The velocities are made from P, or are `velocities` where given (a mode solved for its
-/// velocities first, classical_velocity_mode.hpp).
+/// The velocities are made from P (and P_C), or are `velocities` (and `compression_velocities`)
+/// where given (a mode solved for its velocities and percussions together,
+/// classical_velocity_mode.hpp).
 template <int MaxDofs, int MaxContacts>
 void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                             const ContactSpaceT<MaxDofs, MaxContacts>& cs, const ImpactLaw& law,
                             const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
                             const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P_C,
                             ImpactResultT<MaxDofs, MaxContacts>& out,
-                            const VecT<MaxDofs>* velocities = nullptr);
+                            const VecT<MaxDofs>* velocities = nullptr,
+                            const VecT<MaxDofs>* compression_velocities = nullptr);
 
 /// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
 template <int MaxDofs, int MaxContacts>
