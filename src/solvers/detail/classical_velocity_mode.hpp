@@ -193,8 +193,8 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
 }
 
 /// Solves the mode of the answer P (`off` as refine_answer builds it) for q̇ and P together
-/// (solve_mode_with_velocities). Returns false, with P and
-/// q untouched, where that does not accept the answer.
+/// (solve_mode_with_velocities). Returns false, with P and q untouched, where that does not accept
+/// the answer.
 template <int N, int C>
 bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, const ModeOffsets<N, C>& off,
@@ -249,19 +249,6 @@ void for_each_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
   }
 }
 
-/// T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A) (eq. 9), from the velocities.
-template <int N, int C>
-double energy_change(const ImpactProblemT<N, C>& pb, const VecT<N>& q) {
-  const int n = pb.dofs();
-  double energy = 0.0;
-  for (int i = 0; i < n; ++i) {
-    double Ms = 0.0;
-    for (int l = 0; l < n; ++l) Ms += pb.M(i, l) * (q(l) + pb.qdot_A(l));
-    energy += 0.5 * (q(i) - pb.qdot_A(i)) * Ms;
-  }
-  return energy;
-}
-
 /// The classical laws where no contact mode solves the law in contact space, not even with G in
 /// extended precision: every mode (for_each_mode; Poisson's: every expansion mode around every
 /// compression mode accepted) solved for the velocities and the percussions together
@@ -283,7 +270,7 @@ int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
   int kept = 0;
   double best_energy = 0.0;
   auto keep = [&](const Rows& Pm, const Rows& PCm, const VecT<N>& qm, const VecT<N>& qCm) {
-    const double energy = energy_change(pb, qm);
+    const double energy = energy_change_at(pb, qm);
     if (kept == 0 || energy < best_energy) {
       best_energy = energy;
       P = Pm;

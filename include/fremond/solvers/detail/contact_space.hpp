@@ -179,6 +179,28 @@ void velocity_after(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   if (x.allFinite()) q = pb.qdot_A + x;
 }
 
+/// T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from the velocities q̇_E.
+/// No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
+template <int MaxDofs, int MaxContacts>
+double energy_change_at(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const VecT<MaxDofs>& qE) {
+  const int n = pb.dofs();
+  bool moved = false;
+  for (int i = 0; i < n && !moved; ++i) moved = qE(i) != pb.qdot_A(i);
+  if (!moved) return 0.0;
+  if constexpr (MaxDofs != Dynamic) {
+    double e = 0.0;  // fused: no temporary
+    for (int i = 0; i < n; ++i) {
+      double Ms = 0.0;
+      for (int j = 0; j < n; ++j) Ms += pb.M(i, j) * (qE(j) + pb.qdot_A(j));
+      e += (qE(i) - pb.qdot_A(i)) * Ms;
+    }
+    return 0.5 * e;
+  } else {
+    const auto dq = (qE - pb.qdot_A).eval();
+    return 0.5 * dq.dot(pb.M * (qE + pb.qdot_A));
+  }
+}
+
 /// Fills the percussions, contact velocities and energy change of `out` from the active-row
 /// percussions P (size rows()) and the velocities already in out.qdot_E. Contacts that do not take
 /// part get zero percussion.
@@ -208,25 +230,7 @@ void scatter_at_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     if (pb.has_tangential())
       out.D_TE(i) = contact_velocity(pb.W_T.col(i), out.qdot_E, pb.w_T.size() ? pb.w_T(i) : 0.0);
   }
-  // T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from velocities.
-  // No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
-  const int n = cs.dofs;
-  bool moved = false;
-  for (int i = 0; i < n && !moved; ++i) moved = out.qdot_E(i) != pb.qdot_A(i);
-  if (!moved) {
-    out.energy_change = 0.0;
-  } else if constexpr (MaxDofs != Dynamic) {
-    double e = 0.0;  // fused: no temporary
-    for (int i = 0; i < n; ++i) {
-      double Ms = 0.0;
-      for (int j = 0; j < n; ++j) Ms += pb.M(i, j) * (out.qdot_E(j) + pb.qdot_A(j));
-      e += (out.qdot_E(i) - pb.qdot_A(i)) * Ms;
-    }
-    out.energy_change = 0.5 * e;
-  } else {
-    const auto dq = (out.qdot_E - pb.qdot_A).eval();
-    out.energy_change = 0.5 * dq.dot(pb.M * (out.qdot_E + pb.qdot_A));
-  }
+  out.energy_change = energy_change_at(pb, out.qdot_E);
 }
 
 /// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
