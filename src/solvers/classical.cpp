@@ -110,22 +110,34 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
 
 // The answer's mode solved for its velocities and percussions together
 // (classical_velocity_mode.hpp); Poisson's compression first, then its expansion around the
-// compression so solved. P, P_C, q (q̇_E) and qC (Poisson's q̇_C) are the new answer when true.
+// compression so solved. P, P_C, q (q̇_E) and qC (Poisson's q̇_C) are the new answer when true;
+// `continuum` then says whether a phase's percussions form a continuum about it (more rows hold
+// than they have independent directions, solve_mode_with_velocities).
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                          const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
-                         typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& qC) {
+                         typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& qC,
+                         bool& continuum) {
   classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
-  if (!is_poisson(law)) return classical::solve_mode_in_velocities(pb, cs, law, off, P, q);
+  const VecT<N>* from_A = nullptr;  // from q̇_A and no percussion
+  const typename ContactSpaceT<N, C>::Rows* from_zero = nullptr;
+  if (!is_poisson(law))
+    return classical::solve_mode_in_velocities(pb, cs, law, off, P, q, from_A, from_zero,
+                                               &continuum);
   off.target.setZero();
   typename ContactSpaceT<N, C>::Rows PC = P_C, PE = P;
   VecT<N> qc;
-  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qc)) return false;
+  bool compression = false, expansion = false;
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qc, from_A, from_zero,
+                                           &compression))
+    return false;
   classical::hold_compression(cs, law, PC, off);
-  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qc, &PC)) return false;
+  if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qc, &PC, &expansion))
+    return false;
   P = PE;
   P_C = PC;
   qC = qc;
+  continuum = compression || expansion;
   return true;
 }
 
@@ -206,8 +218,10 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // turns 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
   VecT<N> q, qC;
   typename ContactSpaceT<N, C>::Rows P = best, P_C = best_C;
+  bool continuum = false;  // the answer kept solved so, its percussions a continuum
+  bool dependent = false;
   if (!(residual <= options.tolerance) && !velocities &&
-      solve_in_velocities(pb, cs, law, P, P_C, q, qC)) {
+      solve_in_velocities(pb, cs, law, P, P_C, q, qC, dependent)) {
     ImpactResultT<N, C> trial;
     write_classical_answer(pb, cs, law, P, P_C, trial, &q, &qC);
     double trial_beyond = 0.0;
@@ -217,11 +231,12 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
       write_classical_answer(pb, cs, law, P, P_C, out, &q, &qC);
       residual = trial_residual;
       beyond_rounding = trial_beyond;
+      continuum = dependent;
     }
   }
   const int found = lo.solutions.size;
-  out.unique =
-      lo.exhaustive && found == 1 && !lo.continuum && lo.percussion_unique && lo.compression_unique;
+  out.unique = lo.exhaustive && found == 1 && !lo.continuum && !continuum && lo.percussion_unique &&
+               lo.compression_unique;
   out.solutions_found = lo.exhaustive ? found : 0;
   out.solver.method = s.method;
   out.solver.criterion = StopCriterion::exact;
@@ -230,6 +245,11 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   out.solver.residual = residual;
   if (lo.continuum)
     out.solver.message = "a continuum of solutions (singular contact modes)";
+  else if (continuum)
+    out.solver.message =
+        "the percussions are not unique: more contact rows hold than they have independent "
+        "directions; the velocities are, and the mode was solved for them and the percussions "
+        "together, M only multiplied";
   else if (lo.exhaustive && found > 1)
     out.solver.message =
         "several solutions; the most dissipative that satisfies the law is returned";
