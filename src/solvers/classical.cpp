@@ -131,7 +131,17 @@ bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   if (!classical::solve_mode_in_velocities(pb, cs, law, off, PC, qc, from_A, from_zero,
                                            &compression))
     return false;
+  // The expansion's increments (x = P_N − (1 + e) P_NC, t = P_T − P_TC) carried over to the
+  // compression just solved, whose P_NC moved by its cond(M) ε: read around the new compression,
+  // an expansion at x = 0 exactly (open, P_NE = e P_NC) read as closed, and its mode had no
+  // answer (stress poisson_coulomb #36 of seed 23: cond(M) = 7.7e10, e = 1).
+  classical::ModeOffsets<N, C> found_around = off;
+  classical::hold_compression(cs, law, P_C, found_around);
   classical::hold_compression(cs, law, PC, off);
+  for (int k = 0; k < cs.active; ++k) {
+    PE(k) = off.cN(k) + (P(k) - found_around.cN(k));
+    if (cs.tangential) PE(cs.active + k) = off.cT(k) + (P(cs.active + k) - found_around.cT(k));
+  }
   if (!classical::solve_mode_in_velocities(pb, cs, law, off, PE, q, &qc, &PC, &expansion))
     return false;
   P = PE;

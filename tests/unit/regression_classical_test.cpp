@@ -1299,14 +1299,15 @@ TEST(RegressionClassical, PoissonCoulombAnswerOfAnIllConditionedBodyIsFound) {
   EXPECT_LE(r.qdot_C.cwiseAbs().maxCoeff(), 1e-15 * pb.qdot_A.cwiseAbs().maxCoeff());
 }
 
-// Poisson + Coulomb on two contacts of a 3-dof body with cond(M) = 7e8 and μ up to 152: both
-// contacts close and stick in the expansion (and all but one edge of the cone in the compression),
-// four velocity rows on three dofs. Their directions span R³, so the exact velocities are zero
-// after either phase, and the percussions form a line. Through G (M⁻¹) the percussions carry
-// cond(M) ε, and the velocities they make missed the law by 2e-4 of their scale: `stalled`, and
-// called unique (stress poisson_coulomb #31 of seed 23, one of 201 such answers in 10,000). Solved
-// on a basis of the rows (classical_velocity_mode.hpp), the fourth kept at the answer's
-// percussion, the velocities are zero to rounding and the percussions balance the momentum.
+// Poisson + Coulomb on two contacts of a 3-dof body with cond(M) = 7e8 and μ up to 152: each
+// phase holds four rows on three dofs (the compression: both contacts closed, one sticking, the
+// other on its cone's edge at zero velocity; the expansion: both sticking, one normal at
+// P_NE = e P_NC exactly with D_NE = 0). Their directions span R³, so the exact velocities are zero
+// after either phase, and the percussions can move along the fourth row's dependence: not unique.
+// Through G (M⁻¹) the percussions carry cond(M) ε, and the velocities they make missed the law by
+// 2e-4 of their scale: `stalled`, and called unique (stress poisson_coulomb #31 of seed 23). Solved
+// in velocities (classical_velocity_mode.hpp), the velocities are zero to rounding, the
+// percussions balance the momentum, and the loose row's dependence says they are not unique.
 TEST(RegressionClassical, DependentRowsFixTheVelocitiesAndLeaveAPercussionLine) {
   const auto file = io::parse_problem_file(R"({
     "M": [[3244929807.7073026, 11475402934.543106, -8022093892.958725],
@@ -1363,6 +1364,76 @@ TEST(RegressionClassical, DependentRowsFixTheVelocitiesAndLeaveAPercussionLine) 
     EXPECT_GE(PNE, law.e[i] * r.P_NC(i) - slack) << i;
     EXPECT_LE(std::fabs(r.P_T(i) - r.P_TC(i)), law.mu[i] * PNE + slack) << i;
   }
+}
+
+// Newton, e = 1, three contacts closing on a 2-dof body: three velocity rows on two dofs, so the
+// square system of the mode in velocities was singular and the answer through G, `stalled` at a
+// residual above tolerance, was returned as such (stress newton #1868 of seed 41, one of 14 such
+// in 10,000). On a basis of two rows, the third kept at the answer's percussion
+// (classical_velocity_mode.hpp), the velocities are the closed form's: every closed row reverses
+// its velocity (D_NE = −D_NA) and the rows span R², so q̇_E = −q̇_A. The third row's percussion
+// can move along its dependence on the other two: not unique.
+TEST(RegressionClassical, MoreClosedRowsThanDofsAreSolvedOnABasis) {
+  ImpactProblem pb;
+  pb.M.resize(2, 2);
+  pb.M << 42.885090581879709, -208.77627664455056, -208.77627664455056, 1029.9216065751084;
+  pb.W_N.resize(2, 4);
+  pb.W_N << -0.60220827051902837, 0.38930176355038526, 0.98434060831503234, 0.41338648376496545,
+      -0.47146271789092431, 0.29893574632745268, -0.39237254115806797, -0.60613980535257539;
+  pb.qdot_A = Eigen::Vector2d(-1613448.2652312864, 2454831.586935211);
+  const ImpactLaw law = ImpactLaw::newton(1.0);
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  EXPECT_FALSE(r.unique) << r.solver.message;
+  ASSERT_FALSE(r.takes_part(1));  // separating
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(r.qdot_E(k), -pb.qdot_A(k), 4e-16 * pb.qdot_A.cwiseAbs().maxCoeff()) << k;
+  // W_N P_N = M (q̇_E − q̇_A) = −2 M q̇_A, in long double to 1e-14 of the terms; P_N ≥ 0.
+  for (int k = 0; k < 2; ++k) {
+    long double sum = 0.0L, size = 0.0L;
+    for (int j = 0; j < 2; ++j) {
+      sum += 2.0L * pb.M(k, j) * pb.qdot_A(j);
+      size += std::fabs(2.0 * pb.M(k, j) * pb.qdot_A(j));
+    }
+    for (int i = 0; i < 4; ++i) {
+      sum += static_cast<long double>(pb.W_N(k, i)) * r.P_N(i);
+      size += std::fabs(pb.W_N(k, i) * r.P_N(i));
+    }
+    EXPECT_LE(static_cast<double>(std::fabs(sum) / size), 1e-14) << k;
+  }
+  EXPECT_EQ(r.P_N(1), 0.0);
+  for (int i = 0; i < 4; ++i) EXPECT_GE(r.P_N(i), 0.0) << i;
+}
+
+// Poisson + Coulomb on one contact of a 2-dof body with cond(M) = 7.7e10, e = 1: the compression
+// closes and sticks (two rows on two dofs: q̇_C = 0), the expansion leaves the normal at
+// P_NE = e P_NC (open) and sticks. Solved in velocities, the compression's P_NC moved by its
+// cond(M) ε from the one found through G, and the expansion, read around the new compression,
+// read its normal as closed, a mode with no answer: `stalled`, with velocities 4e-6 off (stress
+// poisson_coulomb #36 of seed 23). The expansion's increments are now carried over. Reference:
+// both phases in 50 digits (mpmath): P_C = −W⁻¹ M q̇_A, then M q̇_E = e W_N P_NC + W_T t with
+// W_Tᵀ q̇_E = 0.
+TEST(RegressionClassical, ExpansionIsReadAroundTheCompressionItWasFoundWith) {
+  const auto file = io::parse_problem_file(R"({
+    "M": [[5074057846.7357483, -1492822396.4804811], [-1492822396.4804811, 439198522.19742715]],
+    "W_N": [[1], [0]], "W_T": [[0.9950312349405932], [0.41266567450913194]],
+    "qdot_A": [-0.00054946436589781687, 0.00041127860798472837],
+    "law": {"type": "poisson_coulomb", "e": 1, "mu": 105.81480459385777}})",
+                                           PotentialRegistry::with_builtins());
+  const ImpactProblem& pb = file.problem;
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, file.law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+  const Eigen::Vector2d qE(3.922226462596455808e-4, -9.457384226193161442e-4);
+  const Eigen::Vector2d d = r.qdot_E - qE;
+  EXPECT_LE(std::sqrt(d.dot(pb.M * d)), 1e-14 * std::sqrt(pb.qdot_A.dot(pb.M * pb.qdot_A)));
+  EXPECT_LE(r.qdot_C.cwiseAbs().maxCoeff(), 1e-15 * pb.qdot_A.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(r.P_NC(0), 5815343.942181091843, 1e-12 * 5815343.9);
+  EXPECT_NEAR(r.P_TC(0), -2425415.366831936139, 1e-12 * 5815343.9);
+  EXPECT_NEAR(r.P_T(0) - r.P_TC(0), -2425415.366891197186, 1e-12 * 5815343.9);
 }
 
 }  // namespace

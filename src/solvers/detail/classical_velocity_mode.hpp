@@ -61,15 +61,12 @@ double row_offset(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
 /// answer (P, q̇_E) solved on the m basic ones `rows`: each meets its velocity row to 16ε of its
 /// own terms and of the basic rows' it is a combination of (W_j = Σ c_k W_k, least squares), a
 /// closed one's increment is not negative and a sticking one's lies in its cone μ (P_N − cB).
-/// `strict`: whether every kept row is inside its constraint (a positive increment, a sticking
-/// percussion strictly inside its cone).
 template <int N, int C>
 bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                     const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
                     const RowFlags<N, C>& basic, const RowFlags<N, C>& rows, int m,
                     const typename ContactSpaceT<N, C>::Rows& P, const VecT<N>& qE,
-                    const VecT<N>& q0, bool& strict) {
-  strict = true;
+                    const VecT<N>& q0) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const int a = cs.active, r = cs.rows(), n = cs.dofs;
   auto target = [&](int j) { return j < a ? off.target(j) : 0.0; };
@@ -91,16 +88,60 @@ bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
     if (!(std::fabs(miss) <= 16 * eps * bound)) return false;
     if (j < a) {
       if (!(P(j) >= off.cN(j))) return false;
-      strict = strict && P(j) > off.cN(j);
     } else {
       const int k = j - a;
-      const double t = std::fabs(P(j) - off.cT(k));
-      const double bound = Mode<N, C>::mu(cs, law, k) * (P(k) - off.cB(k));
-      if (!(t <= bound)) return false;
-      strict = strict && t < bound;
+      if (!(std::fabs(P(j) - off.cT(k)) <= Mode<N, C>::mu(cs, law, k) * (P(k) - off.cB(k))))
+        return false;
     }
   }
   return true;
+}
+
+/// Whether the percussions of an answer solved on the m basic rows `rows` can move without moving
+/// any velocity or leaving the law, to first order: along δ = ±(e_j − Σ c_k e_k) for a row j of
+/// `loose` (a kept velocity row, or a free row the answer holds on its boundary: an open normal
+/// at zero increment whose velocity meets its target to rounding, a sliding row at zero velocity,
+/// whose percussion may then move into the cone), W_j = Σ c_k W_k within 1e-8 of |W_j|. The basic
+/// rows are inside their constraints beyond rounding (solve_mode_on_basis), so only rows on the
+/// boundary of theirs (`edge`: zero increments, percussions on the cone's edge) can stop a move.
+/// A sliding row that is not loose ties its percussion to its normal's, so that a move along W's
+/// dependence alone would change the momentum: no move is claimed then (`ties`).
+template <int N, int C>
+bool percussions_can_move(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+                          const ModeOffsets<N, C>& off, const RowFlags<N, C>& rows, int m,
+                          const RowFlags<N, C>& loose, const RowFlags<N, C>& edge,
+                          const typename ContactSpaceT<N, C>::Rows& P) {
+  using Rows = typename ContactSpaceT<N, C>::Rows;
+  const int a = cs.active, r = cs.rows(), n = cs.dofs;
+  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, N, N>;  // m ≤ n
+  Basis B(n, m);
+  for (int k = 0; k < m; ++k) B.col(k) = cs.W.col(rows(k));
+  const Eigen::HouseholderQR<Basis> qr(B);
+  for (int j = 0; j < r; ++j) {
+    if (!loose(j)) continue;
+    const VecT<N> wj = cs.W.col(j);
+    const VecT<N> c = qr.solve(wj);
+    if (!((B * c - wj).norm() <= 1e-8 * wj.norm())) continue;  // not a dependence
+    for (const double s : {1.0, -1.0}) {
+      Rows d = Rows::Zero(r);
+      d(j) = s;
+      for (int k = 0; k < m; ++k) d(rows(k)) -= s * c(k);
+      bool feasible = true;
+      for (int i = 0; i < r && feasible; ++i) {
+        if (!edge(i)) continue;
+        if (i < a) {
+          feasible = d(i) >= 0.0;  // a zero increment may only grow
+        } else {  // |t| = μ (P_N − cB): |t + δt| ≤ μ (P_N + δP_N − cB) to first order
+          const int k = i - a;
+          const double t = P(i) - off.cT(k), mu = Mode<N, C>::mu(cs, law, k);
+          feasible =
+              t != 0.0 ? (t > 0.0 ? d(i) : -d(i)) <= mu * d(k) : std::fabs(d(i)) <= mu * d(k);
+        }
+      }
+      if (feasible) return true;
+    }
+  }
+  return false;
 }
 
 /// Solves contact mode `mode` around the fixed part and target of `off` for q̇ and the percussions
@@ -111,10 +152,9 @@ bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
 /// above 64ε), each basic closed row's percussion and each basic sticking row's slack in the cone
 /// exceed what rounding can move them by, each kept sticking row lies in its cone, the rows the
 /// mode leaves free (open normals, sliding tangents) meet the law to their rounding, and the answer
-/// is finite. `continuum` (when accepted): rows were kept, every kept row lies strictly inside its
-/// constraint, and no velocity row carries a sliding row's share (the momentum columns are the
-/// velocity rows' own directions, so the percussions can move along the dependence without
-/// moving any velocity): the percussions form a continuum about the answer, the velocities not.
+/// is finite. `continuum` (when accepted): the percussions can move along a dependence of the rows
+/// the answer holds without leaving the law (percussions_can_move): they form a continuum about
+/// the answer, the velocities not.
 template <int N, int C>
 bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                          const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
@@ -247,6 +287,7 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   // would otherwise pass the law's residual within the allowance for rounded percussions
   // (RegressionClassical.RoundingAllowanceDoesNotAcceptAWrongModeAsConverged).
   const VecT<N> qE = q0 + y.head(n);
+  RowFlags<N, C> loose = RowFlags<N, C>::Zero(r), edge = RowFlags<N, C>::Zero(r);
   for (int j = 0; j < r; ++j) {
     const bool normal = j < a;
     if (normal ? mode.kind(j) != 1 : mode.slide(j) == 0.0) continue;
@@ -255,19 +296,30 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
         16 * eps *
         (std::fabs(offset(j)) + cs.W.col(j).cwiseAbs().dot(qE.cwiseAbs() + q0.cwiseAbs()));
     if (!(normal ? D + off.target(j) >= -floor : -mode.slide(j) * D >= -floor)) return false;
+    // On the boundary of both its velocity and its percussion (an open row at zero increment
+    // whose velocity meets its target, a sliding row at zero velocity): loose.
+    loose(j) = edge(j) = std::fabs(normal ? D + off.target(j) : D) <= floor;
   }
   Rows out(r);
   for (int j = 0; j < r; ++j) out(j) = P0(j) + (column(j) >= 0 ? y(n + column(j)) : 0.0);
   for (int k = 0; k < a && cs.tangential; ++k)
     if (slide_of(k) != 0.0 && column(k) >= 0) out(a + k) += slide_of(k) * y(n + column(k));
   if (!out.allFinite()) return false;
-  bool strict = false;
-  if (kept && !kept_rows_hold(pb, cs, law, off, mode, basic, rows, m, out, qE, q0, strict))
-    return false;
-  bool shares = false;  // a closed normal row carrying its sliding tangential row's s μ x
+  if (kept && !kept_rows_hold(pb, cs, law, off, mode, basic, rows, m, out, qE, q0)) return false;
+  for (int j = 0; j < r; ++j) {
+    if (mode.kind(j) != 0 || basic(j) != 0) continue;
+    loose(j) = 1;
+    if (j < a) {
+      edge(j) = out(j) == off.cN(j);
+    } else {
+      const int k = j - a;
+      edge(j) = std::fabs(out(j) - off.cT(k)) == Mode<N, C>::mu(cs, law, k) * (out(k) - off.cB(k));
+    }
+  }
+  bool ties = false;  // a sliding row not loose, whose normal's percussion may move
   for (int k = 0; k < a && cs.tangential; ++k)
-    shares = shares || (mode.kind(k) == 0 && slide_of(k) != 0.0);
-  continuum = kept && strict && !shares;
+    ties = ties || (slide_of(k) != 0.0 && !loose(a + k) && (mode.kind(k) == 0 || loose(k)));
+  continuum = !ties && percussions_can_move(cs, law, off, rows, m, loose, edge, out);
   P = out;
   q = qE;
   return true;
