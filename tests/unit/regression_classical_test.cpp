@@ -1416,17 +1416,17 @@ TEST(RegressionClassical, MoreClosedRowsThanDofsAreSolvedOnABasis) {
 // both phases in 50 digits (mpmath): P_C = −W⁻¹ M q̇_A, then M q̇_E = e W_N P_NC + W_T t with
 // W_Tᵀ q̇_E = 0.
 TEST(RegressionClassical, ExpansionIsReadAroundTheCompressionItWasFoundWith) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[5074057846.7357483, -1492822396.4804811], [-1492822396.4804811, 439198522.19742715]],
-    "W_N": [[1], [0]], "W_T": [[0.9950312349405932], [0.41266567450913194]],
-    "qdot_A": [-0.00054946436589781687, 0.00041127860798472837],
-    "law": {"type": "poisson_coulomb", "e": 1, "mu": 105.81480459385777}})",
-                                           PotentialRegistry::with_builtins());
-  const ImpactProblem& pb = file.problem;
+  ImpactProblem pb;
+  pb.M.resize(2, 2);
+  pb.M << 5074057846.7357483, -1492822396.4804811, -1492822396.4804811, 439198522.19742715;
+  pb.W_N = Eigen::Vector2d(1, 0);
+  pb.W_T = Eigen::Vector2d(0.9950312349405932, 0.41266567450913194);
+  pb.qdot_A = Eigen::Vector2d(-0.00054946436589781687, 0.00041127860798472837);
+  const ImpactLaw law = ImpactLaw::poisson_coulomb(1.0, 105.81480459385777);
   const SolverOptions opt;
-  const ImpactResult r = solve_impact(pb, file.law, opt);
+  const ImpactResult r = solve_impact(pb, law, opt);
   ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
   const Eigen::Vector2d qE(3.922226462596455808e-4, -9.457384226193161442e-4);
   const Eigen::Vector2d d = r.qdot_E - qE;
   EXPECT_LE(std::sqrt(d.dot(pb.M * d)), 1e-14 * std::sqrt(pb.qdot_A.dot(pb.M * pb.qdot_A)));
