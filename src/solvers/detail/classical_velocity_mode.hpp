@@ -57,33 +57,54 @@ double row_offset(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   return w.size() ? w(i) : 0.0;
 }
 
+/// The least-squares coefficients of the rows flagged in `which` on the m basic rows `rows`
+/// (column j: W_j ≈ Σ_k c_k W_rows(k)), and whether each is that combination within 1e-8 of |W_j|
+/// (`spanned`): the dependences kept_rows_hold and percussions_can_move read.
+template <int N, int C>
+using BasisCoefficients =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, N, ContactSpaceT<N, C>::kMaxRows>;
+
+template <int N, int C>
+void basis_coefficients(const ContactSpaceT<N, C>& cs, const RowFlags<N, C>& rows, int m,
+                        const RowFlags<N, C>& which, BasisCoefficients<N, C>& coef,
+                        RowFlags<N, C>& spanned) {
+  const int r = cs.rows(), n = cs.dofs;
+  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, N, N>;  // m ≤ n
+  Basis B(n, m);
+  for (int k = 0; k < m; ++k) B.col(k) = cs.W.col(rows(k));
+  const Eigen::HouseholderQR<Basis> qr(B);
+  coef.setZero(m, r);
+  spanned.setZero(r);
+  for (int j = 0; j < r; ++j) {
+    if (!which(j)) continue;
+    const VecT<N> wj = cs.W.col(j);
+    coef.col(j) = qr.solve(wj);
+    spanned(j) = (B * coef.col(j) - wj).norm() <= 1e-8 * wj.norm();
+  }
+}
+
 /// Whether the velocity rows of `mode` kept at a given increment (flagged 0 in `basic`) hold at the
 /// answer (P, q̇_E) solved on the m basic ones `rows`: each meets its velocity row to 16ε of its
-/// own terms and of the basic rows' it is a combination of (W_j = Σ c_k W_k, least squares), a
+/// own terms and of the basic rows' it is a combination of (`coef`, basis_coefficients), a
 /// closed one's increment is not negative and a sticking one's lies in its cone μ (P_N − cB).
 template <int N, int C>
 bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                     const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
                     const RowFlags<N, C>& basic, const RowFlags<N, C>& rows, int m,
+                    const BasisCoefficients<N, C>& coef,
                     const typename ContactSpaceT<N, C>::Rows& P, const VecT<N>& qE,
                     const VecT<N>& q0) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  const int a = cs.active, r = cs.rows(), n = cs.dofs;
+  const int a = cs.active, r = cs.rows();
   auto target = [&](int j) { return j < a ? off.target(j) : 0.0; };
   auto terms = [&](int j) {
     return std::fabs(row_offset(pb, cs, j)) + std::fabs(target(j)) +
            cs.W.col(j).cwiseAbs().dot(qE.cwiseAbs() + q0.cwiseAbs());
   };
-  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, N, N>;  // m ≤ n
-  Basis B(n, m);
-  for (int k = 0; k < m; ++k) B.col(k) = cs.W.col(rows(k));
-  const Eigen::HouseholderQR<Basis> qr(B);
   for (int j = 0; j < r; ++j) {
     if (mode.kind(j) != 0 || basic(j) != 0) continue;
-    const VecT<N> wj = cs.W.col(j);
-    const VecT<N> coef = qr.solve(wj);
     double bound = terms(j);
-    for (int k = 0; k < m; ++k) bound += std::fabs(coef(k)) * terms(rows(k));
+    for (int k = 0; k < m; ++k) bound += std::fabs(coef(k, j)) * terms(rows(k));
     const double miss = contact_velocity(cs.W.col(j), qE, row_offset(pb, cs, j)) + target(j);
     if (!(std::fabs(miss) <= 16 * eps * bound)) return false;
     if (j < a) {
@@ -101,31 +122,26 @@ bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
 /// any velocity or leaving the law, to first order: along δ = ±(e_j − Σ c_k e_k) for a row j of
 /// `loose` (a kept velocity row, or a free row the answer holds on its boundary: an open normal
 /// at zero increment whose velocity meets its target to rounding, a sliding row at zero velocity,
-/// whose percussion may then move into the cone), W_j = Σ c_k W_k within 1e-8 of |W_j|. The basic
-/// rows are inside their constraints beyond rounding (solve_mode_on_basis), so only rows on the
-/// boundary of theirs (`edge`: zero increments, percussions on the cone's edge) can stop a move.
-/// A sliding row that is not loose ties its percussion to its normal's, so that a move along W's
-/// dependence alone would change the momentum: no move is claimed then (`ties`).
+/// whose percussion may then move into the cone) that is a combination of the basic rows
+/// (`coef`, `spanned`: basis_coefficients). The basic rows are inside their constraints beyond
+/// rounding (solve_mode_on_basis), so only rows on the boundary of theirs (`edge`: zero
+/// increments, percussions on the cone's edge) can stop a move. A sliding row that is not loose
+/// ties its percussion to its normal's, so that a move along W's dependence alone would change the
+/// momentum: the caller claims no move then.
 template <int N, int C>
 bool percussions_can_move(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
                           const ModeOffsets<N, C>& off, const RowFlags<N, C>& rows, int m,
                           const RowFlags<N, C>& loose, const RowFlags<N, C>& edge,
+                          const BasisCoefficients<N, C>& coef, const RowFlags<N, C>& spanned,
                           const typename ContactSpaceT<N, C>::Rows& P) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
-  const int a = cs.active, r = cs.rows(), n = cs.dofs;
-  using Basis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, N, N>;  // m ≤ n
-  Basis B(n, m);
-  for (int k = 0; k < m; ++k) B.col(k) = cs.W.col(rows(k));
-  const Eigen::HouseholderQR<Basis> qr(B);
+  const int a = cs.active, r = cs.rows();
   for (int j = 0; j < r; ++j) {
-    if (!loose(j)) continue;
-    const VecT<N> wj = cs.W.col(j);
-    const VecT<N> c = qr.solve(wj);
-    if (!((B * c - wj).norm() <= 1e-8 * wj.norm())) continue;  // not a dependence
+    if (!loose(j) || !spanned(j)) continue;
     for (const double s : {1.0, -1.0}) {
       Rows d = Rows::Zero(r);
       d(j) = s;
-      for (int k = 0; k < m; ++k) d(rows(k)) -= s * c(k);
+      for (int k = 0; k < m; ++k) d(rows(k)) -= s * coef(k, j);
       bool feasible = true;
       for (int i = 0; i < r && feasible; ++i) {
         if (!edge(i)) continue;
@@ -305,8 +321,7 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   for (int k = 0; k < a && cs.tangential; ++k)
     if (slide_of(k) != 0.0 && column(k) >= 0) out(a + k) += slide_of(k) * y(n + column(k));
   if (!out.allFinite()) return false;
-  if (kept && !kept_rows_hold(pb, cs, law, off, mode, basic, rows, m, out, qE, q0)) return false;
-  for (int j = 0; j < r; ++j) {
+  for (int j = 0; j < r; ++j) {  // the kept rows are loose too
     if (mode.kind(j) != 0 || basic(j) != 0) continue;
     loose(j) = 1;
     if (j < a) {
@@ -316,10 +331,19 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
       edge(j) = std::fabs(out(j) - off.cT(k)) == Mode<N, C>::mu(cs, law, k) * (out(k) - off.cB(k));
     }
   }
-  bool ties = false;  // a sliding row not loose, whose normal's percussion may move
-  for (int k = 0; k < a && cs.tangential; ++k)
-    ties = ties || (slide_of(k) != 0.0 && !loose(a + k) && (mode.kind(k) == 0 || loose(k)));
-  continuum = !ties && percussions_can_move(cs, law, off, rows, m, loose, edge, out);
+  continuum = false;
+  if (loose.any()) {
+    BasisCoefficients<N, C> coef;
+    RowFlags<N, C> spanned;
+    basis_coefficients(cs, rows, m, loose, coef, spanned);
+    if (kept && !kept_rows_hold(pb, cs, law, off, mode, basic, rows, m, coef, out, qE, q0))
+      return false;
+    bool ties = false;  // a sliding row not loose, whose normal's percussion may move
+    for (int k = 0; k < a && cs.tangential; ++k)
+      ties = ties || (slide_of(k) != 0.0 && !loose(a + k) && (mode.kind(k) == 0 || loose(k)));
+    continuum =
+        !ties && percussions_can_move(cs, law, off, rows, m, loose, edge, coef, spanned, out);
+  }
   P = out;
   q = qE;
   return true;
