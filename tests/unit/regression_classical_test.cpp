@@ -1348,6 +1348,20 @@ void expect_stops_in_both_phases(const ImpactProblem& pb, const ImpactLaw& law,
   }
 }
 
+/// The problem file `json` (Poisson + Coulomb) solved: converged, checked, not unique, and a body
+/// stopping in both phases (expect_stops_in_both_phases). Returns the result for further checks.
+ImpactResult expect_solved_stopping_in_both_phases(const char* json) {
+  const auto file = io::parse_problem_file(json, PotentialRegistry::with_builtins());
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(file.problem, file.law, opt);
+  EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  if (r.solver.status != SolverStatus::converged) return r;
+  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
+  EXPECT_FALSE(r.unique) << r.solver.message;
+  expect_stops_in_both_phases(file.problem, file.law, r);
+  return r;
+}
+
 // Poisson + Coulomb on two contacts of a 3-dof body with cond(M) = 7e8 and μ up to 152: each
 // phase holds four rows on three dofs (the compression: both contacts closed, one sticking, the
 // other on its cone's edge at zero velocity; the expansion: both sticking, one normal at
@@ -1386,7 +1400,7 @@ TEST(RegressionClassical, DependentRowsFixTheVelocitiesAndLeaveAPercussionLine) 
 // 23). Solved on a basis of the rows, the best-conditioned basis is refused (a kept sticking row
 // outside its cone at the answer's percussion) and another basis is accepted.
 TEST(RegressionClassical, BodyStoppingOnEightRowsIsSolvedOnAnotherBasis) {
-  const auto file = io::parse_problem_file(R"({
+  expect_solved_stopping_in_both_phases(R"({
     "M": [[60.637103105412052, -116.77808672625004, 104.81013394788982],
           [-116.77808672625004, 689.14050909185676, 615.67425704518848],
           [104.81013394788982, 615.67425704518848, 1656.9848555490692]],
@@ -1398,14 +1412,7 @@ TEST(RegressionClassical, BodyStoppingOnEightRowsIsSolvedOnAnotherBasis) {
             [0.13324579602535325, 0.96488650659678377, 0.87678491589957508, -0.74812335580283995]],
     "qdot_A": [1.7845757201098544e-08, -1.2339225778125073e-08, -6.1549994135849708e-08],
     "law": {"type": "poisson_coulomb", "e": [0, 1, 0.34022063876656161, 0.26389956717616803],
-            "mu": [100000000, 0.046728219703051417, 498.11932660649944, 36.042630997637154]}})",
-                                           PotentialRegistry::with_builtins());
-  const SolverOptions opt;
-  const ImpactResult r = solve_impact(file.problem, file.law, opt);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
-  EXPECT_FALSE(r.unique) << r.solver.message;
-  expect_stops_in_both_phases(file.problem, file.law, r);
+            "mu": [100000000, 0.046728219703051417, 498.11932660649944, 36.042630997637154]}})");
 }
 
 // Newton, e = 1, three contacts closing on a 2-dof body: three velocity rows on two dofs, so the
@@ -1476,6 +1483,69 @@ TEST(RegressionClassical, ExpansionIsReadAroundTheCompressionItWasFoundWith) {
   EXPECT_NEAR(r.P_NC(0), 5815343.942181091843, 1e-12 * 5815343.9);
   EXPECT_NEAR(r.P_TC(0), -2425415.366831936139, 1e-12 * 5815343.9);
   EXPECT_NEAR(r.P_T(0) - r.P_TC(0), -2425415.366891197186, 1e-12 * 5815343.9);
+}
+
+// Newton + Coulomb on the flat bar tilted by 1.8e-11 rad, both ends closing: the tangential rows
+// differ only by ±8.9e-12 in the rotation, so G is singular to rounding, and contact space answered
+// with both ends sticking. Exactly, both cannot stick: that needs the rotation to stop, while
+// Newton's normal law keeps it turning, and the tangential velocities of the two ends then differ
+// by 3.4e-16 (2e-12 of the velocity scale). The answer was `stalled` at 1.9e-12 with percussions
+// P_T = (−0.0056, −0.0056), against the exact (−0.073, +0.062): the left end slides at μ P_N, the
+// right one sticks (stress newton_coulomb #2481 of seed 23; 15 of 481 such bars stalled). Every
+// mode solved in velocities finds it. Reference: the law's 16 contact modes solved in 60 digits
+// (mpmath), of which this one alone holds.
+TEST(RegressionClassical, FlatBarTiltedBy1e11SlidesAtOneEndAndSticksAtTheOther) {
+  ImpactProblem pb;
+  pb.M = Eigen::Vector3d(544.15995675612453, 544.15995675612453, 45.346663063010375).asDiagonal();
+  pb.W_N.resize(3, 2);
+  pb.W_N << 0, 0, 1, 1, -0.5, 0.5;
+  pb.W_T.resize(3, 2);
+  pb.W_T << 1, 1, 0, 0, 8.8864832789063307e-12, -8.8864832789063307e-12;
+  pb.qdot_A =
+      Eigen::Vector3d(2.0532460032315863e-05, -0.00010004362667729598, -0.00015973076676019412);
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.12013910479948739, 3.2770367021408755);
+  const SolverOptions opt;
+  const ImpactResult r = solve_impact(pb, law, opt);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
+  const Eigen::Vector2d PN(0.022376582626006038939, 0.038603494036910516747);
+  const Eigen::Vector2d PT(-0.073328882533909641576, 0.062155939970720582338);
+  const double scale = PT.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(r.P_N(i), PN(i), 1e-13 * scale) << i;
+    EXPECT_NEAR(r.P_T(i), PT(i), 1e-13 * scale) << i;
+  }
+  const Eigen::Vector3d qE(1.705308261355722634e-16, 1.2019151749904454633e-05,
+                           1.9189911327505438061e-05);
+  const Eigen::Vector3d d = r.qdot_E - qE;
+  EXPECT_LE(std::sqrt(d.dot(pb.M * d)), 1e-14 * std::sqrt(pb.qdot_A.dot(pb.M * pb.qdot_A)));
+  // The list of every solution holds the same answer where it held contact space's stalled one.
+  const std::vector<ImpactResult> all = solve_impact_all(pb, law, opt);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].solver.status, SolverStatus::converged) << all[0].solver.message;
+  EXPECT_EQ(all[0].P_T, r.P_T);
+  EXPECT_EQ(all[0].qdot_E, r.qdot_E);
+}
+
+// Poisson + Coulomb on three contacts of a 3-dof body with cond(M) = 8e11 and μ = 1e8, two of
+// them closing: both phases hold four rows on three dofs, the compression's percussions form a ray
+// (confirmed in 80 digits) and the body stops in both phases. Contact space answered `stalled`;
+// every mode solved in velocities converges (stress poisson_coulomb #1176 of seed 23), held here
+// to the law itself.
+TEST(RegressionClassical, BodyStoppingOnARayOfCompressionsIsSolvedInVelocities) {
+  const ImpactResult r = expect_solved_stopping_in_both_phases(R"({
+    "M": [[29325412709260.676, 34154725374190.004, 5121697793629.627],
+          [34154725374190.004, 39779329864200.094, 5965139627832.3672],
+          [5121697793629.627, 5965139627832.3672, 894507049578.43323]],
+    "W_N": [[-0.025464066124129991, 0.015628228486670004, 0.48217468776465622],
+            [0.23171283013912247, -0.42487935775812258, 0.81129755965011485],
+            [-0.84634385487486952, 0.2261888697099359, 0.11604403733330249]],
+    "W_T": [[-0.69643048594279755, -0.13329891539489047, 0.82609570078146066],
+            [-0.049299772291073629, 0.8967768150950326, 0.35940199217206992],
+            [-0.80760137061148241, -0.12073332319564889, -0.98574605496507817]],
+    "qdot_A": [-0.00056241231416513551, 0.0019202769537229498, 0.0032010960934895478],
+    "law": {"type": "poisson_coulomb", "e": 0.087359067234956192, "mu": 100000000}})");
+  EXPECT_FALSE(r.takes_part(2));
 }
 
 }  // namespace
