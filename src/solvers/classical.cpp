@@ -616,21 +616,23 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
   // A stalled solution that solve_impact would find converged by every mode in velocities is
   // listed so in place of the first stalled one whose velocities (Poisson's: both phases') agree
   // with it to 1e-9 of the scale: the same solution, found to the law's tolerance.
+  auto stalled = [](const ImpactResultT<N, C>& r) {
+    return r.solver.status == SolverStatus::stalled;
+  };
+  const auto first = std::find_if(all.begin(), all.end(), stalled);
   ImpactResultT<N, C> alt;
-  bool tried = false, found = false;
+  if (first == all.end() || !stalled_in_velocity_modes(pb, cs, law, options, lo, *first, alt))
+    return all;
+  const double scale = std::max(pb.qdot_A.cwiseAbs().maxCoeff(), alt.qdot_E.cwiseAbs().maxCoeff());
+  auto near = [&](const VecT<N>& a, const VecT<N>& b) {
+    return (a - b).cwiseAbs().maxCoeff() <= 1e-9 * scale;
+  };
   for (ImpactResultT<N, C>& r : all) {
-    if (r.solver.status != SolverStatus::stalled) continue;
-    if (!tried) found = stalled_in_velocity_modes(pb, cs, law, options, lo, r, alt);
-    tried = true;
-    if (!found) break;
-    const double scale =
-        std::max(pb.qdot_A.cwiseAbs().maxCoeff(), alt.qdot_E.cwiseAbs().maxCoeff());
-    auto near = [&](const VecT<N>& a, const VecT<N>& b) {
-      return (a - b).cwiseAbs().maxCoeff() <= 1e-9 * scale;
-    };
-    if (!near(r.qdot_E, alt.qdot_E) || (is_poisson(law) && !near(r.qdot_C, alt.qdot_C))) continue;
+    if (!stalled(r) || !near(r.qdot_E, alt.qdot_E) ||
+        (is_poisson(law) && !near(r.qdot_C, alt.qdot_C)))
+      continue;
     alt.solutions_found = r.solutions_found;
-    r = alt;
+    r = std::move(alt);
     break;  // one solution: a second stalled one near it is another
   }
   return all;
