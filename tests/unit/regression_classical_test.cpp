@@ -221,7 +221,10 @@ TEST(RegressionClassical, StalledLemkeAnswerFallsBackToTheEnumeration) {
 // law to 1.4e-11. The retry through the enumeration was taken only when the method named was
 // Lemke; it is now taken wherever Lemke solved a phase (5 of 5,000 stalled answers of seed 23).
 // Checked against the forced enumeration (a second method) and the stress invariants; the quad
-// reference's modes are singular here (existence only).
+// reference's modes are singular here (existence only). The body stops (q̇_E = 0): the expansion's
+// percussions form a continuum, and the automatic chain, whose answer is now solved in velocities
+// to 1e-33, and the forced enumeration may hold different points of it (P_N,1 = 0 or 46), with the
+// same velocities, compression and energy.
 TEST(RegressionClassical, LemkeInTheCompressionPhaseFallsBackToTheEnumerationOfBoth) {
   ImpactProblem pb;
   pb.M.resize(2, 2);
@@ -245,11 +248,11 @@ TEST(RegressionClassical, LemkeInTheCompressionPhaseFallsBackToTheEnumerationOfB
   auto check = [&](const auto& r) {
     ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
-    // Within the rounding of the contacts' terms (percussions 1e6 times the velocities), not 1e-13.
-    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
     EXPECT_LE(r.solver.residual, 1e-10);
+    EXPECT_FALSE(r.unique);
     EXPECT_LE((r.qdot_E - ref.qdot_E).cwiseAbs().maxCoeff(), 1e-12 * scale);
-    EXPECT_LE((r.P_N - ref.P_N).cwiseAbs().maxCoeff(), 1e-12 * ref.P_N.cwiseAbs().maxCoeff());
+    EXPECT_LE((r.P_NC - ref.P_NC).cwiseAbs().maxCoeff(), 1e-12 * ref.P_NC.cwiseAbs().maxCoeff());
+    EXPECT_NEAR(r.energy_change, ref.energy_change, 1e-12 * std::fabs(ref.energy_change));
   };
   const auto r = detail::solve_impact_in_own_storage(pb, law, opt);
   check(r);
@@ -1546,6 +1549,24 @@ TEST(RegressionClassical, BodyStoppingOnARayOfCompressionsIsSolvedInVelocities) 
     "qdot_A": [-0.00056241231416513551, 0.0019202769537229498, 0.0032010960934895478],
     "law": {"type": "poisson_coulomb", "e": 0.087359067234956192, "mu": 100000000}})");
   EXPECT_FALSE(r.takes_part(2));
+}
+
+// Poisson + Coulomb on two contacts of a 2-dof body with cond(M) = 1e4 only: the body stops in
+// both phases (four rows on two dofs). The percussions, 1e4 times the velocities in M's units, make
+// q̇_C and q̇_E of 1e-20, and the mode solved in velocities refused every basis: an open expansion
+// row read D_NE = −1.5e-20 against a floor of 1e-35 made from those velocities alone, not from
+// what the solve's rounding moves them by. `stalled` at 1.5e-11 (stress poisson_coulomb #454 of
+// seed 23); now solved in velocities, held here to the law itself.
+TEST(RegressionClassical, BodyStoppingOnAWellConditionedBodyIsSolvedInVelocities) {
+  expect_solved_stopping_in_both_phases(R"({
+    "M": [[26.570745771808429, -168.84699650720401], [-168.84699650720401, 1077.3041858134013]],
+    "W_N": [[-0.88366745982319439, 0.95724948474026994],
+            [-0.50186985786484306, 0.82079779214180926]],
+    "W_T": [[-0.54213526412895341, -0.14997150103428758],
+            [-0.74109205940296208, 0.68094501435929078]],
+    "qdot_A": [2.2850488963773593e-09, -3.6267896843347981e-09],
+    "law": {"type": "poisson_coulomb", "e": [1, 0.87601724231266098],
+            "mu": 0.67215994524022682}})");
 }
 
 }  // namespace
