@@ -6,7 +6,9 @@
 //    escapes (any other exception, a crash, a sanitizer report or a hang is a finding);
 //  - what it accepts is a valid problem and law (validate() holds again);
 //  - solve_impact on it (and solve_impact_all, as `fremond impact --all-solutions` does) ends with
-//    a status and satisfies tests/stress/invariants.hpp;
+//    a status and satisfies tests/stress/invariants.hpp, or refuses data the reader cannot judge
+//    without solving (a Delassus entry WᵀM⁻¹W beyond 1e308) with InvalidArgument, name and reason,
+//    as the solver target allows;
 //  - the result prints as JSON that reads back.
 #include <cstddef>
 #include <cstdint>
@@ -39,7 +41,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (file.problem.dofs() > 8 || file.problem.contacts() > 4) return 0;
 
   const SolverOptions options;
-  const auto result = solve_impact(file.problem, file.law, options);
+  ImpactResult result;
+  try {
+    result = solve_impact(file.problem, file.law, options);
+  } catch (const InvalidArgument& e) {
+    fuzz::check_refusal(e);
+    return 0;
+  }
   fuzz::check(file.problem, file.law, options, result, "solve_impact");
   const std::string json = io::result_to_json(result, -1);
   if (!nlohmann::json::accept(json)) fuzz::fail("result_to_json printed invalid JSON: " + json);

@@ -192,6 +192,13 @@ TEST(ApiValidation, EnergyOrContactVelocityBeyondDoublePrecision) {
   pb.W_T(0, 0) = 1e160;  // the tangential row of contact 0
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.3)), "W_T");
   EXPECT_EQ(solve_refusal(pb), "<none>");  // frictionless: the tangential rows take no part
+  // A tangential entry so large that the coupling W_Nᵀ M⁻¹ W_T of the same contact overflows too
+  // (−0.5 · 12 · 3.5e307): the tangential row, whose own entry overflows, is named, not the
+  // normal row whose column holds the coupling (problem-file fuzzing).
+  pb = base_problem();
+  pb.W_T(2, 0) = 3.5e307;
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.3)), "W_T");
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw::fremond_coulomb(PowerPotential(2.0, 2.0), 5.0)), "W_T");
 }
 
 // A problem without contacts is legal (nothing happens); it must not crash either way.

@@ -118,9 +118,17 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
     // G = Wᵀ M⁻¹ W of a contact that takes part must be a number: |W|²/|M| beyond 1e308 leaves no
     // percussion representable (P ~ D_A / G), and a factorisation of a matrix holding ∞ is
     // undefined (Eigen's SVD reads out of bounds). The data are finite, their scale is not.
-    for (int k = 0; k < r; ++k) {
-      if (std::isfinite(cs.G(k, k)) && cs.MinvW.col(k).allFinite() && cs.G.col(k).allFinite())
-        continue;
+    // The row blamed is one whose own entry or column overflows: a huge W_T makes the normal
+    // row's coupling W_Nᵀ M⁻¹ W_T overflow too, and a scan of whole columns named W_N for it
+    // (problem-file fuzzing: W_T = 3.5e307 against M = 0.038). Only where no row's own terms
+    // overflow is an off-diagonal entry the cause.
+    int culprit = -1;
+    for (int k = 0; k < r && culprit < 0; ++k)
+      if (!(std::isfinite(cs.G(k, k)) && cs.MinvW.col(k).allFinite())) culprit = k;
+    for (int k = 0; k < r && culprit < 0; ++k)
+      if (!cs.G.col(k).allFinite()) culprit = k;
+    if (culprit >= 0) {
+      const int k = culprit;
       require_positive_definite(pb.M, cs.llt);  // a singular M is the cause, if it is not SPD
       const bool normal = k < a;
       throw InvalidArgument(normal ? "W_N" : "W_T",
