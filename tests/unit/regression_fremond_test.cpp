@@ -1678,5 +1678,48 @@ TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo1e11SlidesOneCont
   expect_near_exact_coulomb(file, r, false);
 }
 
+// Three contacts on a body with two dofs, cond(M) = 5.2e7, μ = 1e8 on one contact, p = 1.000002
+// on another, speeds 4e-6 and percussions 1e8 times them. The enumeration of modes answered with
+// rows at their rounding floors (law residual 1.3e-10 of the speeds): converged, but its velocities
+// gain 1.5e-12 J of kinetic energy (1e-8 of T_A), 5e6 times what ε·cond(M) times the energy's
+// terms allows, and Frémond's law dissipates by construction. Such an answer is kept, and called
+// stalled, since the certificate refuses it: the gain is checked here from the velocities in long
+// double, with cond(M) from M's eigenvalues.
+TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[45262.02145098467, 925393.66937938042], [925393.66937938042, 18920063.900780652]],
+          "W_N": [[-0.46332042840847276, 0.28768321387569173, 0.15785996316902406], [0.68061327759619794, -0.13476833800712518, 0.096022972083799729]],
+          "W_T": [[0.78140847547489667, 0.98504189667699316, -0.53384562721530782], [0.59470112293885191, 0.44469636617659436, 0.58668855022404109]],
+          "qdot_A": [2.5038751455644888e-06, -4.1163237263026878e-06],
+          "law": {"type": "fremond", "normal": {"potential": "power", "k": [1696.6379523982148, 384710.50895675359, 960.37179986711931], "p": [4.5088383250066313, 5.8165116911605539, 1.0000021079359491]}, "tangential": {"potential": "coulomb", "mu": [0, 100000000, 1.4877318185919599]}}})",
+      PotentialRegistry::with_builtins());
+  const auto& pb = file.problem;
+  const auto r = solve_impact(pb, file.law);
+  EXPECT_EQ(r.solver.status, SolverStatus::stalled) << r.solver.message;
+  EXPECT_NE(r.solver.message.find("certificate"), std::string::npos) << r.solver.message;
+  EXPECT_FALSE(r.unique);
+  ASSERT_FALSE(r.admissibility.admissible);
+  EXPECT_EQ(r.admissibility.failed, Inequality::total_15);
+  // T_E − T_A = ½ Σ_ij (q̇_E − q̇_A)_i M_ij (q̇_E + q̇_A)_j and its terms, in long double.
+  long double gain = 0.0L, terms = 0.0L;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      using L = long double;
+      const L t =
+          0.5L * (L{r.qdot_E(i)} - pb.qdot_A(i)) * pb.M(i, j) * (L{r.qdot_E(j)} + pb.qdot_A(j));
+      gain += t;
+      terms += std::fabs(t);
+    }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(pb.M);
+  const double kappa = eig.eigenvalues()(1) / eig.eigenvalues()(0);
+  EXPECT_GT(kappa, 5e7);
+  EXPECT_LT(kappa, 6e7);
+  EXPECT_GT(static_cast<double>(gain),
+            16 * std::numeric_limits<double>::epsilon() * kappa * static_cast<double>(terms));
+  EXPECT_NEAR(r.energy_change, static_cast<double>(gain), 1e-3 * static_cast<double>(gain));
+  // The answer is kept, not zeroed: the velocities moved.
+  EXPECT_GT(std::fabs(r.qdot_E(0) - pb.qdot_A(0)), 1e-6);
+}
+
 }  // namespace
 }  // namespace fremond
