@@ -1678,6 +1678,34 @@ TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo1e11SlidesOneCont
   expect_near_exact_coulomb(file, r, false);
 }
 
+// The same bar tilted by 6.7e-7 rad (lever arms ±δ = ±3.4e-7), μ = 311 and 48, speeds 1.3e6.
+// Semismooth Newton answered with both ends sticking: both stick exactly only where 2δ q̄_θ = 0,
+// and the answer's 2δ q̄_θ = −3.3e-8 hides in the tolerance of the tangential rows (1e-13 of the
+// speeds), while stopping that rotation would take tangential percussions of 1.6e9, far beyond
+// either bound. So contact 2 slides at its bound: its percussion moves from −8.5e4 to −μ P_N2 =
+// −4.0e5, the velocities by 3e-11 of their scale. The tie was looked at only for lever arms up to
+// 1e-8. The answer must be within 1e-9 of the exact solution nearest to it, percussions included.
+TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo7e7SlidesOneContact) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[0.032364158405898402, 0, 0], [0, 0.032364158405898402, 0], [0, 0, 0.0026970132004915334]],
+          "W_N": [[0, 0], [1, 1], [-0.49999999999988626, 0.49999999999988626]],
+          "W_T": [[1, 1], [0, 0], [3.372971038904399e-07, -3.372971038904399e-07]],
+          "qdot_A": [1307612.7485003071, -237043.96579342734, -101882.39682673525],
+          "law": {"type": "fremond", "normal": {"potential": "power", "k": 0.0068663999077608947, "p": 11.696562521456116}, "tangential": {"potential": "coulomb", "mu": [310.55937762390687, 48.094209601269235]}}})",
+      PotentialRegistry::with_builtins());
+  const auto r = solve_and_check(file);
+  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  const double mu1 = 310.55937762390687, mu2 = 48.094209601269235;
+  // Contact 1 sticks, inside its bound; contact 2 slides at its own.
+  EXPECT_LT(std::fabs(r.P_T(0)), mu1 * r.P_N(0));
+  EXPECT_NEAR(std::fabs(r.P_T(1)), mu2 * r.P_N(1), 1e-9 * mu2 * r.P_N(1));
+  // Contact 2 slides against its exact mean velocity z_T2 = −2δ q̄_θ (contact 1's z_T1 = 0).
+  const double delta = 3.372971038904399e-07;
+  const double qbar_theta = 0.5 * (file.problem.qdot_A(2) + r.qdot_E(2));
+  EXPECT_GT(r.P_T(1) * 2 * delta * qbar_theta, 0.0);
+  expect_near_exact_coulomb(file, r, true);
+}
+
 // Three contacts on a body with two dofs, cond(M) = 5.2e7, μ = 1e8 on one contact, p = 1.000002
 // on another, speeds 4e-6 and percussions 1e8 times them. The enumeration of modes answered with
 // rows at their rounding floors (law residual 1.3e-10 of the speeds): converged, but its velocities
