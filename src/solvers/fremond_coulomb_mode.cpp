@@ -91,6 +91,7 @@ class CoulombModes {
   Outcome solve(Mode& mode, Rows& X) {
     if (!set_up(mode)) return Outcome::no_root;
     sliding_percussions(mode, X);
+    if (!data_conditions_hold(mode, X)) return Outcome::no_root;
     bool solved = false;
     for (int it = 0; it < 60 && !solved; ++it) {
       equations(mode, X, true);
@@ -183,6 +184,7 @@ class CoulombModes {
     null_reaction_.resize(d_);
     homogeneous_.resize(d_);
     null_log_.setConstant(d_, -kInfinity);
+    v_exact_.resize(d_);
     const double size = u_ ? WE_.cwiseAbs().maxCoeff() : 0.0;
     for (int c = 0; c < d_; ++c) {
       const auto nc = V_.col(rank_ + c);
@@ -205,6 +207,11 @@ class CoulombModes {
         v_(i, c) = 0.0;
         for (int t = 0; t < u_; ++t) v_(i, c) += WE_(i, t) * nc(t);
       }
+      // |W_E n| to its last bits (Dot2), for data_conditions_hold: the plain sum's rounding,
+      // ε·u of the terms, is of the size of the exact value of a computed null vector's W_E n.
+      v_exact_(c) = 0.0;
+      for (int i = 0; i < n_; ++i)
+        v_exact_(c) = std::max(v_exact_(c), std::fabs(accurate_dot(WE_.row(i).transpose(), nc)));
       if (v_.col(c).cwiseAbs().maxCoeff() <= 64 * kEps * size * u_) v_.col(c).setZero();
       Nw_(c) = 0.0;
       for (int t = 0; t < u_; ++t) Nw_(c) += nc(t) * offset(E_(t));
@@ -341,6 +348,45 @@ class CoulombModes {
         J_(eq, s) = g;
       }
     }
+  }
+
+  /// The null directions that hold no free row but a reaction (entries above their rounding) ask
+  /// nothing of the unknowns, and equations() leaves them free; they ask something of the data.
+  /// Along such a direction n, every row's velocity is fixed (D_NA/2 for a reaction, 0 for a
+  /// sticking tangent), and z_E = W_Eᵀq̄ + w_E gives, exactly for any vector n and the mode's exact
+  /// q̄*, Σ n_t (t_t − w_t) = (W_E n)ᵀ q̄*. With W_E n at rounding (its columns' dependence), the
+  /// left side must be that small too, or the mode has no root. The bar tilted by 3.6e-12 rad on
+  /// both ends (tangents' lever arms ±δ): both reactions and both tangents sticking ask
+  /// 2δ(D_NA,1 − D_NA,2)/2 = 0, which the data break by 1e-26 against |W_E n|·|q̄| = 3e-28, and the
+  /// mode's answer was 3e-13 of the velocities off every exact solution (fremond_coulomb #3582 of
+  /// stress seed 41). q̄* is not known before the mode is solved: |q̄*|₁ is taken as at most four
+  /// times the larger of |q̇_A|₁ and the start's |q̄|₁ (a dissipative impact does not speed the
+  /// body up, in M's norm); a mode refused here is left to the enumeration's other modes.
+  bool data_conditions_hold(const Mode& mode, const Rows& X) const {
+    double q_size = pb_.qdot_A.cwiseAbs().sum();
+    VecT<N> qbar = pb_.qdot_A;
+    for (int j = 0; j < 2 * a_; ++j)
+      if (X(j) != 0.0) qbar += (0.5 * X(j)) * cs_.MinvW.col(j);
+    if (qbar.allFinite()) q_size = std::max(q_size, qbar.cwiseAbs().sum());
+    for (int c = 0; c < d_; ++c) {
+      if (null_free_(c) || !null_reaction_(c)) continue;
+      const auto nc = V_.col(rank_ + c);
+      double r = 0.0, terms = 0.0, free = 0.0;
+      for (int t = 0; t < u_; ++t) {
+        const int row = E_(t);
+        if (row < a_ && mode.normal(row) == kFree) {  // an entry at rounding (not null_free_)
+          free += std::fabs(nc(t)) * 2.0 * cs_.v_scale;
+          continue;
+        }
+        const double fixed = row < a_ ? 0.5 * cs_.D_A(row) : 0.0;  // reaction, or sticking
+        const double term = nc(t) * (fixed - offset(row));
+        r += term;
+        terms += std::fabs(term);
+      }
+      const double floor = 4.0 * v_exact_(c) * q_size + 16 * kEps * u_ * terms + free;
+      if (std::fabs(r) > floor) return false;
+    }
+    return true;
   }
 
   /// A null-space condition Σ n_t t_t = 0 on mean velocities all below ε² of the velocity scale
@@ -481,6 +527,7 @@ class CoulombModes {
   Rows Nw_, h_, scale_, tE_, dtE_, z_;
   Rows log_t_, sign_t_;  ///< log|t_E| and sign t_E of the free rows (−∞ elsewhere)
   Rows null_log_;        ///< the largest log|t| of each homogeneous null-space equation
+  Rows v_exact_;         ///< |W_E n|∞ of each null direction, to its last bits
   Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, R, 1> null_free_, null_reaction_, homogeneous_;
 };
 

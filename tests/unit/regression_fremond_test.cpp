@@ -1706,6 +1706,24 @@ TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo7e7SlidesOneConta
   expect_bar_slides_one_end(file, solve_and_check(file), 1, 3.372971038904399e-07, true);
 }
 
+// The bar tilted by 3.6e-12 rad on both ends (lever arms ±δ), μ = 711, speeds 1e-12, both
+// contacts held by their reactions. Both ends sticking with both reactions fixes every velocity
+// of W_E's four columns on three dofs, and along their dependence (T1 − T2 = 2δ(N2 − N1)) that
+// asks 2δ(D_NA,1 − D_NA,2)/2 = 0 of the data, which break it by 1e-26: the mode has no root. It
+// was accepted, the null direction reading as free since it holds no free row, and the answer
+// was off every exact solution by 3e-13 of the velocities (the quad reference's modes). Contact 1
+// slides at its bound, contact 2 sticks inside its own.
+TEST(RegressionFremond, CoulombBothStickingBreaksItsConditionOnTheDataSlidesOneContact) {
+  const auto file = io::parse_problem_file(
+      R"({"M": [[49.209354660615922, 0, 0], [0, 49.209354660615922, 0], [0, 0, 4.1007795550513269]],
+          "W_N": [[0, 0], [1, 1], [-0.5, 0.5]],
+          "W_T": [[1, 1], [0, 0], [3.5661924312280229e-12, -3.5661924312280229e-12]],
+          "qdot_A": [-1.1749831318929755e-12, -7.5891409513039287e-13, -4.3136319792923218e-15],
+          "law": {"type": "fremond", "normal": {"potential": "power", "k": 0.032985114608202824, "p": 2.0682193976740733}, "tangential": {"potential": "coulomb", "mu": 711.29827022203119}}})",
+      PotentialRegistry::with_builtins());
+  expect_bar_slides_one_end(file, solve_and_check(file), 0, 3.5661924312280229e-12, true);
+}
+
 // Three contacts on a body with two dofs, cond(M) = 5.2e7, μ = 1e8 on one contact, p = 1.000002
 // on another, speeds 4e-6 and percussions 1e8 times them. The enumeration of modes answered with
 // rows at their rounding floors (law residual 1.3e-10 of the speeds): converged, but its velocities
