@@ -143,6 +143,14 @@ class CoulombModes {
     return -std::copysign(s, x);
   }
 
+  /// q̄ = q̇_A + M⁻¹W Q/2, the mean velocity of the percussions Q.
+  VecT<N> mean_qdot(const Rows& Q) const {
+    VecT<N> qbar = pb_.qdot_A;
+    for (int j = 0; j < 2 * a_; ++j)
+      if (Q(j) != 0.0) qbar += (0.5 * Q(j)) * cs_.MinvW.col(j);
+    return qbar;
+  }
+
   double offset(int row) const {  // w of a row (zero where the problem leaves w empty)
     if (row < a_) return pb_.w_N.size() ? pb_.w_N(cs_.index(row)) : 0.0;
     return pb_.w_T.size() ? pb_.w_T(cs_.index(row - a_)) : 0.0;
@@ -184,7 +192,6 @@ class CoulombModes {
     null_reaction_.resize(d_);
     homogeneous_.resize(d_);
     null_log_.setConstant(d_, -kInfinity);
-    v_exact_.resize(d_);
     const double size = u_ ? WE_.cwiseAbs().maxCoeff() : 0.0;
     for (int c = 0; c < d_; ++c) {
       const auto nc = V_.col(rank_ + c);
@@ -207,11 +214,6 @@ class CoulombModes {
         v_(i, c) = 0.0;
         for (int t = 0; t < u_; ++t) v_(i, c) += WE_(i, t) * nc(t);
       }
-      // |W_E n| to its last bits (Dot2), for data_conditions_hold: the plain sum's rounding,
-      // ε·u of the terms, is of the size of the exact value of a computed null vector's W_E n.
-      v_exact_(c) = 0.0;
-      for (int i = 0; i < n_; ++i)
-        v_exact_(c) = std::max(v_exact_(c), std::fabs(accurate_dot(WE_.row(i).transpose(), nc)));
       if (v_.col(c).cwiseAbs().maxCoeff() <= 64 * kEps * size * u_) v_.col(c).setZero();
       Nw_(c) = 0.0;
       for (int t = 0; t < u_; ++t) Nw_(c) += nc(t) * offset(E_(t));
@@ -249,9 +251,7 @@ class CoulombModes {
                       : -std::numeric_limits<double>::infinity();
       sign_t_(t) = -sign_of(Q(row));
     }
-    VecT<N> qbar = pb_.qdot_A;
-    for (int j = 0; j < 2 * a_; ++j)
-      if (Q(j) != 0.0) qbar += (0.5 * Q(j)) * cs_.MinvW.col(j);
+    const VecT<N> qbar = mean_qdot(Q);
     const double q_size = qbar.cwiseAbs().maxCoeff();
     Rows size(u_);  // each row's terms: |D_A| + ½Σ|G P| + |t_E|
     for (int t = 0; t < u_; ++t)
@@ -363,14 +363,20 @@ class CoulombModes {
   /// times the larger of |q̇_A|₁ and the start's |q̄|₁ (a dissipative impact does not speed the
   /// body up, in M's norm); a mode refused here is left to the enumeration's other modes.
   bool data_conditions_hold(const Mode& mode, const Rows& X) const {
-    double q_size = pb_.qdot_A.cwiseAbs().sum();
-    VecT<N> qbar = pb_.qdot_A;
-    for (int j = 0; j < 2 * a_; ++j)
-      if (X(j) != 0.0) qbar += (0.5 * X(j)) * cs_.MinvW.col(j);
-    if (qbar.allFinite()) q_size = std::max(q_size, qbar.cwiseAbs().sum());
+    double q_size = -1.0;  // |q̄|₁ bound, computed for the first direction that needs it
     for (int c = 0; c < d_; ++c) {
       if (null_free_(c) || !null_reaction_(c)) continue;
+      if (q_size < 0.0) {
+        const VecT<N> qbar = mean_qdot(X);
+        q_size = pb_.qdot_A.cwiseAbs().sum();
+        if (qbar.allFinite()) q_size = std::max(q_size, qbar.cwiseAbs().sum());
+      }
       const auto nc = V_.col(rank_ + c);
+      // |W_E n| to its last bits (Dot2): the plain sum's rounding, ε·u of the terms, is of the
+      // size of the exact value of a computed null vector's W_E n.
+      double v_exact = 0.0;
+      for (int i = 0; i < n_; ++i)
+        v_exact = std::max(v_exact, std::fabs(accurate_dot(WE_.row(i).transpose(), nc)));
       double r = 0.0, terms = 0.0, free = 0.0;
       for (int t = 0; t < u_; ++t) {
         const int row = E_(t);
@@ -383,7 +389,7 @@ class CoulombModes {
         r += term;
         terms += std::fabs(term);
       }
-      const double floor = 4.0 * v_exact_(c) * q_size + 16 * kEps * u_ * terms + free;
+      const double floor = 4.0 * v_exact * q_size + 16 * kEps * u_ * terms + free;
       if (std::fabs(r) > floor) return false;
     }
     return true;
@@ -527,7 +533,6 @@ class CoulombModes {
   Rows Nw_, h_, scale_, tE_, dtE_, z_;
   Rows log_t_, sign_t_;  ///< log|t_E| and sign t_E of the free rows (−∞ elsewhere)
   Rows null_log_;        ///< the largest log|t| of each homogeneous null-space equation
-  Rows v_exact_;         ///< |W_E n|∞ of each null direction, to its last bits
   Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, R, 1> null_free_, null_reaction_, homogeneous_;
 };
 
