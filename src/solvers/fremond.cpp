@@ -1432,6 +1432,49 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
 
 }  // namespace
 
+namespace {
+/// Where every method failed on one degree of freedom without Coulomb, the exact scalar solve of
+/// the velocity-space problem (solve_one_dof) replaces the failed answer: its velocities are exact
+/// to rounding by construction. Its status is the law's own test on its percussions, as for every
+/// method: converged where they pass it; else still stalled, with exact velocities, where
+/// percussions many orders above the velocities do not reproduce them in double precision
+/// (z = D_A + GP/2 rounded to ε|G||P|).
+template <int N, int C>
+void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                           const ImpactLaw& law, const SolverOptions& opt,
+                           ImpactResultT<N, C>& out) {
+  if (cs.dofs != 1 || cs.rows() == 0) return;
+  FremondRowsT<N, C> rows;
+  rows.init(cs, law);
+  Rows<N, C> P, z(cs.rows()), R;
+  double u = 0.0;
+  if (!solve_one_dof(pb, rows, P, u)) return;
+  const int fallbacks = out.solver.fallbacks + 1;
+  out.qdot_E.resize(1);
+  out.qdot_E(0) = pb.qdot_A(0) + 2.0 * u;
+  scatter_at_velocities(pb, cs, P, out);
+  for (int j = 0; j < cs.rows(); ++j) z(j) = cs.D_A(j) + cs.W(0, j) * u;  // from the velocity
+  split_reaction(rows, P, z, out);
+  MethodOutcome o;
+  Rows<N, C> zp;
+  const double target = opt.tolerance * cs.v_scale;
+  const bool passes = std::isfinite(rows.residual(P, zp, R)) && rows.converged(P, R, target);
+  o.status = passes ? SolverStatus::converged : SolverStatus::stalled;
+  o.criterion = passes ? StopCriterion::exact : StopCriterion::rounding;
+  o.residual = rows.plain_residual(P);
+  o.message =
+      passes ? "every contact-space method failed; one degree of freedom: the velocity-space "
+               "problem (SPEC §2) solved exactly by bisection on its subdifferential"
+             : "one degree of freedom: the velocity is exact (the velocity-space problem solved "
+               "by bisection on its subdifferential), but its percussions, far above the "
+               "velocities, do not reproduce it in double precision within the law's test";
+  write_outcome(o, SolverMethod::scalar_newton, cs.v_scale, opt, out);
+  out.solver.fallbacks = fallbacks;
+  out.solutions_found = 0;
+  out.unique = passes && percussion_unique(rows, P, z, out);
+}
+}  // namespace
+
 template <int N, int C>
 void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                    const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
@@ -1443,7 +1486,10 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   const SolverStatus s = out.solver.status;
   if (s != SolverStatus::stalled && s != SolverStatus::failed && s != SolverStatus::max_iterations)
     return;
-  if (!normal_rows_infeasible(pb)) return;
+  if (!normal_rows_infeasible(pb)) {
+    solve_one_dof_instead(pb, cs, law, opt, out);
+    return;
+  }
   // No answer: the state before the impact (no percussion), as the classical laws report it.
   typename ContactSpaceT<N, C>::Rows none = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
   scatter_solution(pb, cs, none, out);

@@ -22,7 +22,9 @@ enum class SolverMethod {
   automatic,  ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
   trivial,    ///< no contact takes part (all D_NA > 0): no percussion.
   closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
-  scalar_newton,      ///< one decoupled contact: one scalar root per mode.
+  scalar_newton,      ///< one decoupled contact: one scalar root per mode; or, Frémond's law
+                      ///< without Coulomb on one degree of freedom where every other method
+                      ///< failed, the velocity-space problem's root by bisection on ∂F.
   mode_enumeration,   ///< contact modes tried: every one (small problems; finds all solutions),
                       ///< or, Frémond + Coulomb on 2-4 contacts, until one satisfies the law.
   lemke,              ///< lexicographic Lemke on the law's LCP (classical laws).

@@ -47,6 +47,16 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
                                     typename FremondRowsT<N, C>::Rows& P,
                                     const SolverOptions& options);
 
+/// Frémond's law without Coulomb on one degree of freedom: SPEC §2's velocity-space problem is
+/// scalar and strongly convex, and bisection on the sign of its subdifferential finds u = v − q̇_A
+/// to the last bit (q̇_E = q̇_A + 2u), whatever the percussions' scale; P gets each row's
+/// percussion in −∂ψ_j(z_j) with Σ W_j P_j = 2Mu, the least-norm choice where rows are
+/// set-valued (fremond_one_dof.cpp). False, P and u untouched, where it does not apply (several
+/// dofs, Coulomb, a potential without its subdifferential, an empty domain).
+template <int N, int C>
+bool solve_one_dof(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
+                   typename FremondRowsT<N, C>::Rows& P, double& u);
+
 /// Accelerated proximal gradient (FISTA with restart) on the dual in contact space.
 template <int N, int C>
 MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
