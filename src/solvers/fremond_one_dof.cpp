@@ -40,16 +40,13 @@ bool solve_one_dof(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& row
   const auto& cs = *rows.cs;
   const int r = cs.rows(), a = cs.active;
   if (cs.dofs != 1 || r == 0 || rows.coulomb) return false;
-  for (int j = 0; j < r; ++j) {
-    const Potential& phi = rows.is_normal(j) ? rows.law->normal[rows.contact(j)]
-                                             : rows.law->tangential_potential[rows.contact(j)];
-    if (!phi.capabilities().subdifferential) return false;
-  }
-  const double m = pb.M(0, 0);
   auto potential = [&](int j) -> const Potential& {
     return rows.is_normal(j) ? rows.law->normal[rows.contact(j)]
                              : rows.law->tangential_potential[rows.contact(j)];
   };
+  for (int j = 0; j < r; ++j)
+    if (!potential(j).capabilities().subdifferential) return false;
+  const double m = pb.M(0, 0);
   // The domain of the reactions: a_j u ≥ −D_NA,j/2 on each normal row (D_NE ≥ 0).
   double u_lo = -kInf, u_hi = kInf;
   for (int j = 0; j < a; ++j) {
