@@ -96,9 +96,9 @@ bool solve_one_dof(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& row
     // velocity scale; ∂F → ±∞ at ±∞ (the term 2Mu), so it ends within the range of doubles.
     const double scale = std::max({std::fabs(pb.qdot_A(0)), cs.v_scale, 1e-300});
     double left = u_lo, right = u_hi;
-    const Slope s0 = slope(std::clamp(0.0, u_lo, u_hi));
-    if (s0.empty) return false;
     const double start = std::clamp(0.0, u_lo, u_hi);
+    const Slope s0 = slope(start);
+    if (s0.empty) return false;
     if (s0.lo <= 0.0 && s0.hi >= 0.0) {
       u = start;
       found = true;
@@ -174,8 +174,7 @@ bool solve_one_dof(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& row
     // any P ≥ the power law's: −∂ψ = [−φ'(z), ∞).
     if (rows.is_normal(j) && aj != 0.0) {
       const double own = -0.5 * cs.D_A(j) / aj;
-      if (u == own ||
-          std::fabs(u - own) <= 4 * std::numeric_limits<double>::epsilon() * std::fabs(own))
+      if (std::fabs(u - own) <= 4 * std::numeric_limits<double>::epsilon() * std::fabs(own))
         hi(j) = kInf;
     }
   }
