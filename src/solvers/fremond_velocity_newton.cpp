@@ -153,8 +153,23 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     g.noalias() = 2.0 * (pb.M * u) + cs.W * s;
     for (int j = 0; j < r; ++j) {
       const double tau = rows.tau(j);
+      const Potential& phi = row_potential(rows, j);
       double d = 1.0;
-      row_potential(rows, j).prox(z(j) + tau * s(j), tau, &d);
+      phi.prox(z(j) + tau * s(j), tau, &d);
+      // A steep row (τφ'' beyond 1e12: the dead zone with k = 1e6 on a rotor of inertia 1e-6,
+      // τ = G_jj/2 = 1.5e6) gives a derivative below the cap, and the capped φ'' was 7.5 times
+      // too small: Newton then crept instead of converging. Read again with the step τd, at
+      // which τdφ'' ≈ 1 and the derivative is about ½, far from the cap. Only a kink (d = 0)
+      // keeps the cap.
+      if (d > 0.0 && d < kMinDerivative) {
+        const double t = tau * d;
+        double d2 = 1.0;
+        phi.prox(z(j) + t * s(j), t, &d2);
+        if (d2 > kMinDerivative && d2 < 1.0) {
+          h(j) = (1.0 - d2) / (d2 * t);
+          continue;
+        }
+      }
       d = std::clamp(d, kMinDerivative, 1.0);
       h(j) = (1.0 - d) / (d * tau);
     }
@@ -186,13 +201,20 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     // gradient's norm instead, which Newton's step reduces quadratically.
     const bool below_rounding =
         polishing || -slope <= 1e3 * std::numeric_limits<double>::epsilon() * f;
-    const double gnorm = g.norm();
+    // The gradient in M⁻¹'s norm |L⁻¹g| (M = LLᵀ), the dual of u's: in the Euclidean norm a light
+    // rotor's component (M_θθ = 1e-6 of the translations') counts 1e6 times too little, and the
+    // translations' rounding floor hid a rotation still far from converged.
+    auto dual_norm = [&](Vec gg) {
+      cs.llt.solve_lower_in_place(gg);
+      return gg.norm();
+    };
+    const double gnorm = below_rounding ? dual_norm(g) : 0.0;
     double t = 1.0, ft = 0.0;
     bool accepted = false;
     for (int ls = 0; ls < 40; ++ls) {
       ut = u + t * du;
       ft = evaluate(ut, zt, st);
-      if (below_rounding ? std::isfinite(ft) && (2.0 * (pb.M * ut) + cs.W * st).norm() < gnorm
+      if (below_rounding ? std::isfinite(ft) && dual_norm(2.0 * (pb.M * ut) + cs.W * st) < gnorm
                          : ft <= f + 1e-4 * t * slope) {
         accepted = true;
         break;
@@ -202,6 +224,26 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     if (!accepted)
       return stop(SolverStatus::stalled, StopCriterion::step,
                   "velocity-space Newton: the line search found no decrease (rounding)");
+    // A full step far from the answer on a steep power row (p = 10: Newton shrinks z only by
+    // (p − 2)/(p − 1) = 8/9 a step, 130 steps from z = 2.5e6) is extended while F keeps falling:
+    // along the line F is convex, so the longest of the doubled steps that still lowers F is the
+    // nearest of them to the minimum on the line. Only where the step gained more than Newton's
+    // quadratic model foresees (½|slope|; a power row far out gains 0.58 to 0.64 of |slope| for
+    // p from 3 to 50): near the answer F is quadratic to rounding, and the step is not retried.
+    if (t == 1.0 && !below_rounding && f - ft > 0.55 * -slope) {
+      Rows zx(r), sx(r);
+      Vec ux(n);
+      for (double tx = 2.0; tx <= 1024.0; tx *= 2.0) {
+        ux = u + tx * du;
+        const double fx = evaluate(ux, zx, sx);
+        if (!(fx < ft)) break;
+        ut = ux;
+        zt = zx;
+        st = sx;
+        ft = fx;
+        t = tx;
+      }
+    }
     u = ut;
     z = zt;
     s = st;
