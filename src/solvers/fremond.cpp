@@ -1306,8 +1306,27 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   };
   MethodOutcome split_end;  // the splitting's outcome, when it ran and failed
   bool have_split_end = false;
+  // Newton in velocity space (fremond_velocity_newton.cpp), from the decoupled guess P0. Its end,
+  // where it ran and failed, is kept as a start for contact space's Newton.
+  const bool velocity_space = has_prox && !rows.coulomb;
+  Rows<N, C> P0, PV;
+  bool velocity_ran = false, have_velocity_end = false;
+  auto velocity_answers = [&]() {
+    PV = P0;
+    velocity_ran = true;
+    auto ov = velocity_space_newton(pb, rows, PV, opt);
+    if (ov.status == SolverStatus::converged) {
+      P = PV;
+      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, ov);
+      finish(ov, SolverMethod::semismooth_newton);
+      out.solver.fallbacks = tried;
+      return true;
+    }
+    have_velocity_end = PV.allFinite();
+    return false;
+  };
   if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
-    const Rows<N, C> P0 = decoupled_guess(rows, P);  // each row as if alone
+    P0 = decoupled_guess(rows, P);  // each row as if alone
     // More than twice as many rows as degrees of freedom (and no Coulomb): Newton in velocity
     // space first, whose Hessian stays positive definite where contact space's J is singular
     // up to a small diagonal (fremond_velocity_newton.cpp). The plate lying flat on 16 and 32
@@ -1315,16 +1334,7 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     // With fewer rows contact space's Newton, from the decoupled guess, is the faster (the flat
     // bar with its viscous rows, 4 rows on 3 dofs: 1.9 µs against 3.2 µs). An answer that needs
     // a reaction is left to contact space.
-    if (!rows.coulomb && cs.rows() > 2 * cs.dofs) {
-      P = P0;
-      auto ov = velocity_space_newton(pb, rows, P, opt);
-      if (ov.status == SolverStatus::converged) {
-        final_row_sweep(rows, P, opt.tolerance * cs.v_scale, ov);
-        finish(ov, SolverMethod::semismooth_newton);
-        out.solver.fallbacks = tried;
-        return;
-      }
-    }
+    if (velocity_space && cs.rows() > 2 * cs.dofs && velocity_answers()) return;
     P = P0;
     auto o = semismooth_newton(rows, P, opt);
     if (o.status == SolverStatus::converged)
@@ -1409,6 +1419,30 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     out.solver.fallbacks = tried + 1;  // NLopt, then Newton from its end
     out.solver.message = "semismooth Newton converged from NLopt's answer";
     return;
+  }
+  // Without Coulomb the velocity-space problem is strongly convex, and its Newton reaches the
+  // minimiser where contact space's methods stall on a badly scaled G (the flat bar on a rotor of
+  // inertia 1e-6 under the dead zone with k = 1e6: G's normal rows 3e6, its tangential ones 1,
+  // both singular). Its percussions −φ'(z) carry φ''·ulp(z) (3e-11 on those rows, beyond the
+  // law's test), so contact space's Newton goes on from its end, where it converges in a few
+  // steps. Only where every other method failed, NLopt and Newton from its end included: tried
+  // earlier, it replaced answers they find, and those accepted at the law's rounding floor are
+  // not all equally near the exact one (on that bar's tangents with q = 1.01 at r = 0, G's
+  // tangential rows singular, Newton from its end converged onto percussions that cancel along
+  // G's null direction, 3.6e-8 of the velocities off the quad reference, where Newton from the
+  // splitting's end is 1.6e-14 from it; p = 1.0001 on four contacts of two dofs, 5e-9 off
+  // q̇_E = −q̇_A where Newton from NLopt's end is 9e-10 off).
+  if (automatic && velocity_space && o.status != SolverStatus::converged &&
+      P0.size() == cs.rows()) {
+    if (!velocity_ran && velocity_answers()) {
+      out.solver.fallbacks = tried + 2;  // after NLopt and Newton from its end
+      return;
+    }
+    if (have_velocity_end && newton_answers(PV)) {
+      out.solver.fallbacks = tried + 3;
+      out.solver.message = "semismooth Newton converged from velocity-space Newton's answer";
+      return;
+    }
   }
   // Every method failed: the answer is the nearest to the law, not the last. NLopt, stopped by
   // its budget, can end far from where the splitting left off (a singular G of rank 3 with 8 rows

@@ -1767,5 +1767,41 @@ TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
   EXPECT_GT(std::fabs(r.qdot_E(0) - pb.qdot_A(0)), 1e-6);
 }
 
+/// The flat bar on both ends (4 rows on 3 dofs) with a rotor of inertia 1e-6 of the paper's, p = 3
+/// and the viscous dead zone, k = 1e6 on both laws (issue 2's hard-case grid). G's normal rows are
+/// 3e6 and nearly opposite, its tangential ones [1 1; 1 1]: contact space's Newton and the
+/// splitting stalled, and the answer returned, q̇_E = (−1.60, −2.98, −12.97), penetrated at
+/// contact 1 (D_NE = −9.47), marked max_iterations. The exact answer, no reaction active, from the
+/// velocity-space gradient 2M(v − q̇_A) + W φ'(Wᵀv) = 0 solved by 50-digit mpmath findroot:
+///   q̇_E = (−1.5999964000035999964, 2.9965368982405246825, −0.99999999980749434671),
+///   P_N = (2.998268282453595690605, 2.998268615786928991854), P_T = −1.7999982000018 on both.
+/// θ̇_E is known in double only to about 3e-9: P_N1 − P_N2 = 3.3e-7 against P_N = 3, so each ulp
+/// of P_N moves θ̇ by 2.7e-9. In the kinetic-energy norm that is 1e-13 of the velocities.
+TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
+  SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+  pb.M(2, 2) *= 1e-6;
+  ASSERT_EQ(Eigen::Vector3d(pb.qdot_A), Eigen::Vector3d(2, -3, 1));
+  const ImpactLaw law =
+      ImpactLaw::fremond(PowerPotential(1e6, 3), DeadZonePowerPotential(1e6, 2, 0.2));
+  const SmallImpactResult r = solve_impact(pb, law);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_TRUE(r.admissibility.admissible);
+  const Eigen::Vector3d exact(-1.5999964000035999964, 2.9965368982405246825,
+                              -0.99999999980749434671);
+  const Eigen::Vector3d d = Eigen::Vector3d(r.qdot_E) - exact;
+  const Eigen::Matrix3d M = pb.M;
+  const double qa = std::sqrt(pb.qdot_A.dot(M * Eigen::Vector3d(pb.qdot_A)));
+  EXPECT_LE(std::sqrt(d.dot(M * d)) / qa, 1e-12);
+  EXPECT_NEAR(r.qdot_E(0), exact(0), 4e-15);
+  EXPECT_NEAR(r.qdot_E(1), exact(1), 4e-15);
+  EXPECT_NEAR(r.qdot_E(2), exact(2), 5e-9);
+  EXPECT_NEAR(r.P_N(0), 2.998268282453595690605, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 2.998268615786928991854, 1e-14);
+  EXPECT_NEAR(r.P_T(0), -1.7999982000018, 1e-14);
+  EXPECT_NEAR(r.P_T(1), -1.7999982000018, 1e-14);
+  EXPECT_EQ(r.P_N_reaction.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT(r.D_NE.minCoeff(), 2.4);  // no contact penetrates, none held by its reaction
+}
+
 }  // namespace
 }  // namespace fremond
