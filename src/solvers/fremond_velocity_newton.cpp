@@ -61,8 +61,8 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
   // 28 steps; past that it was spending time on an answer that needs a reaction, or on extreme
   // data (p near 1, k from 1e-6 to 1e6).
   constexpr int kMaxIterations = 30;
-  Rows z(r), s(r), h(r), zc(r), R(r), zt(r), st(r);
-  Vec u(n), g(n), du(n), ut(n);
+  Rows z(r), s(r), h(r), zc(r), R(r), zt(r), st(r), zx(r), sx(r);
+  Vec u(n), g(n), du(n), ut(n), ux(n);
   Mat H(n, n);
   // The start: u from the P given (u = M⁻¹ W P / 2) or u = 0 (no percussion), whichever has the
   // lower F. The decoupled guess, each row as if it held the body alone, overshoots by about the
@@ -231,8 +231,6 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
     // quadratic model foresees (½|slope|; a power row far out gains 0.58 to 0.64 of |slope| for
     // p from 3 to 50): near the answer F is quadratic to rounding, and the step is not retried.
     if (t == 1.0 && !below_rounding && f - ft > 0.55 * -slope) {
-      Rows zx(r), sx(r);
-      Vec ux(n);
       for (double tx = 2.0; tx <= 1024.0; tx *= 2.0) {
         ux = u + tx * du;
         const double fx = evaluate(ux, zx, sx);
