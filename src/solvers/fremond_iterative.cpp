@@ -30,11 +30,20 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
   const int r = cs.rows();
   MethodOutcome o;
   Rows z(r), R(r), Pt(r), zt(r), Rt(r), dP(r), newton_dP(r);
+  // The prox derivatives of the residual at P (d, dydb) and at the trial point (dt, dydbt): the
+  // Jacobian is formed from those of the accepted point, not from r more prox calls (the flat bar
+  // under the dead zone: 4 of the 12 prox calls of a step).
+  const bool slopes = rows.all_prox;
+  Rows d(r), dydb(r), dt(r), dydbt(r);
+  auto evaluate = [&](const Rows& at, Rows& z_at, Rows& R_at, Rows& d_at, Rows& dydb_at) {
+    return slopes ? rows.residual_with_slopes(at, z_at, R_at, d_at, dydb_at)
+                  : rows.residual(at, z_at, R_at);
+  };
   RowMat J(r, r);
   SmallLU<ContactSpaceT<N, C>::kMaxRows> small_lu;  // used for the stack-stored sizes only
   // The same for the singular Newton systems (small_full_piv_lu.hpp); a placeholder size otherwise.
   SmallFullPivLU<N != Dynamic ? ContactSpaceT<N, C>::kMaxRows : 1> small_full_lu;
-  double nr = rows.residual(P, z, R);
+  double nr = evaluate(P, z, R, d, dydb);
   const double target = opt.tolerance * cs.v_scale;
   double nr_10_ago = nr;  // Newton that has not halved the residual in 10 steps is stuck at a
                           // kink (a stationary point of ‖R‖² that is not a solution): stop, so
@@ -68,7 +77,10 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
       o.message = "semismooth Newton: iteration budget exhausted";
       return o;
     }
-    rows.jacobian(z, P, J);
+    if (slopes)
+      rows.jacobian_from_slopes(P, d, dydb, J);
+    else
+      rows.jacobian(z, P, J);
     // Directions in order: Newton (LU), then Levenberg–Marquardt with a damping that grows tenfold
     // each time the line search finds no decrease (towards steepest descent on θ = ½‖R‖²).
     const double theta0 = 0.5 * R.squaredNorm();
@@ -140,7 +152,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
       double t = 1.0;
       for (int ls = 0; ls < 30; ++ls) {
         Pt = P + t * dP;
-        nrt = rows.residual(Pt, zt, Rt);
+        nrt = evaluate(Pt, zt, Rt, dt, dydbt);
         if (0.5 * Rt.squaredNorm() <= (1.0 - 1e-4 * t) * theta0) {
           accepted = true;
           break;
@@ -157,6 +169,8 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
     P = Pt;
     z = zt;
     R = Rt;
+    d.swap(dt);
+    dydb.swap(dydbt);
     nr = nrt;
   }
 }

@@ -170,15 +170,26 @@ struct FremondRowsT {
   /// and the refinement's.
   template <class RowMat>
   void jacobian(const Rows& z, const Rows& P, RowMat& J) const {
+    const int r = cs->rows();
+    Rows d = Rows::Zero(r), dydb = Rows::Zero(r);
+    for (int j = 0; j < r; ++j) prox(j, z(j) - tau(j) * P(j), bound(j, P), &d(j), &dydb(j));
+    jacobian_from_slopes(P, d, dydb, J);
+  }
+
+  /// The same J from the prox derivatives d = ∂prox/∂x and dydb = ∂prox/∂b of every row at P, as
+  /// residual_with_slopes gives them: Newton takes them from the residual it evaluated at its
+  /// point, instead of one more prox per row for the Jacobian.
+  template <class RowMat>
+  void jacobian_from_slopes(const Rows& P, const Rows& d, const Rows& dydb, RowMat& J) const {
     const int r = cs->rows(), a = cs->active;
     J.resize(r, r);
     for (int j = 0; j < r; ++j) {
-      double d = 0.0, dydb = 0.0;
-      prox(j, z(j) - tau(j) * P(j), bound(j, P), &d, &dydb);
-      J.row(j) = (0.5 * (1.0 - d)) * cs->G.row(j);
-      J(j, j) += d * tau(j);
+      const double dj = d(j);
+      const double c = 0.5 * (1.0 - dj);
+      for (int k = 0; k < r; ++k) J(j, k) = c * cs->G(j, k);
+      J(j, j) += dj * tau(j);
       // j − a: the normal row of the same contact.
-      if (dydb != 0.0) J(j, j - a) -= dydb * bound_slope(j, P);
+      if (dydb(j) != 0.0) J(j, j - a) -= dydb(j) * bound_slope(j, P);
     }
   }
 
@@ -228,6 +239,25 @@ struct FremondRowsT {
     double m = 0.0;
     for (int j = 0; j < r; ++j) {
       R(j) = row_residual(j, z(j), P);
+      if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
+      m = std::max(m, weight(j) * std::fabs(R(j)));
+    }
+    return m;
+  }
+
+  /// residual(), with every row's prox derivatives at P for jacobian_from_slopes (the same prox
+  /// calls, so the same R to the last bit). Only where every potential has a prox.
+  double residual_with_slopes(const Rows& P, Rows& z, Rows& R, Rows& d, Rows& dydb) const {
+    mean_velocity(P, z);
+    const int r = cs->rows();
+    R.resize(r);
+    d.resize(r);
+    dydb.resize(r);
+    double m = 0.0;
+    for (int j = 0; j < r; ++j) {
+      d(j) = 0.0;
+      dydb(j) = 0.0;
+      R(j) = z(j) - prox(j, z(j) - tau(j) * P(j), bound(j, P), &d(j), &dydb(j));
       if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
       m = std::max(m, weight(j) * std::fabs(R(j)));
     }
