@@ -1803,5 +1803,44 @@ TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
   EXPECT_GT(r.D_NE.minCoeff(), 2.4);  // no contact penetrates, none held by its reaction
 }
 
+/// The flat bar (G_NT = 0) on a rotor of inertia ×1e-6 under k = 1e6 with the dead zone: G's
+/// normal rows are 3e6, its tangential ones 1 and singular. These came back max_iterations and
+/// penetrating (every method on all four rows failed); the normal rows solved alone, then Newton
+/// on all rows from there, converge. Against the quad reference of the same equations
+/// (fremond_several), in the kinetic-energy norm relative to q̇_A.
+TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
+  namespace ref = fremond_reference;
+  struct Case {
+    double speed, p, k, q, r;
+  };
+  for (const Case c :
+       {Case{1e6, 1.5, 1e6, 2, 0}, Case{1e6, 50, 1e6, 2, 0.2}, Case{1e-10, 50, 1e6, 2, 0},
+        Case{1e-10, 1.01, 1e6, 2, 0.2}, Case{1e-10, 1.01, 1, 1.01, 0.2}}) {
+    SCOPED_TRACE(::testing::Message() << "speed " << c.speed << ", p = " << c.p << ", k = " << c.k
+                                      << ", q = " << c.q << ", r = " << c.r);
+    SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+    pb.qdot_A *= c.speed;
+    pb.M(2, 2) *= c.k == 1 ? 1e6 : 1e-6;
+    const double r = c.r * c.speed;
+    const ImpactLaw law =
+        ImpactLaw::fremond(PowerPotential(c.k, c.p), DeadZonePowerPotential(c.k, c.q, r));
+    const SmallImpactResult out = solve_impact(pb, law);
+    ASSERT_EQ(out.solver.status, SolverStatus::converged) << out.solver.message;
+    EXPECT_TRUE(out.admissibility.admissible);
+    EXPECT_GE(out.D_NE.minCoeff(), -1e-9 * c.speed);  // none penetrates beyond rounding
+    const Eigen::MatrixXd M = pb.M, WN = pb.W_N, WT = pb.W_T;
+    const Eigen::VectorXd qA = pb.qdot_A;
+    const ref::Solution exact =
+        ref::fremond_several(ref::problem_from(M, WN, WT, qA), {{ref::quad(c.k), ref::quad(c.p)}},
+                             {ref::TangentialLaw::dead_zone(c.k, c.q, r)});
+    ASSERT_TRUE(exact.ok);
+    Eigen::Vector3d d;
+    for (int i = 0; i < 3; ++i) d(i) = out.qdot_E(i) - ref::to_double(exact.qdot_E[i]);
+    const Eigen::Matrix3d M3 = pb.M;
+    const Eigen::Vector3d q3 = pb.qdot_A;
+    EXPECT_LE(std::sqrt(d.dot(M3 * d) / q3.dot(M3 * q3)), 1e-11);
+  }
+}
+
 }  // namespace
 }  // namespace fremond
