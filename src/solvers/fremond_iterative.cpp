@@ -36,8 +36,7 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
   const bool slopes = rows.all_prox;
   Rows d(r), dydb(r), dt(r), dydbt(r);
   auto evaluate = [&](const Rows& at, Rows& z_at, Rows& R_at, Rows& d_at, Rows& dydb_at) {
-    return slopes ? rows.residual_with_slopes(at, z_at, R_at, d_at, dydb_at)
-                  : rows.residual(at, z_at, R_at);
+    return rows.residual(at, z_at, R_at, slopes ? &d_at : nullptr, slopes ? &dydb_at : nullptr);
   };
   RowMat J(r, r);
   SmallLU<ContactSpaceT<N, C>::kMaxRows> small_lu;  // used for the stack-stored sizes only

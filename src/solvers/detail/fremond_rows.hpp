@@ -177,7 +177,7 @@ struct FremondRowsT {
   }
 
   /// The same J from the prox derivatives d = ∂prox/∂x and dydb = ∂prox/∂b of every row at P, as
-  /// residual_with_slopes gives them: Newton takes them from the residual it evaluated at its
+  /// residual() gives them: Newton takes them from the residual it evaluated at its
   /// point, instead of one more prox per row for the Jacobian.
   template <class RowMat>
   void jacobian_from_slopes(const Rows& P, const Rows& d, const Rows& dydb, RowMat& J) const {
@@ -225,39 +225,28 @@ struct FremondRowsT {
     }
   }
 
-  /// R = z − prox(z − τP); returns the weighted norm max_j weight_j |R_j|.
-  double residual(const Rows& P, Rows& z, Rows& R) const {
+  /// R = z − prox(z − τP); returns the weighted norm max_j weight_j |R_j|. With `d` and `dydb`
+  /// (only where every potential has a prox), every row's prox derivatives at P as well, for
+  /// jacobian_from_slopes: the same prox calls, so the same R to the last bit.
+  double residual(const Rows& P, Rows& z, Rows& R, Rows* d = nullptr, Rows* dydb = nullptr) const {
     mean_velocity(P, z);
-    return residual_at(P, z, R);
+    return residual_at(P, z, R, d, dydb);
   }
 
   /// R and its weighted norm as residual(), with the mean velocity z given (the refinement takes
   /// it from the velocities themselves).
-  double residual_at(const Rows& P, const Rows& z, Rows& R) const {
+  double residual_at(const Rows& P, const Rows& z, Rows& R, Rows* d = nullptr,
+                     Rows* dydb = nullptr) const {
     const int r = cs->rows();
     R.resize(r);
-    double m = 0.0;
-    for (int j = 0; j < r; ++j) {
-      R(j) = row_residual(j, z(j), P);
-      if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
-      m = std::max(m, weight(j) * std::fabs(R(j)));
+    if (d) {
+      d->setZero(r);
+      dydb->setZero(r);
     }
-    return m;
-  }
-
-  /// residual(), with every row's prox derivatives at P for jacobian_from_slopes (the same prox
-  /// calls, so the same R to the last bit). Only where every potential has a prox.
-  double residual_with_slopes(const Rows& P, Rows& z, Rows& R, Rows& d, Rows& dydb) const {
-    mean_velocity(P, z);
-    const int r = cs->rows();
-    R.resize(r);
-    d.resize(r);
-    dydb.resize(r);
     double m = 0.0;
     for (int j = 0; j < r; ++j) {
-      d(j) = 0.0;
-      dydb(j) = 0.0;
-      R(j) = z(j) - prox(j, z(j) - tau(j) * P(j), bound(j, P), &d(j), &dydb(j));
+      R(j) = d ? z(j) - prox(j, z(j) - tau(j) * P(j), bound(j, P), &(*d)(j), &(*dydb)(j))
+               : row_residual(j, z(j), P);
       if (!std::isfinite(R(j))) return std::numeric_limits<double>::infinity();
       m = std::max(m, weight(j) * std::fabs(R(j)));
     }
