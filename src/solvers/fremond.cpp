@@ -933,16 +933,19 @@ bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& s
 /// ill-conditioned data (cond(M) ~ 1e13 with μ = 1e8) its answer can miss the tolerance. Its
 /// answer P is checked by the shared stopping test and, if it misses, polished by semismooth
 /// Newton from there; if that fails too, the outcome says `stalled` (never a silent "converged").
+/// The outcome `o` is updated in place, here and in the chain's `finish`: a copy of a
+/// MethodOutcome whose fields were just stored one by one is reloaded in 16-byte pieces, a
+/// store-forwarding stall that cost a quarter of this function on the bar.
 template <int N, int C>
-MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOptions& opt,
-                          MethodOutcome o) {
-  if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return o;
+void check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOptions& opt,
+                 MethodOutcome& o) {
+  if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return;
   Rows<N, C> z, R;
   const double target = opt.tolerance * rows.cs->v_scale;
   if (std::isfinite(rows.residual(P, z, R)) && rows.converged(P, R, target)) {
     o.residual = R.cwiseAbs().maxCoeff();  // what plain_residual(P) would compute again
     o.residual_is_plain = true;
-    return o;
+    return;
   }
   Rows<N, C> Q = P;
   if (rows.all_prox) {
@@ -952,14 +955,14 @@ MethodOutcome check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const S
       n.message =
           "the exact answer missed the tolerance (ill-conditioned data): polished by "
           "semismooth Newton";
-      return n;
+      o = n;
+      return;
     }
   }
   o.status = SolverStatus::stalled;
   o.message =
       "the exact answer misses the tolerance (ill-conditioned data) and semismooth Newton "
       "could not polish it";
-  return o;
 }
 
 /// Keeps the candidates of the mode enumeration that satisfy the law to the shared stopping test
@@ -975,29 +978,37 @@ int keep_resolved(const FremondRowsT<N, C>& rows, std::array<ContactSolution, 16
     MethodOutcome o;
     o.status = SolverStatus::converged;
     o.criterion = StopCriterion::exact;
-    if (check_exact(rows, P, opt, o).status == SolverStatus::converged)
-      sols[kept++] = ContactSolution{P(0), P(1)};
+    check_exact(rows, P, opt, o);
+    if (o.status == SolverStatus::converged) sols[kept++] = ContactSolution{P(0), P(1)};
   }
   if (kept < n) *exhaustive = false;
   return kept;
 }
 
+/// The outcome `o` of method `m` into the result's report, with `residual` (unscaled) in place of
+/// o.residual.
 template <int N, int C>
-void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, const SolverOptions& opt,
-                   ImpactResultT<N, C>& out) {
+void write_outcome(const MethodOutcome& o, double residual, SolverMethod m, double v_scale,
+                   const SolverOptions& opt, ImpactResultT<N, C>& out) {
   out.solver.method = m;
   out.solver.status = o.status;
   out.solver.criterion = o.criterion;
   out.solver.iterations = o.iterations;
   out.solver.message = o.message;
   out.solver.native_code = o.native_code;
-  out.solver.residual = o.residual / v_scale;
+  out.solver.residual = residual / v_scale;
   // A method that stopped on FremondRows::converged's rounding floors has a residual above the
   // tolerance: say so by the criterion (SolverStatus::converged's second clause), so "converged"
   // never hides a residual above tolerance.
   const double promised = m == SolverMethod::nlopt ? opt.nlopt_tolerance : opt.tolerance;
   if (o.status == SolverStatus::converged && !(out.solver.residual <= promised))
     out.solver.criterion = StopCriterion::rounding;
+}
+
+template <int N, int C>
+void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, const SolverOptions& opt,
+                   ImpactResultT<N, C>& out) {
+  write_outcome(o, o.residual, m, v_scale, opt, out);
 }
 
 /// True when no velocity after the impact keeps every contact that takes part from penetrating:
@@ -1024,16 +1035,15 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   Rows<N, C> P = Rows<N, C>::Zero(cs.rows());
   const SolverMethod want = opt.method;
   Rows<N, C> z;  // the mean velocity of the answer, shared by the split and the uniqueness test
-  auto finish = [&](MethodOutcome o, SolverMethod m) {
-    if (cs.rows() && P.allFinite() && !o.residual_is_plain)
-      o.residual = rows.plain_residual(P);  // the law's residual
-    write_outcome(o, m, cs.v_scale, opt, out);
+  // `o` by reference and not copied (see check_exact); the residual it reports is passed beside it.
+  auto finish = [&](const MethodOutcome& o, SolverMethod m) {
+    write_outcome(
+        o, cs.rows() && P.allFinite() && !o.residual_is_plain ? rows.plain_residual(P) : o.residual,
+        m, cs.v_scale, opt, out);  // the law's residual
     if (out.solver.status == SolverStatus::converged &&
         out.solver.criterion == StopCriterion::rounding && rows.all_prox &&
-        refine_in_velocity_space(pb, rows, P, opt.tolerance * cs.v_scale)) {
-      o.residual = rows.plain_residual(P);
-      write_outcome(o, m, cs.v_scale, opt, out);
-    }
+        refine_in_velocity_space(pb, rows, P, opt.tolerance * cs.v_scale))
+      write_outcome(o, rows.plain_residual(P), m, cs.v_scale, opt, out);
     scatter_solution(pb, cs, P, out);
     rows.mean_velocity(P, z);
     split_reaction(rows, P, z, out);
@@ -1098,10 +1108,8 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
         !coulomb_mode_undetermined(rows, P, z, Wf, free_rows))
       return;
     auto take_exact = [&](const char* message) {
-      o.residual = rows.plain_residual(P);
-      o.residual_is_plain = true;
-      o.message = message;
-      write_outcome(o, m, cs.v_scale, opt, out);
+      write_outcome(o, rows.plain_residual(P), m, cs.v_scale, opt, out);
+      out.solver.message = message;
       scatter_solution(pb, cs, P, out);
       rows.mean_velocity(P, z);
       split_reaction(rows, P, z, out);
@@ -1165,7 +1173,8 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   const bool is_decoupled = decoupled(cs);
   if (has_prox && is_decoupled &&
       (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton)) {
-    const auto o = check_exact(rows, P, opt, solve_decoupled(rows, P));
+    MethodOutcome o = solve_decoupled(rows, P);
+    check_exact(rows, P, opt, o);
     finish(o, rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
     return;
   }
@@ -1253,7 +1262,8 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
                          : "one contact with Coulomb: several solutions; the most dissipative one";
       out.solutions_found = n;
       out.unique = (n == 1) && exhaustive;
-      finish(check_exact(rows, P, opt, o), SolverMethod::mode_enumeration);
+      check_exact(rows, P, opt, o);
+      finish(o, SolverMethod::mode_enumeration);
       if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, z, out);
       return;
     }
@@ -1273,8 +1283,8 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
       o.status = SolverStatus::converged;
       o.criterion = StopCriterion::exact;
       o.message = "one contact inside the tangential dead zone: one exact prox";
-      finish(check_exact(rows, P, opt, o),
-             rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
+      check_exact(rows, P, opt, o);
+      finish(o, rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
       return;
     }
   }
@@ -1633,7 +1643,7 @@ std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& p
       o.criterion = StopCriterion::exact;
       o.message = "one contact with Coulomb: every mode tried";
       o.residual = rows.residual(P, z, R);
-      o = check_exact(rows, P, opt, o);
+      check_exact(rows, P, opt, o);
       o.residual = rows.plain_residual(P);
       write_outcome(o, SolverMethod::mode_enumeration, cs.v_scale, opt, r);
       scatter_solution(pb, cs, P, r);

@@ -44,7 +44,9 @@ struct Interval {
 };
 
 /// What a potential can do, so a driver can pick the cheapest exact method it allows.
-struct PotentialCapabilities {
+/// Eight bytes, aligned: returned in one register and stored with one move (five bools would be
+/// spilled byte by byte and reloaded as a word, a store-forwarding stall at every solve's setup).
+struct alignas(8) PotentialCapabilities {
   bool prox = false;             ///< prox_{τφ} is available (exact or to machine precision).
   bool prox_derivative = false;  ///< an element of the generalized derivative of the prox is given.
   bool subdifferential = false;  ///< the whole interval ∂φ(z), not only one subgradient.

@@ -83,18 +83,20 @@ struct FremondRowsT {
     if (l.tangential == TangentialLaw::potential)
       for (const auto& p : l.tangential_potential.potentials) take(*p);
     const int r = space.rows();
-    tau.setZero(r);
+    tau.resize(r);
     double gmax = 0.0;
     for (int j = 0; j < r; ++j) gmax = std::max(gmax, space.G(j, j));
-    // row_tau, written out: inlined here, GCC 12 warns of a read of tau before it is set.
-    const double fallback = gmax > 0.0 ? 0.5 * gmax : 1.0;
+    // τ_j from G twice, first for the largest, then for τ and the weights together: the weights
+    // from τ just stored entry by entry were reloaded two at a time, a store-forwarding stall that
+    // cost 2 % of the bar's whole law stage.
+    double tmax = r ? 0.0 : 1.0;
+    for (int j = 0; j < r; ++j) tmax = std::max(tmax, row_tau(space.G(j, j), gmax));
+    weight.resize(r);
     for (int j = 0; j < r; ++j) {
-      const double g = space.G(j, j);
-      tau(j) = g > 1e-14 * gmax ? 0.5 * g : fallback;
+      const double t = row_tau(space.G(j, j), gmax);
+      tau(j) = t;
+      weight(j) = tmax / t;
     }
-    weight.setZero(r);
-    const double tmax = r ? tau.maxCoeff() : 1.0;
-    for (int j = 0; j < r; ++j) weight(j) = tmax / tau(j);
   }
 
   int active() const { return cs->active; }

@@ -28,13 +28,19 @@ class CholeskyT {
   CholeskyT& compute(const Mat& A) {
     if constexpr (kHandLoops) {
       L_ = A;
-      diagonal_ = lower_is_diagonal(A);
+      scan_diagonal(A, diagonal_, matrix_diagonal_);
       info_ = factorize_in_place(L_, diagonal_) ? Eigen::Success : Eigen::NumericalIssue;
     } else {
+      bool lower = true;
+      scan_diagonal(A, lower, matrix_diagonal_);
       llt_.compute(A);
     }
     return *this;
   }
+
+  /// Whether the matrix factorised is diagonal, both triangles (every off-diagonal entry exactly
+  /// zero): what the callers' is_diagonal(M) would say, found by the scan the factor needs anyway.
+  bool matrix_is_diagonal() const { return matrix_diagonal_; }
 
   Eigen::ComputationInfo info() const {
     if constexpr (kHandLoops)
@@ -109,12 +115,17 @@ class CholeskyT {
   // A diagonal M (a body in principal axes: the bar, a point mass, the plate) has a diagonal
   // factor, and both substitutions are one division per entry: the general loops would only
   // subtract products with its zeros (exact), at a third of a one-contact impact's contact space.
-  static bool lower_is_diagonal(const Mat& A) {
+  // The upper triangle is scanned in the same pass (M is symmetric only to 1e-12 of its scale, so
+  // a diagonal lower triangle does not make M diagonal).
+  static void scan_diagonal(const Mat& A, bool& lower, bool& both) {
     const Eigen::Index n = A.rows();
+    lower = both = true;
     for (Eigen::Index j = 0; j < n; ++j)
-      for (Eigen::Index i = j + 1; i < n; ++i)
-        if (A(i, j) != 0.0) return false;
-    return true;
+      for (Eigen::Index i = j + 1; i < n; ++i) {
+        if (A(i, j) != 0.0) lower = both = false;
+        if (A(j, i) != 0.0) both = false;
+        if (!lower) return;  // both is false too
+      }
   }
 
   template <class Y>
@@ -125,7 +136,8 @@ class CholeskyT {
   }
 
   struct Empty {};
-  bool diagonal_ = false;
+  bool diagonal_ = false;         // the lower triangle: the factor is diagonal
+  bool matrix_diagonal_ = false;  // the whole matrix
   std::conditional_t<kHandLoops, Mat, Empty> L_{};
   Eigen::ComputationInfo info_ = Eigen::InvalidInput;
   std::conditional_t<kHandLoops, Empty, Eigen::LLT<Mat>> llt_{};

@@ -107,7 +107,7 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
     cs.llt.solve_upper_in_place(cs.MinvW);
     // An ill-conditioned M: M⁻¹W and G to the working precision (refined_solve.hpp). G is then
     // WᵀX from twice-precise sums, symmetrised; a diagonal M keeps the Gram form.
-    if (!is_diagonal(pb.M) && refine_solve(pb.M, cs.llt, cs.W, cs.MinvW)) {
+    if (!cs.llt.matrix_is_diagonal() && refine_solve(pb.M, cs.llt, cs.W, cs.MinvW)) {
       for (int j = 0; j < r; ++j) {
         cs.G(j, j) = std::max(0.0, accurate_dot(cs.W.col(j), cs.MinvW.col(j)));
         for (int k = j + 1; k < r; ++k)
@@ -183,19 +183,30 @@ void velocity_after(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   accurate_residual(cs.W, P, VecT<MaxDofs>::Zero(n), f);  // 0 − W P
   f = -f;
   VecT<MaxDofs> x = cs.llt.solve(f);
-  if (!is_diagonal(pb.M)) refine_solve(pb.M, cs.llt, f, x);
+  if (!cs.llt.matrix_is_diagonal()) refine_solve(pb.M, cs.llt, f, x);
   if (x.allFinite()) q = pb.qdot_A + x;
 }
 
 /// T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from the velocities q̇_E.
 /// No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
+/// `diagonal`: M is known to be diagonal (CholeskyT::matrix_is_diagonal).
 template <int MaxDofs, int MaxContacts>
-double energy_change_at(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const VecT<MaxDofs>& qE) {
+double energy_change_at(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const VecT<MaxDofs>& qE,
+                        bool diagonal = false) {
   const int n = pb.dofs();
   bool moved = false;
   for (int i = 0; i < n && !moved; ++i) moved = qE(i) != pb.qdot_A(i);
   if (!moved) return 0.0;
   if constexpr (MaxDofs != Dynamic) {
+    if (diagonal) {
+      // The loop below with its exact zeros left out: from +0, adding the products 0·x (±0) leaves
+      // +0 or the one nonzero term, so each row's sum is 0.0 + M_ii(q̇_E,i + q̇_A,i), the same bits.
+      // Only where a product is not finite would 0·∞ have made it NaN: that case takes the loop.
+      double e = 0.0;
+      for (int i = 0; i < n; ++i)
+        e += (qE(i) - pb.qdot_A(i)) * (0.0 + pb.M(i, i) * (qE(i) + pb.qdot_A(i)));
+      if (std::isfinite(e)) return 0.5 * e;
+    }
     double e = 0.0;  // fused: no temporary
     for (int i = 0; i < n; ++i) {
       double Ms = 0.0;
@@ -238,7 +249,7 @@ void scatter_at_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     if (pb.has_tangential())
       out.D_TE(i) = contact_velocity(pb.W_T.col(i), out.qdot_E, pb.w_T.size() ? pb.w_T(i) : 0.0);
   }
-  out.energy_change = energy_change_at(pb, out.qdot_E);
+  out.energy_change = energy_change_at(pb, out.qdot_E, cs.llt.matrix_is_diagonal());
 }
 
 /// Fills the velocities, percussions and energy change of `out` from the active-row percussions P
