@@ -263,7 +263,7 @@ void split_reaction(const FremondRowsT<N, C>& rows, const Rows<N, C>& P, const R
     const double lb = rows.lower_bound(k);
     const bool bound_branch = (!(rows.all_prox || rows.row_has_prox(k)) || !std::isfinite(z(k)))
                                   ? z(k) <= lb + 64 * kEps * (std::fabs(lb) + std::fabs(z(k)))
-                                  : phi.prox(z(k) - rows.tau(k) * P(k), rows.tau(k)) < lb;
+                                  : rows.normal_prox(k, z(k) - rows.tau(k) * P(k)) < lb;
     if (bound_branch) out.P_N_reaction(cs.index(k)) = std::max(0.0, P(k) + phi.subgradient(z(k)));
   }
 }

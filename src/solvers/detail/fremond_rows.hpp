@@ -66,6 +66,11 @@ struct FremondRowsT {
   /// one sliding with its reaction active: stalled at P_N = 2e-8 where the answer has P_N = 0.38).
   /// nullptr: 0.
   const signed char* fixed_normal = nullptr;
+  /// The last prox of the normal potential of each normal row at the row's own step, with its
+  /// argument (NaN: none yet): the reaction split asks prox(z − τP) < D_NA/2 of the answer, which
+  /// the residual that certified it has just computed (a third of the viscous bar's prox calls).
+  /// An exact memo: the same argument gives the same bits.
+  mutable Rows last_x, last_y;
 
   void init(const CS& space, const ImpactLaw& l) {
     cs = &space;
@@ -97,6 +102,16 @@ struct FremondRowsT {
       tau(j) = t;
       weight(j) = tmax / t;
     }
+    last_x.resize(space.active);
+    last_y.resize(space.active);
+    for (int k = 0; k < space.active; ++k) last_x(k) = std::numeric_limits<double>::quiet_NaN();
+  }
+
+  /// prox_{τ_k φ_N}(x) of normal row k at its own step, without the reaction's bound: from the
+  /// memo where x is its argument.
+  double normal_prox(int k, double x) const {
+    if (x == last_x(k)) return last_y(k);
+    return law->normal[contact(k)].prox(x, tau(k));
   }
 
   int active() const { return cs->active; }
@@ -125,6 +140,10 @@ struct FremondRowsT {
         return lower_bound(j);
       }
       const double y = law->normal[contact(j)].prox(x, t, d);
+      if (t == tau(j)) {
+        last_x(j) = x;
+        last_y(j) = y;
+      }
       if (branch == 1) return y;
       const double lb = lower_bound(j);
       if (y < lb) {
