@@ -110,3 +110,21 @@ TEST(Cholesky, HeapSizesAreEigensOwnFactor) {
 }
 
 }  // namespace
+
+// matrix_is_diagonal() stands in for is_diagonal(M) in the contact space (whether M⁻¹W is
+// refined): both triangles, so a mass matrix symmetric only to its validation's 1e-12 with a
+// diagonal lower triangle is not diagonal. Stack and heap storage alike.
+TEST(Cholesky, MatrixIsDiagonalReadsBothTriangles) {
+  for (int n = 1; n <= 6; ++n)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) * 2.0;
+        if (i != j) A(i, j) = 1e-13;  // one entry off the diagonal, in either triangle
+        const Small small(A);
+        const CholeskyT<fremond::Dynamic> heap(A);
+        const bool diagonal = i == j;
+        EXPECT_EQ(small.matrix_is_diagonal(), diagonal) << "n = " << n << " at " << i << "," << j;
+        EXPECT_EQ(heap.matrix_is_diagonal(), diagonal) << "n = " << n << " at " << i << "," << j;
+        EXPECT_EQ(small.info(), Eigen::Success);
+      }
+}
