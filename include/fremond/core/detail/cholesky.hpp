@@ -38,6 +38,16 @@ class CholeskyT {
     return *this;
   }
 
+  /// compute(A) for an A its caller has found diagonal in both triangles: the same factor, pivot
+  /// test and flags, without the scan (the fixed-size contact space makes it with its own sizes).
+  CholeskyT& compute_diagonal(const Mat& A) {
+    static_assert(kHandLoops, "the heap-stored sizes factorise through Eigen's LLT");
+    L_ = A;
+    diagonal_ = matrix_diagonal_ = true;
+    info_ = factorize_in_place(L_, true) ? Eigen::Success : Eigen::NumericalIssue;
+    return *this;
+  }
+
   /// Whether the matrix factorised is diagonal, both triangles (every off-diagonal entry exactly
   /// zero): what the callers' is_diagonal(M) would say, found by the scan the factor needs anyway.
   bool matrix_is_diagonal() const { return matrix_diagonal_; }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "fremond/core/detail/cholesky.hpp"
 #include "fremond/core/detail/small_dense.hpp"
@@ -54,15 +55,122 @@ struct ContactSpaceT {
   int tangential_row(int i) const { return active + i; }
 };
 
-/// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
+namespace contact_space_detail {
+
+/// build_contact_space for a stack-stored problem with N dofs (known at compile time) and a
+/// diagonal M, the planar and spatial bodies in principal axes and the point masses: the same
+/// numbers, bit for bit, as the general path below (the same sums in the same order), with every
+/// loop's trip count a constant. The general path spends most of a one-contact impact's contact
+/// space on run-time sizes, resizes and copies: 810 instructions for the bar's two rows.
+/// Returns false where M is not diagonal, M's factor fails or an entry is not finite: the general
+/// path then builds the contact space from the start and refuses what it refuses.
+template <int N, int MaxDofs, int MaxContacts>
+bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
+                            ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  using Col = Eigen::Map<const Eigen::Matrix<double, N, 1>>;
+  const bool has_t = pb.has_tangential();
+  if (pb.M.cols() != N || pb.qdot_A.size() != N || pb.W_N.rows() != N ||
+      (has_t && pb.W_T.rows() != N))
+    return false;
+  const double* const M = pb.M.data();  // column-major, N × N
+  bool diagonal = true;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+      if (i != j) diagonal &= M[i + N * j] == 0.0;  // a NaN is not zero, as in scan_diagonal
+  if (!diagonal) return false;
+  double m[N];
+  for (int d = 0; d < N; ++d) {
+    m[d] = M[d + N * d];
+    if (m[d] <= 0.0) return false;  // the factor's pivot test (a NaN passes it, as there)
+  }
+
+  const int c = pb.contacts();
+  cs.dofs = N;
+  cs.contacts = c;
+  cs.tangential = with_tangential && has_t;
+  cs.index.resize(c);
+  cs.D_N.resize(c);
+  cs.D_T.resize(has_t ? c : 0);
+  const Col q(pb.qdot_A.data());
+  int a = 0;
+  for (int i = 0; i < c; ++i) {
+    cs.D_N(i) = contact_velocity(Col(pb.W_N.data() + N * i), q, pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (has_t)
+      cs.D_T(i) = contact_velocity(Col(pb.W_T.data() + N * i), q, pb.w_T.size() ? pb.w_T(i) : 0.0);
+    if (cs.D_N(i) <= 0.0) cs.index(a++) = i;
+  }
+  cs.active = a;
+  cs.index.conservativeResize(a);
+  const int r = cs.rows();
+  // Each row's column, read from the problem: the products below load what was stored long
+  // before, not the entries of cs.W just stored one by one (a load that waits on them stalls).
+  const double* column[ContactSpaceT<MaxDofs, MaxContacts>::kMaxRows];
+  cs.D_A.resize(r);
+  for (int k = 0; k < a; ++k) {
+    const int i = cs.index(k);
+    column[k] = pb.W_N.data() + N * i;
+    cs.D_A(k) = cs.D_N(i);
+    if (cs.tangential) {
+      column[a + k] = pb.W_T.data() + N * i;
+      cs.D_A(a + k) = cs.D_T(i);
+    }
+  }
+  cs.W.resize(N, r);
+  cs.MinvW.resize(N, r);
+  cs.G.resize(r, r);
+  double probe = 0.0;  // stays 0 unless an entry is ∞ or NaN (0·∞ = NaN)
+  for (int j = 0; j < r; ++j) {
+    double x[N];
+    for (int d = 0; d < N; ++d) {
+      x[d] = column[j][d] / m[d];
+      cs.W(d, j) = column[j][d];
+      cs.MinvW(d, j) = x[d];
+      probe += 0.0 * x[d];
+    }
+    for (int k = j; k < r; ++k) {
+      double sum = 0.0;
+      for (int d = 0; d < N; ++d) sum += x[d] * column[k][d];
+      cs.G(j, k) = cs.G(k, j) = sum;
+      probe += 0.0 * sum;
+    }
+  }
+  if (!(probe == 0.0)) return false;  // an overflow: the general path names the row
+  cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
+  if (!(cs.v_scale > std::numeric_limits<double>::min()))
+    cs.v_scale = std::numeric_limits<double>::min();
+  // Last: its square roots are needed by no entry above (they would hold up the divisions).
+  cs.llt.compute_diagonal(pb.M);
+  return true;
+}
+
+/// build_diagonal_of_size for the sizes 1, 2, 3 and 6 that fit MaxDofs; false for the others.
+template <int MaxDofs, int MaxContacts>
+bool build_diagonal(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
+                    ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  auto fits = [&](auto size) {
+    constexpr int N = decltype(size)::value;
+    if constexpr (N <= MaxDofs)
+      return pb.dofs() == N && build_diagonal_of_size<N>(pb, with_tangential, cs);
+    else
+      return false;
+  };
+  // The point masses (1, 2 dofs), the planar rigid bodies (3) and the spatial ones (6).
+  return fits(std::integral_constant<int, 3>{}) || fits(std::integral_constant<int, 2>{}) ||
+         fits(std::integral_constant<int, 1>{}) || fits(std::integral_constant<int, 6>{});
+}
+
+}  // namespace contact_space_detail
+
+/// build_contact_space's general path, for every size and mass matrix (build_contact_space takes
+/// the fixed-size one where it applies; the tests hold the two to the same bits).
 ///
 /// With M = L Lᵀ and Y = L⁻¹ W: G = WᵀM⁻¹W = YᵀY (a Gram matrix: symmetric and positive
 /// semidefinite by construction, also in floating point up to rounding of each entry) and
 /// M⁻¹W = L⁻ᵀ Y. Where M is not diagonal and that solve is off by more than rounding (cond(M)·ε),
 /// M⁻¹W is refined and G recomputed from it.
 template <int MaxDofs, int MaxContacts>
-void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
-                         ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                                 bool with_tangential, ContactSpaceT<MaxDofs, MaxContacts>& cs) {
   constexpr bool small = MaxDofs != Dynamic;
   const int n = pb.dofs(), c = pb.contacts();
   cs.dofs = n;
@@ -96,17 +204,36 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   // No row (no contact takes part): nothing to solve. Eigen's triangular solve of a matrix with
   // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
   if (r > 0) {
-    cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
-    cs.llt.solve_lower_in_place(cs.MinvW);
-    if constexpr (small) {
-      small_dense::gram(cs.MinvW, cs.G);
+    if (small && cs.llt.matrix_is_diagonal()) {
+      // M = diag(m) (a body in principal axes: the bar, a point mass, the plate): M⁻¹W is W_ij/m_i,
+      // one rounding per entry where L⁻ᵀL⁻¹W takes a square root's and two divisions', and
+      // G_jk = Σ_i (W_ij/m_i) W_ik, each pair summed once (exactly symmetric). The factor's square
+      // roots are then off the critical path: a third of the bar's contact space was waiting on
+      // them. A non-positive m_i (M not SPD) leaves a non-finite or negative entry, refused below
+      // as the factor's failure is.
+      cs.MinvW.resize(n, r);
+      for (int j = 0; j < r; ++j)
+        for (int i = 0; i < n; ++i) cs.MinvW(i, j) = cs.W(i, j) / pb.M(i, i);
+      cs.G.resize(r, r);
+      for (int j = 0; j < r; ++j)
+        for (int k = j; k < r; ++k) {
+          double s = 0.0;
+          for (int i = 0; i < n; ++i) s += cs.MinvW(i, j) * cs.W(i, k);
+          cs.G(j, k) = cs.G(k, j) = s;
+        }
     } else {
-      cs.G.noalias() = cs.MinvW.transpose() * cs.MinvW;
-      cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+      cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
+      cs.llt.solve_lower_in_place(cs.MinvW);
+      if constexpr (small) {
+        small_dense::gram(cs.MinvW, cs.G);
+      } else {
+        cs.G.noalias() = cs.MinvW.transpose() * cs.MinvW;
+        cs.G = 0.5 * (cs.G + cs.G.transpose()).eval();
+      }
+      cs.llt.solve_upper_in_place(cs.MinvW);
     }
-    cs.llt.solve_upper_in_place(cs.MinvW);
     // An ill-conditioned M: M⁻¹W and G to the working precision (refined_solve.hpp). G is then
-    // WᵀX from twice-precise sums, symmetrised; a diagonal M keeps the Gram form.
+    // WᵀX from twice-precise sums, symmetrised; a diagonal M needs none.
     if (!cs.llt.matrix_is_diagonal() && refine_solve(pb.M, cs.llt, cs.W, cs.MinvW)) {
       for (int j = 0; j < r; ++j) {
         cs.G(j, j) = std::max(0.0, accurate_dot(cs.W.col(j), cs.MinvW.col(j)));
@@ -143,6 +270,17 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
   if (!(cs.v_scale > std::numeric_limits<double>::min()))
     cs.v_scale = std::numeric_limits<double>::min();
+}
+
+/// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
+/// A stack-stored problem of 1, 2, 3 or 6 dofs with a diagonal M takes the fixed-size path
+/// (contact_space_detail::build_diagonal), every other one the general path.
+template <int MaxDofs, int MaxContacts>
+void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
+                         ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  if constexpr (MaxDofs != Dynamic)
+    if (contact_space_detail::build_diagonal(pb, with_tangential, cs)) return;
+  build_contact_space_general(pb, with_tangential, cs);
 }
 
 /// The velocity q = q̇_A + M⁻¹W P after the active-row percussions P (size rows()).
