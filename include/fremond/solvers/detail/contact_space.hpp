@@ -204,13 +204,17 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   // No row (no contact takes part): nothing to solve. Eigen's triangular solve of a matrix with
   // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
   if (r > 0) {
-    if (small && cs.llt.matrix_is_diagonal()) {
+    if (cs.llt.matrix_is_diagonal()) {
       // M = diag(m) (a body in principal axes: the bar, a point mass, the plate): M⁻¹W is W_ij/m_i,
       // one rounding per entry where L⁻ᵀL⁻¹W takes a square root's and two divisions', and
       // G_jk = Σ_i (W_ij/m_i) W_ik, each pair summed once (exactly symmetric). The factor's square
       // roots are then off the critical path: a third of the bar's contact space was waiting on
-      // them. A non-positive m_i (M not SPD) leaves a non-finite or negative entry, refused below
-      // as the factor's failure is.
+      // them. Both storages take this form, so that a problem's G has the same bits wherever it
+      // is stored: a singular G (two contacts on one dof) leaves the answer sensitive to them at
+      // the rounding floor, and the heap-stored two-body copy of a one-dof problem (6 contacts)
+      // was 1.9e-7 of the velocities from the stack-stored original (stress fremond seed 41). A
+      // non-positive m_i (M not SPD) leaves a non-finite or negative entry, refused below as the
+      // factor's failure is.
       cs.MinvW.resize(n, r);
       for (int j = 0; j < r; ++j)
         for (int i = 0; i < n; ++i) cs.MinvW(i, j) = cs.W(i, j) / pb.M(i, i);
