@@ -223,4 +223,29 @@ TEST(SmallLU, WellConditionedIsRcondAboveTheThreshold) {
   EXPECT_GT(above, 1000);
 }
 
+TEST(SmallLU, WellConditionedDecidesAsRcondJustAboveAndBelowIt) {
+  // Thresholds at 0.3, 0.9, 1.1 and 3 times each matrix's own rcond: the bounds that skip A⁻¹
+  // (pivots below, comparison matrices above) must leave every one of these to rcond(), so a bound
+  // on ‖A⁻¹‖₁ that fell short of it by a factor 2.2 would answer "yes" at 1.1 here.
+  std::mt19937 gen(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int n = 1 + trial % 8;
+    Mat A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = u(gen) * std::pow(10.0, 3 * u(gen));
+    if (n > 1 && trial % 3 == 0) {
+      const double delta = std::pow(10.0, -static_cast<double>(trial % 13));
+      for (int j = 0; j < n; ++j) A(n - 1, j) = A(0, j) + delta * u(gen);
+    }
+    SmallLU<8> lu;
+    lu.compute(A);
+    if (lu.singular()) continue;
+    const double rc = lu.rcond();
+    ASSERT_GT(rc, 0.0) << trial;
+    for (const double f : {0.3, 0.9, 1.1, 3.0})
+      ASSERT_EQ(lu.well_conditioned(f * rc), rc > f * rc) << trial << " factor " << f;
+  }
+}
+
 }  // namespace
