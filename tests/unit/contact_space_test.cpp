@@ -203,13 +203,7 @@ TEST(ContactSpace, DiagonalMassGivesTheSameBitsInEitherStorage) {
     const int n = 1 + trial % kSmallDofs;
     const int c = 1 + (trial / kSmallDofs) % kSmallContacts;
     const SmallImpactProblem pb = random_diagonal_problem(n, c, trial % 2 == 0, gen);
-    ImpactProblem heap;
-    heap.M = pb.M;
-    heap.W_N = pb.W_N;
-    heap.W_T = pb.W_T;
-    heap.w_N = pb.w_N;
-    heap.w_T = pb.w_T;
-    heap.qdot_A = pb.qdot_A;
+    const ImpactProblem heap = to_dynamic(pb);
     Space small;
     detail::ContactSpaceT<Dynamic, Dynamic> big;
     detail::build_contact_space(pb, true, small);
