@@ -4,9 +4,11 @@
 /// Rows are ordered [normal rows of the active contacts, then their tangential rows]. G = Wᵀ M⁻¹ W
 /// is formed from a Cholesky factor of M; it may be singular and is never inverted.
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "fremond/core/detail/cholesky.hpp"
 #include "fremond/core/detail/small_dense.hpp"
@@ -57,6 +59,39 @@ struct ContactSpaceT {
 
 namespace contact_space_detail {
 
+/// M⁻¹W and G for a diagonal M = diag(m) (a body in principal axes: the bar, a point mass, the
+/// plate): M⁻¹W is W_ij/m_i, one rounding per entry where L⁻ᵀL⁻¹W takes a square root's and two
+/// divisions', and G_jk = Σ_i (W_ij/m_i) W_ik, each pair summed once (exactly symmetric). The
+/// factor's square roots are then off the critical path: a third of the bar's contact space was
+/// waiting on them. Both paths and both storages use this one loop, so that a problem's G has the
+/// same bits wherever it is stored: a singular G (two contacts on one dof) leaves the answer
+/// sensitive to them at the rounding floor, and the heap-stored two-body copy of a one-dof problem
+/// (6 contacts) was 1.9e-7 of the velocities from the stack-stored original (stress fremond seed
+/// 41). `column[j]` is row j's column of W (n entries), `M` the mass matrix's column-major data;
+/// N > 0 fixes n at compile time. Returns 0 unless an entry is ∞ or NaN (0·∞ = NaN).
+template <int N, int MaxDofs, int MaxContacts>
+double diagonal_inverse_and_delassus(const double* const* column, const double* M, int n, int r,
+                                     ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  if constexpr (N > 0) n = N;
+  cs.MinvW.resize(n, r);
+  cs.G.resize(r, r);
+  double probe = 0.0;
+  for (int j = 0; j < r; ++j) {
+    double* const x = cs.MinvW.data() + static_cast<std::ptrdiff_t>(n) * j;
+    for (int d = 0; d < n; ++d) {
+      x[d] = column[j][d] / M[static_cast<std::ptrdiff_t>(d) * (n + 1)];
+      probe += 0.0 * x[d];
+    }
+    for (int k = j; k < r; ++k) {
+      double sum = 0.0;
+      for (int d = 0; d < n; ++d) sum += x[d] * column[k][d];
+      cs.G(j, k) = cs.G(k, j) = sum;
+      probe += 0.0 * sum;
+    }
+  }
+  return probe;
+}
+
 /// build_contact_space for a stack-stored problem with N dofs (known at compile time) and a
 /// diagonal M, the planar and spatial bodies in principal axes and the point masses: the same
 /// numbers, bit for bit, as the general path below (the same sums in the same order), with every
@@ -79,11 +114,8 @@ bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool
     for (int i = 0; i < N; ++i)
       if (i != j) diagonal &= M[i + N * j] == 0.0;  // a NaN is not zero, as in scan_diagonal
   if (!diagonal) return false;
-  double m[N];
-  for (int d = 0; d < N; ++d) {
-    m[d] = M[d + N * d];
-    if (m[d] <= 0.0) return false;  // the factor's pivot test (a NaN passes it, as there)
-  }
+  for (int d = 0; d < N; ++d)
+    if (M[d + N * d] <= 0.0) return false;  // the factor's pivot test (a NaN passes it, as there)
 
   const int c = pb.contacts();
   cs.dofs = N;
@@ -117,25 +149,10 @@ bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool
     }
   }
   cs.W.resize(N, r);
-  cs.MinvW.resize(N, r);
-  cs.G.resize(r, r);
-  double probe = 0.0;  // stays 0 unless an entry is ∞ or NaN (0·∞ = NaN)
-  for (int j = 0; j < r; ++j) {
-    double x[N];
-    for (int d = 0; d < N; ++d) {
-      x[d] = column[j][d] / m[d];
-      cs.W(d, j) = column[j][d];
-      cs.MinvW(d, j) = x[d];
-      probe += 0.0 * x[d];
-    }
-    for (int k = j; k < r; ++k) {
-      double sum = 0.0;
-      for (int d = 0; d < N; ++d) sum += x[d] * column[k][d];
-      cs.G(j, k) = cs.G(k, j) = sum;
-      probe += 0.0 * sum;
-    }
-  }
-  if (!(probe == 0.0)) return false;  // an overflow: the general path names the row
+  for (int j = 0; j < r; ++j)
+    for (int d = 0; d < N; ++d) cs.W(d, j) = column[j][d];
+  if (!(diagonal_inverse_and_delassus<N>(column, M, N, r, cs) == 0.0))
+    return false;  // an overflow: the general path names the row
   cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
   if (!(cs.v_scale > std::numeric_limits<double>::min()))
     cs.v_scale = std::numeric_limits<double>::min();
@@ -206,26 +223,17 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
   // no column binds a reference to its null data (undefined behaviour, UBSan stops there).
   if (r > 0) {
     if (cs.llt.matrix_is_diagonal()) {
-      // M = diag(m) (a body in principal axes: the bar, a point mass, the plate): M⁻¹W is W_ij/m_i,
-      // one rounding per entry where L⁻ᵀL⁻¹W takes a square root's and two divisions', and
-      // G_jk = Σ_i (W_ij/m_i) W_ik, each pair summed once (exactly symmetric). The factor's square
-      // roots are then off the critical path: a third of the bar's contact space was waiting on
-      // them. Both storages take this form, so that a problem's G has the same bits wherever it
-      // is stored: a singular G (two contacts on one dof) leaves the answer sensitive to them at
-      // the rounding floor, and the heap-stored two-body copy of a one-dof problem (6 contacts)
-      // was 1.9e-7 of the velocities from the stack-stored original (stress fremond seed 41). A
-      // non-positive m_i (M not SPD) leaves a non-finite or negative entry, refused below as the
-      // factor's failure is.
-      cs.MinvW.resize(n, r);
-      for (int j = 0; j < r; ++j)
-        for (int i = 0; i < n; ++i) cs.MinvW(i, j) = cs.W(i, j) / pb.M(i, i);
-      cs.G.resize(r, r);
-      for (int j = 0; j < r; ++j)
-        for (int k = j; k < r; ++k) {
-          double s = 0.0;
-          for (int i = 0; i < n; ++i) s += cs.MinvW(i, j) * cs.W(i, k);
-          cs.G(j, k) = cs.G(k, j) = s;
-        }
+      // A non-positive m_i (M not SPD) leaves a non-finite or negative entry, refused below as
+      // the factor's failure is.
+      const double* column[small ? ContactSpaceT<MaxDofs, MaxContacts>::kMaxRows : 1];
+      std::vector<const double*> heap_column;
+      const double** columns = column;
+      if constexpr (!small) {
+        heap_column.resize(static_cast<std::size_t>(r));
+        columns = heap_column.data();
+      }
+      for (int j = 0; j < r; ++j) columns[j] = cs.W.data() + static_cast<std::ptrdiff_t>(n) * j;
+      contact_space_detail::diagonal_inverse_and_delassus<0>(columns, pb.M.data(), n, r, cs);
     } else {
       cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
       cs.llt.solve_lower_in_place(cs.MinvW);
