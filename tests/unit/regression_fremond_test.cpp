@@ -1842,5 +1842,49 @@ TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
   }
 }
 
+// A bar lying flat on both ends, whose levers cos(π/2)·L round to ∓3.06e-17, at velocities of 1e-9
+// under Frémond + Coulomb with k = 0 (the reaction alone) and μ = 11.5 / 0.008 (stress
+// fremond_coulomb #1460 of seed 43). In exact arithmetic on these doubles both contacts must close,
+// and no exact solution lies near the library's answer, which leaves contact 0 open at
+// D_NE = −7e-26: 7e-17 of the velocities, below the rounding of the terms it is summed from. That
+// answer is backward stable: it is the exact solution, to 2e-16, of the same data with those two
+// sub-ε entries of W_N set to zero (a perturbation of 3e-17 of a unit column), checked in quad
+// precision. The percussions are not unique there, and the result says so.
+TEST(RegressionFremond, FlatBarWithSubRoundingLeversIsSolvedBackwardStably) {
+  Eigen::MatrixXd M =
+      Eigen::Vector3d(52.936958572929967, 52.936958572929967, 4.4114132144108309).asDiagonal();
+  Eigen::MatrixXd WN(3, 2), WT(3, 2);
+  WN << 0, 0, 1, 1, -3.061616997868383e-17, 3.061616997868383e-17;
+  WT << 1, 1, 0, 0, 0.5, -0.5;
+  const Eigen::Vector3d qA(1.1173875984886685e-09, -9.5058474436036293e-10, 2.3676599621768092e-09);
+  const ImpactProblem pb = make(M, WN, WT, qA);
+  const std::vector<double> mu{11.473597989593529, 0.0083648661053411632};
+  const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 5.4084173249583056), mu);
+  const auto r = solve_impact(pb, law);
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  EXPECT_FALSE(r.unique);
+  EXPECT_TRUE(r.admissibility.admissible);
+  // No penetration beyond the rounding of the contact velocities' terms (ε |W_N|ᵀ|q̇_E|).
+  EXPECT_GE(r.D_NE.minCoeff(), -4 * 2.2e-16 * qA.cwiseAbs().maxCoeff());
+
+  namespace ref = fremond_reference;
+  Eigen::MatrixXd WN0 = WN;
+  WN0.row(2).setZero();
+  ref::QVec PN, PT, muq;
+  for (int i = 0; i < 2; ++i) {
+    PN.push_back(r.P_N(i));
+    PT.push_back(r.P_T(i));
+    muq.push_back(mu[i]);
+  }
+  const std::vector<ref::PowerLaw> normal(2, ref::PowerLaw{0, ref::quad(5.4084173249583056)});
+  const ref::Solution exact =
+      ref::fremond_coulomb_near(ref::problem_from(M, WN0, WT, qA), normal, muq, PN, PT);
+  ASSERT_TRUE(exact.ok) << exact.mode;
+  ASSERT_LE(exact.residual, 1e-20);
+  Eigen::Vector3d d;
+  for (int i = 0; i < 3; ++i) d(i) = r.qdot_E(i) - ref::to_double(exact.qdot_E[i]);
+  EXPECT_LE(std::sqrt(d.dot(M * d) / qA.dot(M * qA)), 1e-14);
+}
+
 }  // namespace
 }  // namespace fremond
