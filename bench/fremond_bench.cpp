@@ -15,7 +15,8 @@
 //    reaction it is an LCP, which Siconos Numerics solves (the only Frémond law Siconos can): with
 //    z = D_A + G P/2, P = −K z + R, D_E = 2z − D_A and A = I + G K/2 it reads
 //    0 ≤ R ⊥ D_E = A⁻¹G R + (2A⁻¹ − I) D_A ≥ 0. Timed from the data like every Siconos peer: G, A,
-//    the LCP, then Siconos's driver.
+//    the LCP, then Siconos's driver; and, with _driver ("stage=driver"), Siconos's driver alone on
+//    the LCP assembled before the timing, beside our kernel, which also starts from G and D_A.
 //
 // After timing, every benchmark checks its answers against the quad reference (untimed) and reports
 // `err` (‖q̇_E − q̇_E,ref‖_M/‖q̇_A‖_M, the worst over the case's problems), `residual` and
@@ -165,8 +166,10 @@ struct FremondLcp {
   }
 };
 
+/// `driver`: Siconos's driver alone, on the LCPs assembled before the timing ("stage=driver"), the
+/// work of our kernel, which also starts from G and D_A.
 void BM_Siconos_LCP_FremondP2(benchmark::State& state, const FremondCase* c,
-                              siconos::LcpSolver solver) {
+                              siconos::LcpSolver solver, bool driver) {
   const int contacts = c->problems[0].contacts();
   const double k = c->spec.k_N;
   siconos::Lcp lcp(contacts, solver);
@@ -174,11 +177,22 @@ void BM_Siconos_LCP_FremondP2(benchmark::State& state, const FremondCase* c,
   siconos::SolveInfo info;
   std::size_t j = 0;
   const std::size_t n = c->problems.size();
-  for (auto _ : state) {
-    f.assemble(c->problems[j], k);
-    j = j + 1 == n ? 0 : j + 1;
-    info = lcp.solve(f.Mlcp.data(), f.q.data(), f.z.data(), f.w.data());
-    benchmark::DoNotOptimize(f.z.data());
+  if (driver) {
+    std::vector<FremondLcp> assembled(n);
+    for (std::size_t i = 0; i < n; ++i) assembled[i].assemble(c->problems[i], k);
+    for (auto _ : state) {
+      FremondLcp& a = assembled[j];
+      j = j + 1 == n ? 0 : j + 1;
+      info = lcp.solve(a.Mlcp.data(), a.q.data(), a.z.data(), a.w.data());
+      benchmark::DoNotOptimize(a.z.data());
+    }
+  } else {
+    for (auto _ : state) {
+      f.assemble(c->problems[j], k);
+      j = j + 1 == n ? 0 : j + 1;
+      info = lcp.solve(f.Mlcp.data(), f.q.data(), f.z.data(), f.w.data());
+      benchmark::DoNotOptimize(f.z.data());
+    }
   }
   double err = 0.0;
   int failed = 0;
@@ -195,7 +209,7 @@ void BM_Siconos_LCP_FremondP2(benchmark::State& state, const FremondCase* c,
   state.counters["err"] = err;
   state.counters["failed"] = failed;
   state.counters["iter"] = info.iterations;
-  state.SetLabel(bench_label(c->problem, c->law_name));
+  state.SetLabel(bench_label(c->problem, c->law_name) + (driver ? " stage=driver" : ""));
   if (failed == static_cast<int>(n)) state.SkipWithError("Siconos failed on every problem");
 }
 #endif
@@ -241,9 +255,11 @@ const bool registered = [] {
 #ifdef FREMOND_HAVE_SICONOS
     if (c.law_name == "fremond_p2")
       for (siconos::LcpSolver s : {siconos::LcpSolver::lemke, siconos::LcpSolver::enumeration})
-        benchmark::RegisterBenchmark(
-            (std::string("BM_Siconos_LCP_FremondP2_") + siconos::to_string(s) + suffix).c_str(),
-            BM_Siconos_LCP_FremondP2, &c, s);
+        for (const bool driver : {false, true})
+          benchmark::RegisterBenchmark((std::string("BM_Siconos_LCP_FremondP2_") +
+                                        siconos::to_string(s) + (driver ? "_driver" : "") + suffix)
+                                           .c_str(),
+                                       BM_Siconos_LCP_FremondP2, &c, s, driver);
 #endif
   }
   return true;

@@ -1,9 +1,14 @@
 // Siconos Numerics on the benchmark problems of problems.hpp: Newton's law as an LCP, Newton +
 // Coulomb as an LCP (the planar friction LCP, Glocker's form) and as a 2-D friction-contact problem
-// (Siconos's NSGS, Lemke and enumeration). Each benchmark times what solve_impact does, from the
-// problem (M, W, q̇_A) to the percussions: the Delassus matrix G = Wᵀ M⁻¹ W (SPEC §1) on the stack,
-// then Siconos's driver. After timing, it checks its answer against the closed form of problems.hpp
-// and reports it as counters (P_N0, P_T0, ... and err, the largest deviation of q̇_E).
+// (Siconos's NSGS, Lemke and enumeration), at two depths:
+//  - BM_Siconos_<problem type>_<solver>: from the problem (M, W, q̇_A) to the percussions, the
+//    Delassus matrix G = Wᵀ M⁻¹ W (SPEC §1) on the stack, then Siconos's driver: the work of our
+//    BM_Classical_FromData.
+//  - the same with _Driver ("stage=driver" in the label): Siconos's driver alone on its own problem
+//    (G and q assembled before the timing), the work of our BM_Classical_Kernel, which also starts
+//    from G and D_A.
+// After timing, each checks its answer against the closed form of problems.hpp and reports it as
+// counters (P_N0, P_T0, ... and err, the largest deviation of q̇_E).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -99,7 +104,7 @@ double error_against(const Case& c, int k, const Eigen::VectorXd& qE) {
 /// from the closed form over the problems Siconos solved, and how many it failed (info ≠ 0). A
 /// benchmark whose every solve failed, or whose answers are wrong, reports an error.
 void report(benchmark::State& state, const Case& c, const std::vector<double>& P0, int rows_per,
-            double worst, int failed, int iterations) {
+            double worst, int failed, int iterations, bool driver) {
   const int contacts = c.problems[0].contacts();
   for (int i = 0; i < contacts; ++i) {
     state.counters["P_N" + std::to_string(i)] = P0[rows_per * i];
@@ -108,7 +113,7 @@ void report(benchmark::State& state, const Case& c, const std::vector<double>& P
   state.counters["err"] = worst;
   state.counters["iter"] = iterations;
   state.counters["failed"] = failed;
-  state.SetLabel(bench_label(c.problem, c.law));
+  state.SetLabel(bench_label(c.problem, c.law) + (driver ? " stage=driver" : ""));
   if (failed == static_cast<int>(c.problems.size()))
     state.SkipWithError("Siconos failed on every problem (info != 0)");
   else if (!(worst <= 1e-9))
@@ -163,7 +168,8 @@ void lcp_percussions(const double* z, int c, bool friction, double* P) {
   }
 }
 
-void BM_Siconos_LCP(benchmark::State& state, const Case* c, siconos::LcpSolver solver) {
+void BM_Siconos_LCP(benchmark::State& state, const Case* c, siconos::LcpSolver solver,
+                    bool driver) {
   const int contacts = c->problems[0].contacts();
   const bool friction = c->problems[0].has_tangential();
   const int n = friction ? 4 * contacts : contacts, rows_per = friction ? 2 : 1;
@@ -172,12 +178,26 @@ void BM_Siconos_LCP(benchmark::State& state, const Case* c, siconos::LcpSolver s
   Delassus d;
   siconos::SolveInfo info;
   std::size_t k = 0;
-  for (auto _ : state) {
-    const SmallImpactProblem& p = c->problems[k++ % c->problems.size()];
-    assemble(p, d);
-    fill_lcp(d, contacts, friction, c->e, c->mu, M.data(), q.data());
-    info = lcp.solve(M.data(), q.data(), z.data(), w.data());
-    benchmark::DoNotOptimize(z.data());
+  if (driver) {
+    // Siconos's own problem, (M, q) assembled once per problem: the driver's work alone.
+    std::vector<std::vector<double> > Ms(c->problems.size(), M), qs(c->problems.size(), q);
+    for (std::size_t j = 0; j < c->problems.size(); ++j) {
+      assemble(c->problems[j], d);
+      fill_lcp(d, contacts, friction, c->e, c->mu, Ms[j].data(), qs[j].data());
+    }
+    for (auto _ : state) {
+      const std::size_t j = k++ % c->problems.size();
+      info = lcp.solve(Ms[j].data(), qs[j].data(), z.data(), w.data());
+      benchmark::DoNotOptimize(z.data());
+    }
+  } else {
+    for (auto _ : state) {
+      const SmallImpactProblem& p = c->problems[k++ % c->problems.size()];
+      assemble(p, d);
+      fill_lcp(d, contacts, friction, c->e, c->mu, M.data(), q.data());
+      info = lcp.solve(M.data(), q.data(), z.data(), w.data());
+      benchmark::DoNotOptimize(z.data());
+    }
   }
   // Check every problem of the case, untimed.
   double worst = 0.0;
@@ -196,10 +216,11 @@ void BM_Siconos_LCP(benchmark::State& state, const Case* c, siconos::LcpSolver s
     worst = std::max(
         worst, error_against(*c, static_cast<int>(j), qdot_from(c->problems[j], d, P.data())));
   }
-  report(state, *c, P0, rows_per, worst, failed, info.iterations);
+  report(state, *c, P0, rows_per, worst, failed, info.iterations, driver);
 }
 
-void BM_Siconos_FC2D(benchmark::State& state, const Case* c, siconos::Fc2dSolver solver) {
+void BM_Siconos_FC2D(benchmark::State& state, const Case* c, siconos::Fc2dSolver solver,
+                     bool driver) {
   const int contacts = c->problems[0].contacts(), n = 2 * contacts;
   siconos::FrictionContact2d fc(contacts, solver);
   std::vector<double> M(n * n), q(n), mu(contacts, c->mu), r(n), u(n);
@@ -213,10 +234,24 @@ void BM_Siconos_FC2D(benchmark::State& state, const Case* c, siconos::Fc2dSolver
     }
   };
   std::size_t k = 0;
-  for (auto _ : state) {
-    fill(c->problems[k++ % c->problems.size()]);
-    info = fc.solve(M.data(), q.data(), mu.data(), r.data(), u.data());
-    benchmark::DoNotOptimize(r.data());
+  if (driver) {
+    std::vector<std::vector<double> > Ms, qs;
+    for (const SmallImpactProblem& p : c->problems) {
+      fill(p);
+      Ms.push_back(M);
+      qs.push_back(q);
+    }
+    for (auto _ : state) {
+      const std::size_t j = k++ % c->problems.size();
+      info = fc.solve(Ms[j].data(), qs[j].data(), mu.data(), r.data(), u.data());
+      benchmark::DoNotOptimize(r.data());
+    }
+  } else {
+    for (auto _ : state) {
+      fill(c->problems[k++ % c->problems.size()]);
+      info = fc.solve(M.data(), q.data(), mu.data(), r.data(), u.data());
+      benchmark::DoNotOptimize(r.data());
+    }
   }
   double worst = 0.0;
   int failed = 0;
@@ -232,7 +267,7 @@ void BM_Siconos_FC2D(benchmark::State& state, const Case* c, siconos::Fc2dSolver
     worst = std::max(
         worst, error_against(*c, static_cast<int>(j), qdot_from(c->problems[j], d, r.data())));
   }
-  report(state, *c, P0, 2, worst, failed, info.iterations);
+  report(state, *c, P0, 2, worst, failed, info.iterations, driver);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -319,16 +354,20 @@ const bool registered = [] {
     const bool friction = c.problems[0].has_tangential();
     for (LcpSolver s : {LcpSolver::lemke, LcpSolver::enumeration}) {
       if (s == LcpSolver::enumeration && c.problems[0].contacts() > 2 && friction) continue;
-      benchmark::RegisterBenchmark(
-          ("BM_Siconos_LCP_" + camel(siconos::to_string(s)) + suffix).c_str(), BM_Siconos_LCP, &c,
-          s);
+      for (const bool driver : {false, true})
+        benchmark::RegisterBenchmark(
+            ("BM_Siconos_LCP_" + camel(siconos::to_string(s)) + (driver ? "_Driver" : "") + suffix)
+                .c_str(),
+            BM_Siconos_LCP, &c, s, driver);
     }
     if (!friction) continue;
     for (Fc2dSolver s : {Fc2dSolver::nsgs, Fc2dSolver::lemke, Fc2dSolver::enumeration}) {
       if (s == Fc2dSolver::enumeration && c.problems[0].contacts() > 2) continue;
-      benchmark::RegisterBenchmark(
-          ("BM_Siconos_FC2D_" + camel(siconos::to_string(s)) + suffix).c_str(), BM_Siconos_FC2D, &c,
-          s);
+      for (const bool driver : {false, true})
+        benchmark::RegisterBenchmark(
+            ("BM_Siconos_FC2D_" + camel(siconos::to_string(s)) + (driver ? "_Driver" : "") + suffix)
+                .c_str(),
+            BM_Siconos_FC2D, &c, s, driver);
     }
   }
   return true;
