@@ -68,6 +68,47 @@ TEST(Cholesky, FactorAndSolvesAgreeWithEigenOnRandomSpdMatrices) {
   }
 }
 
+// Sizes 1-4 factor and substitute with their trip counts fixed at compile time: the same
+// operations in the same order as the runtime-size loops, so the same bits. Checked against the
+// unblocked loop written out here and against small_dense's runtime-size substitutions, on
+// matrices of every size the stack storage takes (5 and 6 take the runtime path).
+TEST(Cholesky, FixedSizePathsGiveTheBitsOfTheRuntimeLoops) {
+  std::mt19937 gen(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 1200; ++trial) {
+    const int n = 1 + trial % 6;
+    const Eigen::MatrixXd Ad = random_spd(n, (trial / 6) % 10, gen);
+    Eigen::MatrixXd L = Ad;  // Eigen's llt_inplace<Lower>::unblocked, summed in index order
+    for (int k = 0; k < n; ++k) {
+      double x = L(k, k);
+      for (int j = 0; j < k; ++j) x -= L(k, j) * L(k, j);
+      x = std::sqrt(x);
+      L(k, k) = x;
+      for (int i = k + 1; i < n; ++i) {
+        double s = L(i, k);
+        for (int j = 0; j < k; ++j) s -= L(i, j) * L(k, j);
+        L(i, k) = s / x;
+      }
+    }
+    const MatT<6, 6> A = Ad;
+    const Small chol(A);
+    ASSERT_EQ(chol.info(), Eigen::Success) << trial;
+    for (int j = 0; j < n; ++j)
+      for (int i = j; i < n; ++i) ASSERT_EQ(chol.matrixLLT()(i, j), L(i, j)) << trial;
+    MatT<6, 6> B(n, 3), X(n, 3);
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) B(i, k) = u(gen);
+    X = B;
+    chol.solve_lower_in_place(X);
+    MatT<6, 6> Y = B;
+    fremond::detail::small_dense::forward_substitute(chol.matrixLLT(), Y);
+    EXPECT_EQ((X - Y).cwiseAbs().maxCoeff(), 0.0) << trial;
+    chol.solve_upper_in_place(X);
+    fremond::detail::small_dense::backward_substitute_transposed(chol.matrixLLT(), Y);
+    EXPECT_EQ((X - Y).cwiseAbs().maxCoeff(), 0.0) << trial;
+  }
+}
+
 TEST(Cholesky, RefusesWhatIsNotPositiveDefiniteAsEigenDoes) {
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -79,18 +79,48 @@ class CholeskyT {
   /// Y ← L⁻¹ Y.
   template <class Y>
   void solve_lower_in_place(Y& y) const {
-    if constexpr (kHandLoops)
-      diagonal_ ? divide_by_diagonal(y) : small_dense::forward_substitute(L_, y);
-    else
+    if constexpr (kHandLoops) {
+      if (diagonal_) {
+        divide_by_diagonal(y);
+        return;
+      }
+      switch (L_.rows()) {
+        case 1:
+          return small_dense::forward_substitute<1>(L_, y);
+        case 2:
+          return small_dense::forward_substitute<2>(L_, y);
+        case 3:
+          return small_dense::forward_substitute<3>(L_, y);
+        case 4:
+          return small_dense::forward_substitute<4>(L_, y);
+        default:
+          return small_dense::forward_substitute(L_, y);
+      }
+    } else
       llt_.matrixL().solveInPlace(y);
   }
 
   /// X ← L⁻ᵀ X.
   template <class X>
   void solve_upper_in_place(X& x) const {
-    if constexpr (kHandLoops)
-      diagonal_ ? divide_by_diagonal(x) : small_dense::backward_substitute_transposed(L_, x);
-    else
+    if constexpr (kHandLoops) {
+      if (diagonal_) {
+        divide_by_diagonal(x);
+        return;
+      }
+      switch (L_.rows()) {  // as factorize_in_place
+        case 1:
+          return small_dense::backward_substitute_transposed<1>(L_, x);
+        case 2:
+          return small_dense::backward_substitute_transposed<2>(L_, x);
+        case 3:
+          return small_dense::backward_substitute_transposed<3>(L_, x);
+        case 4:
+          return small_dense::backward_substitute_transposed<4>(L_, x);
+        default:
+          return small_dense::backward_substitute_transposed(L_, x);
+      }
+    } else
       llt_.matrixU().solveInPlace(x);
   }
 
@@ -107,6 +137,26 @@ class CholeskyT {
       }
       return true;
     }
+    // The sizes of a few contacts' Delassus matrix and of a planar body's M with their trip counts
+    // known to the compiler: the same operations in the same order (the same bits), without the
+    // loop bookkeeping that was half of a 2×2 factor's instructions.
+    switch (n) {
+      case 1:
+        return factorize_in_place_n<1>(A);
+      case 2:
+        return factorize_in_place_n<2>(A);
+      case 3:
+        return factorize_in_place_n<3>(A);
+      case 4:
+        return factorize_in_place_n<4>(A);
+      default:
+        return factorize_in_place_n<Dynamic>(A);
+    }
+  }
+
+  template <int K>
+  static bool factorize_in_place_n(Mat& A) {
+    const Eigen::Index n = K == Dynamic ? A.rows() : K;
     for (Eigen::Index k = 0; k < n; ++k) {
       double x = A(k, k);
       for (Eigen::Index j = 0; j < k; ++j) x -= A(k, j) * A(k, j);

@@ -31,10 +31,11 @@ double half_quadratic_form(const Mat& A, const Vec& v) {
   return 0.5 * e;
 }
 
-/// Y ← L⁻¹ Y (forward substitution) with L the lower triangle of `L`.
-template <class LMat, class Mat>
+/// Y ← L⁻¹ Y (forward substitution) with L the lower triangle of `L`; K, where given, is L's size
+/// known to the compiler (the same operations).
+template <int K = Eigen::Dynamic, class LMat, class Mat>
 void forward_substitute(const LMat& L, Mat& Y) {
-  const Eigen::Index n = L.rows();
+  const Eigen::Index n = K == Eigen::Dynamic ? L.rows() : K;
   for (Eigen::Index k = 0; k < Y.cols(); ++k)
     for (Eigen::Index i = 0; i < n; ++i) {
       double s = Y(i, k);
@@ -43,10 +44,10 @@ void forward_substitute(const LMat& L, Mat& Y) {
     }
 }
 
-/// X ← L⁻ᵀ X (backward substitution with the transpose of the lower triangle of `L`).
-template <class LMat, class Mat>
+/// X ← L⁻ᵀ X (backward substitution with the transpose of the lower triangle of `L`); K as above.
+template <int K = Eigen::Dynamic, class LMat, class Mat>
 void backward_substitute_transposed(const LMat& L, Mat& X) {
-  const Eigen::Index n = L.rows();
+  const Eigen::Index n = K == Eigen::Dynamic ? L.rows() : K;
   for (Eigen::Index k = 0; k < X.cols(); ++k)
     for (Eigen::Index i = n - 1; i >= 0; --i) {
       double s = X(i, k);
