@@ -84,18 +84,8 @@ class CholeskyT {
         divide_by_diagonal(y);
         return;
       }
-      switch (L_.rows()) {
-        case 1:
-          return small_dense::forward_substitute<1>(L_, y);
-        case 2:
-          return small_dense::forward_substitute<2>(L_, y);
-        case 3:
-          return small_dense::forward_substitute<3>(L_, y);
-        case 4:
-          return small_dense::forward_substitute<4>(L_, y);
-        default:
-          return small_dense::forward_substitute(L_, y);
-      }
+      with_size(L_.rows(),
+                [&](auto k) { small_dense::forward_substitute<decltype(k)::value>(L_, y); });
     } else
       llt_.matrixL().solveInPlace(y);
   }
@@ -108,18 +98,9 @@ class CholeskyT {
         divide_by_diagonal(x);
         return;
       }
-      switch (L_.rows()) {  // as factorize_in_place
-        case 1:
-          return small_dense::backward_substitute_transposed<1>(L_, x);
-        case 2:
-          return small_dense::backward_substitute_transposed<2>(L_, x);
-        case 3:
-          return small_dense::backward_substitute_transposed<3>(L_, x);
-        case 4:
-          return small_dense::backward_substitute_transposed<4>(L_, x);
-        default:
-          return small_dense::backward_substitute_transposed(L_, x);
-      }
+      with_size(L_.rows(), [&](auto k) {
+        small_dense::backward_substitute_transposed<decltype(k)::value>(L_, x);
+      });
     } else
       llt_.matrixU().solveInPlace(x);
   }
@@ -137,20 +118,26 @@ class CholeskyT {
       }
       return true;
     }
-    // The sizes of a few contacts' Delassus matrix and of a planar body's M with their trip counts
-    // known to the compiler: the same operations in the same order (the same bits), without the
-    // loop bookkeeping that was half of a 2×2 factor's instructions.
+    return with_size(n, [&](auto k) { return factorize_in_place_n<decltype(k)::value>(A); });
+  }
+
+  // The sizes of a few contacts' Delassus matrix and of a planar body's M (1 to 4) with their trip
+  // counts known to the compiler, for the factor and both substitutions: the same operations in
+  // the same order (the same bits), without the loop bookkeeping that was half of a 2×2 factor's
+  // instructions. f receives std::integral_constant<int, n>, or Dynamic beyond 4.
+  template <class F>
+  static decltype(auto) with_size(Eigen::Index n, F&& f) {
     switch (n) {
       case 1:
-        return factorize_in_place_n<1>(A);
+        return f(std::integral_constant<int, 1>{});
       case 2:
-        return factorize_in_place_n<2>(A);
+        return f(std::integral_constant<int, 2>{});
       case 3:
-        return factorize_in_place_n<3>(A);
+        return f(std::integral_constant<int, 3>{});
       case 4:
-        return factorize_in_place_n<4>(A);
+        return f(std::integral_constant<int, 4>{});
       default:
-        return factorize_in_place_n<Dynamic>(A);
+        return f(std::integral_constant<int, Dynamic>{});
     }
   }
 
