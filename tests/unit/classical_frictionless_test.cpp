@@ -99,8 +99,54 @@ TEST(ClassicalNewton, AContactThatEq6WouldPullOpens) {
   EXPECT_EQ(r.P_N(1), 0.0);
   EXPECT_NEAR(r.D_NE(1) + 0.5 * r.D_NA(1), 0.27, 1e-14);
   EXPECT_NEAR(r.qdot_E(1), 0.5, 1e-14);
-  EXPECT_EQ(r.solver.method, SolverMethod::lemke);
+  // Two frictionless contacts on a regular G: the mode with one contact open is a closed form
+  // too (one_of_two_closed), and Lemke's pivots, forced, reach the same answer.
+  EXPECT_EQ(r.solver.method, SolverMethod::closed_form);
   EXPECT_TRUE(r.unique);
+  SolverOptions lemke;
+  lemke.method = SolverMethod::lemke;
+  const ImpactResult l = solve_impact(p, ImpactLaw::newton(0.5), lemke);
+  ASSERT_TRUE(l.ok()) << l.solver.message;
+  EXPECT_EQ(l.solver.method, SolverMethod::lemke);
+  EXPECT_NEAR(l.P_N(0), r.P_N(0), 1e-15);
+  EXPECT_EQ(l.P_N(1), r.P_N(1));
+}
+
+TEST(ClassicalNewton, TwoFrictionlessContactsInEachModeAgreeWithLemke) {
+  // The point mass on two walls of the test above (G_NN = [[1, 0.8], [0.8, 1]], e = 0.5, so
+  // q = 1.5 D_NA), in each mode both contacts can take: both closed, G u = −q; contact k alone,
+  // u_k = −q_k with the other's velocity q_o + 0.8 u_k ≥ 0. The closed forms (the all-closed
+  // guess, one_of_two_closed) against the modes by hand and against Lemke's pivots, forced.
+  struct Mode {
+    Eigen::Vector2d qdot;
+    double p0, p1;
+  };
+  // D_NA = (ẏ, 0.6 ẋ + 0.8 ẏ):
+  //  (−1, −1.1): u = G⁻¹ (1.5, 1.65) = (0.18, 0.45) / 0.36, both closed;
+  //  (−1, −0.62): u_0 = 1.5, then q_1 + 0.8 u_0 = 0.27 ≥ 0;
+  //  (−0.1, −0.68): u_1 = 1.02, then q_0 + 0.8 u_1 = 0.666 ≥ 0.
+  for (const Mode& m : {Mode{{-0.5, -1.0}, 0.5, 1.25}, Mode{{0.3, -1.0}, 1.5, 0.0},
+                        Mode{{-1.0, -0.1}, 0.0, 1.02}}) {
+    ImpactProblem p;
+    p.M = Eigen::Matrix2d::Identity();
+    p.W_N.resize(2, 2);
+    p.W_N << 0, 0.6, 1, 0.8;
+    p.W_T.resize(2, 0);
+    p.qdot_A = m.qdot;
+    const ImpactResult r = solve_impact(p, ImpactLaw::newton(0.5));
+    ASSERT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_EQ(r.solver.method, SolverMethod::closed_form);
+    EXPECT_NEAR(r.P_N(0), m.p0, 1e-14);
+    EXPECT_NEAR(r.P_N(1), m.p1, 1e-14);
+    EXPECT_TRUE(r.unique);
+    SolverOptions lemke;
+    lemke.method = SolverMethod::lemke;
+    const ImpactResult l = solve_impact(p, ImpactLaw::newton(0.5), lemke);
+    ASSERT_TRUE(l.ok()) << l.solver.message;
+    EXPECT_EQ(l.solver.method, SolverMethod::lemke);
+    EXPECT_NEAR(l.P_N(0), r.P_N(0), 1e-14);
+    EXPECT_NEAR(l.P_N(1), r.P_N(1), 1e-14);
+  }
 }
 
 TEST(ClassicalNewton, SeparatingContactsGetNoPercussion) {

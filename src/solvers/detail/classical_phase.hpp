@@ -196,20 +196,44 @@ inline OneContact one_contact(double gnn, double gnt, double gtt, double qn, dou
 // Several contacts.
 
 /// The cheapest exact guess for several contacts (eq. 6 generalised): every contact closed and,
-/// with friction, sticking, u = −G⁻¹q. True when G is regular (`llt` is its Cholesky factor,
-/// `regular` says it is usable) and u satisfies the phase's inequalities.
-template <int MaxC, class Llt>
-bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Llt& llt, bool regular,
-                      typename Phase<MaxC>::Rows& u) {
+/// with friction, sticking, u = −G⁻¹q. True when G is regular (`factor` is its factor, anything
+/// whose solve(b) gives G⁻¹b; `regular` says it is usable) and u satisfies the phase's
+/// inequalities.
+template <int MaxC, class Factor>
+bool all_closed_guess(const Phase<MaxC>& ph, const Tolerances& tol, const Factor& factor,
+                      bool regular, typename Phase<MaxC>::Rows& u) {
   if (!regular) return false;
   const int a = ph.a;
-  u = llt.solve(-ph.q);
+  u = factor.solve(-ph.q);
   for (int i = 0; i < a; ++i) {
     if (u(i) < -tol.p) return false;
     u(i) = std::max(0.0, u(i));
     if (ph.friction && std::fabs(u(a + i)) > ph.mu(i) * u(i) + ph.b0(i) + tol.p) return false;
   }
   return true;
+}
+
+/// Two frictionless contacts where the all-closed guess fails (one of them would pull): the modes
+/// with one contact closed, u_k = −q_k / G_kk, and the other open, w_o = q_o + G_ok u_k ≥ 0, or
+/// both open (q ≥ 0). On a regular G (positive definite, so a P-matrix) the LCP has exactly one
+/// solution, so the mode that holds is the one Lemke's pivots would reach (its first pivot on
+/// the 2×2 cost more than this whole test). The sign tests are exact: a mode on its border (a
+/// percussion or velocity zero only to rounding) is the all-closed guess's, within tol.p, or
+/// failing both, Lemke's.
+template <int MaxC>
+bool one_of_two_closed(const Phase<MaxC>& ph, typename Phase<MaxC>::Rows& u) {
+  if (ph.friction || ph.a != 2) return false;
+  u.setZero(2);
+  if (ph.q(0) >= 0.0 && ph.q(1) >= 0.0) return true;
+  for (int k = 0; k < 2; ++k) {
+    const int o = 1 - k;
+    const double x = -ph.q(k) / ph.G(k, k);
+    if (x >= 0.0 && ph.q(o) + ph.G(o, k) * x >= 0.0) {
+      u(k) = x;
+      return true;
+    }
+  }
+  return false;
 }
 
 /// What the semidefinite guess (closed_sticking_semidefinite) knows of the minimum-norm choice
@@ -349,15 +373,26 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
   // (tol.v alone) let answers of an ill-conditioned G through that the law's residual then
   // refused: stress newton_coulomb seed 23, 50 more `stalled` of 17,000 solves where Lemke's
   // answers had converged.
+  // Column by column (G is column-major), every row's sum still in the order j = 0, 1, …: the
+  // same bits as row by row, with the rows side by side in vector registers.
   constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
+  double v[R], size[R];
   for (int i = 0; i < R; ++i) {
-    double v = ph.q(i), size = std::fabs(ph.q(i));
-    for (int j = 0; j < R; ++j) {
-      v += ph.G(i, j) * u(j);
-      size += std::fabs(ph.G(i, j) * u(j));
-    }
-    if (!(std::fabs(v) <= std::min(tol.v, kRounding * size))) return false;
+    v[i] = ph.q(i);
+    size[i] = std::fabs(ph.q(i));
   }
+  for (int j = 0; j < R; ++j) {
+    const double uj = u(j);
+    for (int i = 0; i < R; ++i) {
+      const double t = ph.G(i, j) * uj;
+      v[i] += t;
+      size[i] += std::fabs(t);
+    }
+  }
+  bool holds = true;
+  for (int i = 0; i < R; ++i)
+    holds = holds && std::fabs(v[i]) <= std::min(tol.v, kRounding * size[i]);
+  if (!holds) return false;
   if (norm) {
     // The rank decided with a margin of 10 on both sides of psd_null_space's threshold (the same
     // pivots, up to rounding): null(G) is then {0} or the line's direction, and u is the point
