@@ -1,17 +1,16 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of fuzz/ with clang++ (ASan + UBSan) in `build-fuzz`, replays every
-# saved regression input, then fuzzes each target from its seed corpus.
+# Builds the libFuzzer targets of fuzz/ in the sanitized tree of scripts/sanitize.sh (clang++,
+# ASan + UBSan, build-sanitize/), replays every saved regression input, then fuzzes each target.
 #
-#   bash scripts/fuzz.sh                          # every target, seeded (what CI runs)
+#   bash scripts/fuzz.sh                          # every target, seeded (what CI runs, ~40 s each)
 #   bash scripts/fuzz.sh solver_fuzz              # one target
-#   FREMOND_FUZZ_SEED=0 FREMOND_FUZZ_SECONDS=1800 bash scripts/fuzz.sh   # exploration
+#   FREMOND_FUZZ_SEED=0 FREMOND_FUZZ_SECONDS=600 bash scripts/fuzz.sh   # exploration (check-long)
 #
 # Two modes. Seeded (the default, FREMOND_FUZZ_SEED=1 or any other fixed seed): one process per
-# target, a fixed seed, a fixed number of inputs (FREMOND_FUZZ_RUNS, else about a minute's worth per
+# target, a fixed seed, a fixed number of inputs (FREMOND_FUZZ_RUNS, else about 40 s' worth per
 # target on a 2-core machine, at most 3 x FREMOND_FUZZ_SECONDS) from a fresh copy of the seed corpus.
-# The same inputs come first, but not all of them: libFuzzer's comparison feedback also records heap
-# addresses, which differ between runs, so two runs drift apart after a few thousand inputs (one of
-# two CI runs of the same library found the scene file now in regressions/ after 586,129 inputs).
+# libFuzzer's comparison feedback also records heap addresses, which differ between runs, so two
+# runs drift apart after a few thousand inputs.
 # Exploration (FREMOND_FUZZ_SEED=0): a random seed, fork mode, for FREMOND_FUZZ_SECONDS (60) each,
 # from the corpus grown in the build tree by earlier runs: this is how new bugs are found; each one
 # becomes a regression input (below) and a unit test, replayed first on every run.
@@ -19,15 +18,15 @@
 # A crash, a sanitizer report, a broken invariant (fuzz/*.cpp say which) or an input slower than
 # FREMOND_FUZZ_TIMEOUT seconds (60) fails the run, unless it is a known library issue
 # (tests/stress/known_issues.txt: broken invariants by their sentence, timeouts by the input's law
-# family). libFuzzer writes the input to build-fuzz/artifacts/<target>/; run the target on it with
+# family). libFuzzer writes the input to <tree>/artifacts/<target>/; run the target on it with
 # FREMOND_FUZZ_VERBOSE=1 (solver_fuzz) to see it as a problem file. Copy it into
 # fuzz/regressions/<target>/ (and turn it into a unit test) once the bug is fixed: every file there
-# is replayed first on every run. The seed corpus in fuzz/corpus/ is copied to build-fuzz/corpus/
+# is replayed first on every run. The seed corpus in fuzz/corpus/ is copied to <tree>/corpus/
 # and grows there, not in the tree.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
-build=${FREMOND_FUZZ_BUILD_DIR:-build-fuzz}
+build=${FREMOND_SANITIZE_BUILD_DIR:-build-sanitize}
 seconds=${FREMOND_FUZZ_SECONDS:-60}
 seed=${FREMOND_FUZZ_SEED:-1}
 # An input's time limit under ASan + UBSan (5-10x slower than Release): a hang detector, not a
@@ -42,24 +41,10 @@ summary() {
   echo "fuzz: $1 ($(($(date +%s) - start)) s)"
 }
 
-if ! command -v clang++ >/dev/null; then
-  summary "FAILED: clang++ not found (scripts/install-deps.sh installs clang)"
-  exit 1
-fi
-if ! cmake -S fuzz -B "$build" -DCMAKE_CXX_COMPILER=clang++ >/dev/null; then
-  summary "FAILED (configure)"
-  exit 1
-fi
-
 targets=("$@")
-if [ ${#targets[@]} -eq 0 ]; then
-  targets=(problem_file_fuzz solver_fuzz)
-  # The scene target is built only where the scene reader exists (fuzz/CMakeLists.txt).
-  [ -f include/fremond/io/scene_file.hpp ] && [ -f src/io/scene_file.cpp ] &&
-    [ -f include/fremond/simulation/simulate.hpp ] && targets+=(scene_file_fuzz)
-fi
-if ! cmake --build "$build" -j"$jobs" --target "${targets[@]}"; then
-  summary "FAILED (build)"
+[ ${#targets[@]} -eq 0 ] && targets=(problem_file_fuzz solver_fuzz scene_file_fuzz)
+if ! bash scripts/sanitize.sh --build-only; then
+  summary "FAILED (the sanitized tree did not build)"
   exit 1
 fi
 
@@ -76,7 +61,7 @@ known_hang() {
 failed=()
 report=()
 for t in "${targets[@]}"; do
-  bin="$build/$t"
+  bin="$build/fuzz/$t"
   dict=""
   case "$t" in
     problem_file_fuzz) dict="-dict=fuzz/problem_file.dict" ;;
@@ -103,9 +88,9 @@ for t in "${targets[@]}"; do
     runs=${FREMOND_FUZZ_RUNS:-}
     if [ -z "$runs" ]; then
       case "$t" in
-        solver_fuzz) runs=4000 ;;  # the solvers with every method and solve_impact_all: ~80 inputs/s
-        scene_file_fuzz) runs=800000 ;;  # ~15,000 inputs/s
-        *) runs=300000 ;;                # the problem-file reader: ~6,000 inputs/s
+        solver_fuzz) runs=3000 ;;        # the solvers with every method and solve_impact_all: ~80 inputs/s
+        scene_file_fuzz) runs=500000 ;;  # ~15,000 inputs/s
+        *) runs=200000 ;;                # the problem-file reader: ~6,000 inputs/s
       esac
     fi
     corpus="$build/corpus-seed$seed/$t"

@@ -2,7 +2,7 @@
 # Installs the Debian packages fremond needs that are missing on this machine (idempotent).
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
   libeigen3-dev libnlopt-dev libnlopt-cxx-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev libsiconos-kernel-dev

@@ -4,7 +4,7 @@
 #   bash scripts/paper.sh [OUT_DIR]        (default out/paper, or $FREMOND_OUT)
 #
 # Installs the Debian packages (scripts/install-deps.sh), builds the command and the Python module
-# (Release, into build/), then runs the bar under each of the paper's five laws (SPEC §5), prints
+# (Release, into build/), then runs the bar under each of the paper's five laws (the paper's Fig. 1), prints
 # the table (impacts, energy before and after the first impacts, admissibility, the inequality
 # that failed) and writes every figure of the paper into OUT_DIR: the motions as GIFs and strips of
 # poses (Figs. 2, 4, 6, 10, 12), the energies (Figs. 3, 5, 7, 11, 13), the normal restitution for
@@ -14,11 +14,12 @@ cd "$(dirname "$0")/.."
 OUT=${1:-${FREMOND_OUT:-out/paper}}
 
 bash scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+source scripts/lib/build-env.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${FREMOND_CMAKE_LAUNCHER[@]}" >/dev/null
 cmake --build build -j"$(nproc)" --target fremond_cli fremond_python >/dev/null
 mkdir -p "$OUT"
 
-# The data of Figs. 8 and 9, on the grids the figures use (SPEC's scaling for Fig. 8, the paper's
+# The data of Figs. 8 and 9, on the grids the figures use (the library's scaling for Fig. 8, the paper's
 # r = 0.4, k_T = 0.75 for Fig. 9; each file says which in its '#' lines).
 build/fremond curve normal --p 1.5,2,2.5,3,4 --points 201 --max-speed 5 \
   --out "$OUT/fig08_normal_restitution.csv"
