@@ -1,5 +1,5 @@
-// The admissibility certificate (SPEC §4): (15) in sum and per contact, (16)-(17) for the reaction,
-// (19) for the dissipative part, Fenchel–Young gaps and non-penetration.
+// The admissibility certificate (docs/concepts.md): (15) in sum and per contact, (16)-(17) for the
+// reaction, (19) for the dissipative part, Fenchel–Young gaps and non-penetration.
 #include "fremond/admissibility/admissibility.hpp"
 
 #include "../solvers/detail/fremond_rows.hpp"
@@ -65,7 +65,7 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
     return fx;
   };
   // s ∈ ∂φ(z), tested on the subdifferential, which is monotone: s within ds of ∂φ over
-  // [z − dz, z + dz]. The same statement as a zero gap (SPEC §3), used where the values cannot
+  // [z − dz, z + dz]. The same statement as a zero gap (docs/laws.md), used where the values cannot
   // tell: φ* too steep for double precision (p = 1.0001: conjugate exponent 10⁴, so its value
   // within ds of s spans hundreds of orders of magnitude), or overflowing (|s|^p' > 1e308).
   auto subdifferential_miss = [&] {
@@ -198,17 +198,27 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     const double zT = 0.5 * r.D_TA(i) + 0.5 * r.D_TE(i);
     const double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
     rep.per_contact(i) = pc;
-    if (pc < worst_contact_value) {
+    // A separating contact's reaction does positive work on its own true mean velocity by the
+    // convention that holds it (docs/concepts.md): reported, and left to the total's check.
+    if (pc < worst_contact_value && r.takes_part(i)) {
       worst_contact_value = pc;
       worst_contact = i;
     }
-    if (!r.takes_part(i)) continue;
-    // D_NE ≥ 0 to how well D_NE is known: rounding (velocity_rounding), or the solver's tolerance.
+    // Every contact takes part (docs/concepts.md): D_NE ≥ 0 for each, to how well D_NE is known
+    // (rounding, velocity_rounding, or the solver's tolerance).
     const double dv =
         std::max(rounding.size() == c ? rounding(i) : 0.0, std::max(8 * eps, solved_to) * v_scale);
     pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / v_scale);
-    const double Pr = (fremond && r.P_N_reaction.size() == c) ? r.P_N_reaction(i) : 0.0;
-    reaction += -Pr * zN;
+    // A separating contact (D_NA > 0) carries the reaction alone, its law read with the velocity
+    // before the impact at min(D_NA, 0) = 0: the reaction's (17) is then −P_N D_NE/2, and no
+    // potential applies to it. Its (15) above keeps the true mean velocity (eq. 9).
+    const bool separating = !r.takes_part(i);
+    if (separating && r.P_N(i) == 0.0 && r.P_T(i) == 0.0) continue;  // undriven: nothing to add
+    const double Pr = !fremond                     ? 0.0
+                      : separating                 ? r.P_N(i)
+                      : r.P_N_reaction.size() == c ? r.P_N_reaction(i)
+                                                   : 0.0;
+    reaction += -Pr * (separating ? 0.5 * r.D_NE(i) : zN);
     dissipation += -(r.P_N(i) - Pr) * zN - r.P_T(i) * zT;
     if (fremond) {
       // How well z = (D_A + D_E)/2 and the percussions are known (see scaled_gap): to the
@@ -228,14 +238,22 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       const double ds = std::max({8 * eps * p_scale, 2 * solved_to * p_known,
                                   percussion && percussion->size() == c ? (*percussion)(i) : 0.0});
       // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
-      const double pscale = std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + 1e-300;
+      // A separating contact's reaction is held to the impact's percussion scale: a solve on
+      // every contact leaves the open ones rounding's percussions, not exact zeros.
+      const double pscale =
+          std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + (separating ? p_scale : 0.0) + 1e-300;
       // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
       compl_viol = std::max(
           {compl_viol, std::max(0.0, -Pr) / pscale,
            std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) / (pscale * v_scale)});
-      fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
-      if (law.tangential == TangentialLaw::potential)
-        fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
+      if (!separating)
+        fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
+      if (law.tangential == TangentialLaw::potential) {
+        if (!separating)
+          fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
+        else  // φ_T = 0: its conjugate allows P_T = 0 alone
+          fy = std::max(fy, std::max(0.0, std::fabs(r.P_T(i)) - ds) / (p_scale + 1e-300));
+      }
       if (law.tangential == TangentialLaw::coulomb) {
         // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
         // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
@@ -282,9 +300,13 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       std::max(std::max(options.admissibility_tolerance, 64 * eps) *
                    std::max(rep.kinetic_energy_A, std::numeric_limits<double>::min()),
                2 * solved_to * energy);
+  // Eq. (9) needs fixed obstacles only where a percussion acts: a contact without one adds
+  // nothing to T_E − T_A, however its obstacle moves.
   bool fixed_obstacles = true;
-  for (int i = 0; i < pb.w_N.size(); ++i) fixed_obstacles = fixed_obstacles && pb.w_N(i) == 0.0;
-  for (int i = 0; i < pb.w_T.size(); ++i) fixed_obstacles = fixed_obstacles && pb.w_T(i) == 0.0;
+  for (int i = 0; i < pb.w_N.size(); ++i)
+    fixed_obstacles = fixed_obstacles && (pb.w_N(i) == 0.0 || (r.P_N(i) == 0.0 && r.P_T(i) == 0.0));
+  for (int i = 0; i < pb.w_T.size(); ++i)
+    fixed_obstacles = fixed_obstacles && (pb.w_T(i) == 0.0 || (r.P_N(i) == 0.0 && r.P_T(i) == 0.0));
   if (fixed_obstacles && base_allowed < tol && r.energy_change > base_allowed &&
       std::isfinite(r.energy_change) && pb.M.rows() == pb.dofs() && pb.qdot_A.size() == pb.dofs()) {
     double terms = 0.0;

@@ -1,5 +1,5 @@
-// The classical impact laws of SPEC §2: Newton (eqs. 5-6) and Poisson, each with or without Coulomb
-// friction in the compression/expansion form of Pfeiffer & Glocker (1996), on any number of
+// The classical impact laws of docs/laws.md: Newton (eqs. 5-6) and Poisson, each with or without
+// Coulomb friction in the compression/expansion form of Pfeiffer & Glocker (1996), on any number of
 // contacts.
 //
 // Each law is one phase (Newton) or two (Poisson's compression, then expansion) of the form solved
@@ -572,9 +572,10 @@ void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>& pb,
                                                      const ImpactLaw& law,
-                                                     const SolverOptions& options) {
+                                                     const SolverOptions& options,
+                                                     HeldContacts held) {
   ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.has_friction(), cs);
+  build_contact_space(pb, law.has_friction(), cs, held);
   std::vector<ImpactResultT<N, C>> all;
   if (!method_applies(options.method)) {
     fill_unsupported(pb, cs, law, options, all.emplace_back());
@@ -646,7 +647,7 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
       const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
       ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                   \
   template std::vector<ImpactResultT<N, C>> solve_classical_all(                               \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&);
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -207,18 +207,13 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
         worst = std::max(worst, a);
         contact_worst(i) = std::max(contact_worst(i), a);
       };
-      if (dna > 0.0) {  // separating: no percussion under any law (SPEC §1)
-        // A zero percussion is exactly right whatever g is.
-        keep(scaled(gn, r.P_N(i)));
-        keep(scaled(gt, r.P_T(i)));
-        if (poisson) {
-          keep(scaled(gn, r.P_NC(i)));
-          keep(scaled(gt, r.P_TC(i)));
-        }
-        continue;
-      }
-      v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
-      const double e = law.e[i], mu = friction ? law.mu[i] : 0.0;
+      // A separating contact (D_NA > 0) obeys the law with its restitution on min(D_NA, 0) = 0
+      // (docs/concepts.md): Newton's e D_NA drops out, Poisson's phases stay as they are.
+      // Undriven, P = 0 meets it exactly. The velocity scale is the approaching contacts'.
+      const bool separating = dna > 0.0;
+      if (!separating) v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
+      const double e = separating && !poisson ? 0.0 : law.e[i];
+      const double mu = friction ? law.mu[i] : 0.0;
       const double dne = contact_velocity(pb.W_N.col(i), qE, wn(i));
       const double dte = tangential ? contact_velocity(pb.W_T.col(i), qE, wt(i)) : 0.0;
       if (!poisson) {
@@ -226,7 +221,7 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
         if (tangential) keep(coulomb(r.P_T(i), dte, mu * r.P_N(i), gt));
         continue;
       }
-      // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (SPEC table).
+      // Poisson: compression, then expansion with P_NE = e P_NC + ΔP (docs/laws.md).
       const double dnc = contact_velocity(pb.W_N.col(i), q_C, wn(i));
       const double dtc = tangential ? contact_velocity(pb.W_T.col(i), q_C, wt(i)) : 0.0;
       keep(complementarity(dnc, r.P_NC(i), gn));

@@ -1,4 +1,4 @@
-// Frémond's law (SPEC §2; paper §5): the method chain, the exact methods for one or decoupled
+// Frémond's law (docs/laws.md; paper §5): the method chain, the exact methods for one or decoupled
 // contacts, the split of the normal percussion into reaction and dissipative parts, and uniqueness.
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -10,6 +10,7 @@
 
 #include "detail/classical_law.hpp"
 #include "detail/fremond.hpp"
+#include "detail/separating_contacts.hpp"
 #include "detail/small_lu.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/potentials/power.hpp"
@@ -94,7 +95,7 @@ Rows<N, C> decoupled_guess(const FremondRowsT<N, C>& rows, Rows<N, C> P) {
 // One contact with Coulomb friction: every mode (stick, slide ±, with P_N of either sign) reduces
 // to one scalar normal problem  z = D̃ + g P/2,  −P ∈ ∂ψ(z),  ψ = φ_N + I_{[D_NA/2, ∞)}.
 // With g > 0 it has exactly one solution, z = prox_{(g/2)ψ}(D̃). With g ≤ 0 (μ|G_NT| > G_NN, the
-// Painlevé-type case of SPEC §2) it may have none or several: for a power law f(z) = φ'(z) −
+// Painlevé-type case of docs/laws.md) it may have none or several: for a power law f(z) = φ'(z) −
 // a(z − D̃), a = 2/|g|, is monotone between the points where φ''(z) = a, so all roots are found
 // by bisection on at most three monotone pieces.
 
@@ -1013,15 +1014,15 @@ void write_outcome(const MethodOutcome& o, SolverMethod m, double v_scale, const
 
 /// True when no velocity after the impact keeps every contact that takes part from penetrating:
 /// D_NE = D_NA + G_N P ≥ 0 holds for no percussions P. Frémond's reaction asks D_NE ≥ 0 of every
-/// contact that takes part whatever the potentials (SPEC §2), so the law then has no solution. By
-/// Farkas's lemma that is y ≥ 0 with W_N y = 0 and y·w_N < 0: obstacles that close in on the body
-/// from opposite sides faster than it can move. The same inequalities make Newton's law with e = 0
-/// on the normal rows, a positive semidefinite LCP, solvable exactly when they are feasible; its
-/// solver decides, with a Lemke ray checked to be a proof beyond rounding (classical_law.hpp).
+/// contact that takes part whatever the potentials (docs/laws.md), so the law then has no solution.
+/// By Farkas's lemma that is y ≥ 0 with W_N y = 0 and y·w_N < 0: obstacles that close in on the
+/// body from opposite sides faster than it can move. The same inequalities make Newton's law with e
+/// = 0 on the normal rows, a positive semidefinite LCP, solvable exactly when they are feasible;
+/// its solver decides, with a Lemke ray checked to be a proof beyond rounding (classical_law.hpp).
 template <int N, int C>
-bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb) {
+bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
   ContactSpaceT<N, C> cs;
-  build_contact_space(pb, false, cs);
+  build_contact_space(pb, false, cs, held);
   classical::LawOutcome<C> lo;
   classical::solve_law(pb, cs, ImpactLaw::newton(0.0), 0, lo);
   return lo.solutions.size == 0 && lo.exhaustive && !lo.beyond_precision && !lo.unsupported;
@@ -1478,7 +1479,7 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   if (automatic && velocity_space && cs.tangential && o.status != SolverStatus::converged &&
       P0.size() == cs.rows() && normal_rows_decoupled(cs)) {
     ContactSpaceT<N, C> normal_space;
-    build_contact_space(pb, false, normal_space);
+    build_contact_space(pb, false, normal_space, held_by(cs));
     ImpactResultT<N, C> normal_answer;
     solve_fremond_chain(pb, normal_space, law, opt, normal_answer);
     if (normal_answer.solver.status == SolverStatus::converged) {
@@ -1547,7 +1548,7 @@ void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
   o.residual = rows.plain_residual(P);
   o.message =
       passes ? "every contact-space method failed; one degree of freedom: the velocity-space "
-               "problem (SPEC §2) solved exactly by bisection on its subdifferential"
+               "problem (docs/laws.md) solved exactly by bisection on its subdifferential"
              : "one degree of freedom: the velocity is exact (the velocity-space problem solved "
                "by bisection on its subdifferential), but its percussions, far above the "
                "velocities, do not reproduce it in double precision within the law's test";
@@ -1569,7 +1570,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   const SolverStatus s = out.solver.status;
   if (s != SolverStatus::stalled && s != SolverStatus::failed && s != SolverStatus::max_iterations)
     return;
-  if (!normal_rows_infeasible(pb)) {
+  if (!normal_rows_infeasible(pb, held_by(cs))) {
     solve_one_dof_instead(pb, cs, law, opt, out);
     return;
   }
@@ -1595,37 +1596,33 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                         const ImpactResultT<N, C>& r) {
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
-  double off_trivial = 0.0;
-  if (cs.rows() == 0) {  // nothing takes part: every percussion must be zero
+  if (cs.active == 0) {  // every contact separates: undriven, each keeps P = 0
+    double off_trivial = 0.0;
     for (int i = 0; i < cs.contacts; ++i)
       off_trivial = std::max({off_trivial, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
     return off_trivial;
   }
+  // Every contact obeys the law, the separating ones with the reaction alone
+  // (separating_contacts.hpp); where none separates that is the law as it is.
+  const ImpactLaw every = law_of_every_contact(law, cs.D_N);
+  if (cs.active < cs.contacts)
+    build_contact_space(pb, law.tangential != TangentialLaw::none, cs, HeldContacts::every);
   FremondRowsT<N, C> rows;
-  rows.init(cs, law);
-  Rows<N, C> P(cs.rows()), z, R;
+  rows.init(cs, every);
+  Rows<N, C> P(cs.rows());
   for (int k = 0; k < cs.active; ++k) {
     P(k) = r.P_N(cs.index(k));
     if (cs.tangential) P(cs.active + k) = r.P_T(cs.index(k));
   }
-  // Percussions on contacts that do not take part must be zero.
-  double off = 0.0;
-  for (int i = 0; i < cs.contacts; ++i)
-    if (!(r.D_NA.size() > i && r.D_NA(i) <= 0.0) && cs.active < cs.contacts) {
-      bool active = false;
-      for (int k = 0; k < cs.active; ++k) active = active || cs.index(k) == i;
-      if (!active) off = std::max({off, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
-    }
-  const double res = cs.rows() ? rows.plain_residual(P) : 0.0;
-  const double gmax = cs.rows() ? cs.G.diagonal().maxCoeff() : 0.0;
-  return std::max(res, off * gmax) / cs.v_scale;
+  return rows.plain_residual(P) / cs.v_scale;
 }
 
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
-                                                   const ImpactLaw& law, const SolverOptions& opt) {
+                                                   const ImpactLaw& law, const SolverOptions& opt,
+                                                   HeldContacts held) {
   ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
+  build_contact_space(pb, law.tangential != TangentialLaw::none, cs, held);
   FremondRowsT<N, C> rows;
   rows.init(cs, law);
   std::vector<ImpactResultT<N, C>> all;
@@ -1670,7 +1667,7 @@ std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& p
   template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
                                    const ImpactResultT<N, C>&);                              \
   template std::vector<ImpactResultT<N, C>> solve_fremond_all(                               \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&);
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -1,9 +1,14 @@
-// The driver (SPEC §2, §4): validate → trivial → law-specific chain → admissibility.
+// The driver (docs/laws.md, §4): validate → trivial → law-specific chain → admissibility.
 #include "fremond/solvers/solve_impact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "../admissibility/detail/admissibility.hpp"
 #include "detail/fremond.hpp"
 #include "detail/independent_groups.hpp"
+#include "detail/separating_contacts.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/detail/contact_space.hpp"
@@ -11,19 +16,24 @@
 namespace fremond {
 
 namespace {
-/// Frémond's law dissipates by construction (SPEC §4: (15), (17) and (19) hold for every exact
-/// solution), so an answer marked converged that its certificate refuses is not resolved in double
-/// precision, whatever the law's residual test said: it is kept and called stalled. The test
-/// accepts rows at their own rounding floor, and where percussions are 1e8 times the velocities on
-/// cond(M) = 5e7 those floors let velocities 5e-9 off the exact ones through, with an energy gain
-/// (1e-8 of T_A) 5e6 times what ε·cond(M) allows (fremond_coulomb #3655 of stress seed 7). The
-/// classical laws are not held to it: Newton's and Poisson's with Coulomb create energy, which is
-/// the certificate's finding, not the solver's failure.
+/// Frémond's law dissipates by construction ((15), (17) and (19) hold for every exact solution
+/// whose separating contacts carry no reaction: docs/concepts.md), so an answer marked converged
+/// that its certificate refuses is not resolved in double precision, whatever the law's residual
+/// test said: it is kept and called stalled. The test accepts rows at their own rounding floor, and
+/// where percussions are 1e8 times the velocities on cond(M) = 5e7 those floors let velocities 5e-9
+/// off the exact ones through, with an energy gain (1e-8 of T_A) 5e6 times what ε·cond(M) allows
+/// (fremond_coulomb #3655 of stress seed 7). The classical laws are not held to it: Newton's and
+/// Poisson's with Coulomb create energy, which is the certificate's finding, not the solver's
+/// failure.
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
   if (law.type != LawType::fremond || out.solver.status != SolverStatus::converged ||
       out.admissibility.admissible)
     return;
+  // A reaction that stops a separating contact works on its true mean velocity D_NA/2 > 0: total
+  // (15) may then fail for the exact answer, which is the convention's finding, not a failure.
+  for (Eigen::Index i = 0; i < out.D_NA.size(); ++i)
+    if (out.D_NA(i) > 0.0 && (out.P_N(i) != 0.0 || out.P_T(i) != 0.0)) return;
   out.solver.status = SolverStatus::stalled;
   out.solver.message =
       "the answer passes the law's residual test, but its admissibility certificate refuses it "
@@ -49,6 +59,14 @@ ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, 
   // and one contact does not even make the call (its frame holds three problems' storage).
   if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out))
     detail::solve_law_stage(pb, cs, law, options, out);
+  // Every contact takes part (separating_contacts.hpp): where the answer without the separating
+  // ones drives one of them into its obstacle, the impact is solved again on every contact.
+  if (cs.active < cs.contacts && detail::drives_a_separating_contact(pb, out, options)) {
+    const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
+    build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
+    out = ImpactResultT<N, C>{};
+    detail::solve_law_stage(pb, cs, every, options, out);
+  }
   VecT<C> percussion;
   const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
   out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
@@ -91,6 +109,16 @@ std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, co
   if (!detail::solve_all_by_groups(pb, law, options, all))
     all = law.type == LawType::fremond ? detail::solve_fremond_all(pb, law, options)
                                        : detail::solve_classical_all(pb, law, options);
+  // Every contact takes part (separating_contacts.hpp): where an answer without the separating
+  // contacts drives one of them into its obstacle, the list is made again on every contact.
+  bool drives = false;
+  for (const auto& r : all) drives = drives || detail::drives_a_separating_contact(pb, r, options);
+  if (drives) {
+    const ImpactLaw every = detail::law_of_every_contact(law, all.front().D_NA);
+    all = law.type == LawType::fremond
+              ? detail::solve_fremond_all(pb, every, options, detail::HeldContacts::every)
+              : detail::solve_classical_all(pb, every, options, detail::HeldContacts::every);
+  }
   for (auto& r : all) {
     r.admissibility = check_admissibility(pb, law, r, options);
     refuse_inadmissible(law, r);

@@ -1,32 +1,34 @@
 #pragma once
 /// @file An independent high-precision reference for the impact laws, in `__float128` (libquadmath:
 /// link with `-lquadmath`). It shares no code with the library: its own linear algebra, its own
-/// root finders, its own reading of SPEC §1-3. Use it to check the library's solvers, never inside
-/// them.
+/// root finders, its own reading of docs/concepts.md and docs/laws.md. Use it to check the
+/// library's solvers, never inside them.
 ///
-/// What it solves (SPEC §1: D = Wᵀ q̇ + w, G = Wᵀ M⁻¹ W, D_E = D_A + G P, z = (D_A + D_E)/2; P ≥ 0
-/// pushes apart; only contacts with D_NA ≤ 0 take part, the others get no percussion):
+/// What it solves (docs/concepts.md: D = Wᵀ q̇ + w, G = Wᵀ M⁻¹ W, D_E = D_A + G P, z = (D_A +
+/// D_E)/2; P ≥ 0 pushes apart; only contacts with D_NA ≤ 0 take part, the others get no
+/// percussion):
 ///
 ///  - fremond_one_contact(): Frémond's law on ONE contact, any M, with the normal law
-///    −P_N ∈ k z_N|z_N|^(p−2) + N_R+(D_NE) (SPEC §2-3) and the tangential law none, the viscous
-///    dead zone −P_T = k_T sign(z_T) max(0, |z_T| − r)^(q−1) (eq. 25 in our scaling), or Coulomb on
-///    (P_T, z_T) with the bound μ|P_N|. Returns EVERY solution (several or none are possible with
-///    Coulomb when μ|G_NT| > G_NN). Method: the reaction is the normal cone of z_N ≥ D_NA/2 (that
-///    is D_NE ≥ 0), so for a fixed tangential mode the normal law is one scalar inclusion
-///    z_N + (α/2)(f_N(z_N) + N(z_N)) ∋ b; for α > 0 it has one root (a monotone equation, then a
-///    clamp at D_NA/2), for α < 0 (Painlevé) every root is found on the ≤ 3 intervals where it is
-///    monotone. Coulomb: modes stick (z_T = 0) and slide σ = ±1 with each sign of P_N. Dead zone:
-///    the tangential equation P_T + f_T(z_T(P_T)) = 0, with z_T(P_T) from the normal solve, is
-///    strictly increasing in P_T (a partial minimisation of the dual problem), so one bracketed
+///    −P_N ∈ k z_N|z_N|^(p−2) + N_R+(D_NE) (docs/laws.md) and the tangential law none, the
+///    viscous dead zone −P_T = k_T sign(z_T) max(0, |z_T| − r)^(q−1) (eq. 25 in our scaling), or
+///    Coulomb on (P_T, z_T) with the bound μ|P_N|. Returns EVERY solution (several or none are
+///    possible with Coulomb when μ|G_NT| > G_NN). Method: the reaction is the normal cone of z_N ≥
+///    D_NA/2 (that is D_NE ≥ 0), so for a fixed tangential mode the normal law is one scalar
+///    inclusion z_N + (α/2)(f_N(z_N) + N(z_N)) ∋ b; for α > 0 it has one root (a monotone equation,
+///    then a clamp at D_NA/2), for α < 0 (Painlevé) every root is found on the ≤ 3 intervals where
+///    it is monotone. Coulomb: modes stick (z_T = 0) and slide σ = ±1 with each sign of P_N. Dead
+///    zone: the tangential equation P_T + f_T(z_T(P_T)) = 0, with z_T(P_T) from the normal solve,
+///    is strictly increasing in P_T (a partial minimisation of the dual problem), so one bracketed
 ///    root (its mode, in the zone or out on a side, is read off the answer). Every scalar root is
 ///    found by bisection safeguarding Newton's method, to the last bit of quad precision.
 ///  - fremond_several(): Frémond's law on several contacts, normal law with the tangential law none
-///    or dead zone (not Coulomb): the strongly convex problem of SPEC §2, solved in contact space
-///    (no G⁻¹) through its optimality system z = D_A + G P/2 with each row's law written with its
-///    resolvent z_j = J_j(s_j), P_j = c_j (z_j − s_j) (the reaction is the clamp of J_N at D_NA/2):
-///    non-smooth Gauss-Seidel sweeps (each row solved exactly by the scalar root finder; the block
-///    coordinate descent of the dual problem, which converges), then Levenberg-Marquardt on
-///    F(s) = z(s) − D_A − G P(s)/2, whose Jacobian stays bounded for p or q near 1 and for large p.
+///    or dead zone (not Coulomb): the strongly convex problem of docs/laws.md, solved in contact
+///    space (no G⁻¹) through its optimality system z = D_A + G P/2 with each row's law written with
+///    its resolvent z_j = J_j(s_j), P_j = c_j (z_j − s_j) (the reaction is the clamp of J_N at
+///    D_NA/2): non-smooth Gauss-Seidel sweeps (each row solved exactly by the scalar root finder;
+///    the block coordinate descent of the dual problem, which converges), then Levenberg-Marquardt
+///    on F(s) = z(s) − D_A − G P(s)/2, whose Jacobian stays bounded for p or q near 1 and for large
+///    p.
 ///  - fremond_coulomb_near(): Frémond + Coulomb on several contacts, not as a reference (the law is
 ///    quasi-variational there, and no method here lists every solution) but as a check of a given
 ///    answer: the exact solution nearest to it, each contact mode the answer lies near solved by
@@ -35,7 +37,7 @@
 ///    contact), by enumeration of the active sets; every distinct solution of a regular active
 ///    set (a singular one is skipped: where G_NN is singular the list may be empty although the
 ///    law has a solution; classical_modes says so).
-///  - classical_modes(): Newton's or Poisson's law, with or without Coulomb friction (SPEC §2
+///  - classical_modes(): Newton's or Poisson's law, with or without Coulomb friction (docs/laws.md
 ///    table; Poisson + Coulomb in the compression/expansion form), on up to 4 contacts taking part,
 ///    by enumeration of every contact mode of each phase (normal open or closed; tangential stick,
 ///    slide forwards or backwards, or held at zero where the bound is zero): each mode's linear
@@ -76,13 +78,17 @@ using QVec = std::vector<quad>;
 // ---------------------------------------------------------------------------------------------
 // Data
 
-/// One impact problem in quad precision (SPEC §1). W_N[i] and W_T[i] are the columns of contact i
-/// (length n each); W_T empty: frictionless. w_N, w_T empty: zero.
+/// One impact problem in quad precision (docs/concepts.md). W_N[i] and W_T[i] are the columns of
+/// contact i (length n each); W_T empty: frictionless. w_N, w_T empty: zero.
 struct Problem {
   std::vector<QVec> M;  ///< n rows of n, symmetric positive definite.
   std::vector<QVec> W_N, W_T;
   QVec w_N, w_T;
   QVec qdot_A;
+  /// Every contact takes part, also those with D_NA > 0 (the caller gives those their law with
+  /// the restitution on min(D_NA, 0) = 0: e = 0, φ_N = 0, no tangential potential); false: the
+  /// contacts with D_NA > 0 are left out and get no percussion.
+  bool every_contact_takes_part = false;
   int dofs() const { return static_cast<int>(qdot_A.size()); }
   int contacts() const { return static_cast<int>(W_N.size()); }
   bool has_tangential() const { return !W_T.empty(); }
@@ -150,7 +156,7 @@ struct TangentialLaw {
 struct Solution {
   QVec qdot_E;
   QVec P_N, P_T;    ///< total percussions on the body.
-  QVec P_reaction;  ///< the reaction part of P_N (≥ 0; −I_reac of SPEC §2).
+  QVec P_reaction;  ///< the reaction part of P_N (≥ 0; −I_reac of docs/laws.md).
   QVec D_NA, D_TA, D_NE, D_TE;
   QVec z_N, z_T;  ///< mean velocities.
   /// Poisson's compression phase (classical_modes with ClassicalLaw::poisson; empty otherwise).
@@ -378,7 +384,7 @@ struct Cholesky {
   }
 };
 
-/// The contact-space data of a problem (SPEC §1).
+/// The contact-space data of a problem (docs/concepts.md).
 struct ContactData {
   int n = 0, c = 0;
   bool has_T = false;
@@ -411,7 +417,7 @@ inline ContactData contact_data(const Problem& p) {
   for (int i = 0; i < c; ++i) {
     d.DNA[i] = dot(p.W_N[i], p.qdot_A) + (p.w_N.empty() ? quad(0) : p.w_N[i]);
     if (d.has_T) d.DTA[i] = dot(p.W_T[i], p.qdot_A) + (p.w_T.empty() ? quad(0) : p.w_T[i]);
-    d.part[i] = d.DNA[i] <= 0 ? 1 : 0;
+    d.part[i] = p.every_contact_takes_part || d.DNA[i] <= 0 ? 1 : 0;
     for (int j = 0; j < c; ++j) {
       d.GNN(i, j) = dot(p.W_N[i], d.MinvWN[j]);
       if (d.has_T) {
@@ -939,9 +945,9 @@ inline Resolvent resolvent(const Row& row, quad s) {
 /// Frémond's law on several contacts with the normal power law and the tangential law none or
 /// dead zone (see the file comment): the unique solution. Method, in contact space (it needs no
 /// G⁻¹): with one variable s_j a row and the resolvents above, z_j = J_j(s_j), P_j = c_j(z_j −
-/// s_j), solve F(s) = z − D_A − G P/2 = 0 (SPEC §1: z = D_A + G P/2). First non-smooth Gauss-Seidel
-/// sweeps (each row exactly: s_j = D_A,j + ½ Σ_{k≠j} G_jk P_k; the block coordinate descent of the
-/// dual problem, which converges), then Levenberg-Marquardt on F with the Jacobian
+/// s_j), solve F(s) = z − D_A − G P/2 = 0 (docs/concepts.md: z = D_A + G P/2). First non-smooth
+/// Gauss-Seidel sweeps (each row exactly: s_j = D_A,j + ½ Σ_{k≠j} G_jk P_k; the block coordinate
+/// descent of the dual problem, which converges), then Levenberg-Marquardt on F with the Jacobian
 /// diag(J') − ½ G C (diag(J') − I), alternating until ‖F‖ is at rounding level. `ok` is false when
 /// the law's residual stays above 1e-27. Laws: one for every contact or one each. Where the normals
 /// are dependent (a plate on three points) and the law holds z_N far below the velocities (p = 1.2,
@@ -1728,17 +1734,17 @@ inline quad classical_residual(const Problem& p, ClassicalLaw law, const QVec& e
   return r;
 }
 
-/// Every solution of Newton's or Poisson's law (SPEC §2 table), with Coulomb friction when `mu` is
-/// not empty (one entry for every contact or one each; frictionless otherwise, P_T = 0), on up to
-/// 4 contacts taking part. Newton: one phase, 0 ≤ P_N ⊥ D_NE + e D_NA ≥ 0, Coulomb on (P_T, D_TE)
-/// with the bound μ P_N. Poisson: the compression 0 ≤ P_NC ⊥ D_NC ≥ 0 with Coulomb on
-/// (P_TC, D_TC), bound μ P_NC; then for each compression answer the expansion P_NE = e P_NC + ΔP,
-/// 0 ≤ ΔP ⊥ D_NE ≥ 0, Coulomb on (P_TE, D_TE) with the bound μ P_NE; P = P_C + P_E.
-/// `singular`: a mode's equations whose Gaussian elimination meets a pivot below `singular` times
-/// their largest entry count as singular (the list is then not complete). The default 2^-40
-/// (9e-13) leaves out what double-precision data cannot resolve: the bar upright on both ends,
-/// whose normals differ by 6e-17 (cos(π/2) in double), has an exact solution for its exact data,
-/// but one that any rounding of them moves by 30 % of the velocities.
+/// Every solution of Newton's or Poisson's law (docs/laws.md table), with Coulomb friction when
+/// `mu` is not empty (one entry for every contact or one each; frictionless otherwise, P_T = 0), on
+/// up to 4 contacts taking part. Newton: one phase, 0 ≤ P_N ⊥ D_NE + e D_NA ≥ 0, Coulomb on (P_T,
+/// D_TE) with the bound μ P_N. Poisson: the compression 0 ≤ P_NC ⊥ D_NC ≥ 0 with Coulomb on (P_TC,
+/// D_TC), bound μ P_NC; then for each compression answer the expansion P_NE = e P_NC + ΔP, 0 ≤ ΔP ⊥
+/// D_NE ≥ 0, Coulomb on (P_TE, D_TE) with the bound μ P_NE; P = P_C + P_E. `singular`: a mode's
+/// equations whose Gaussian elimination meets a pivot below `singular` times their largest entry
+/// count as singular (the list is then not complete). The default 2^-40 (9e-13) leaves out what
+/// double-precision data cannot resolve: the bar upright on both ends, whose normals differ by
+/// 6e-17 (cos(π/2) in double), has an exact solution for its exact data, but one that any rounding
+/// of them moves by 30 % of the velocities.
 inline ClassicalSolutions classical_modes(const Problem& p, ClassicalLaw law, const QVec& e,
                                           const QVec& mu, quad singular = ldexpq(1, -40)) {
   using namespace detail;

@@ -1,6 +1,6 @@
 #pragma once
-// Problems shared by the tests: the paper's bar (SPEC §5), point masses, and random problems with a
-// fixed seed (random SPD M, random contact directions, some contacts taking part).
+// Problems shared by the tests: the paper's bar (the paper's Fig. 1), point masses, and random
+// problems with a fixed seed (random SPD M, random contact directions, some contacts taking part).
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -14,8 +14,9 @@ namespace fremond::testing {
 inline constexpr double kBarHalfLength = 0.5;
 inline constexpr double kGravity = 9.81;
 
-/// The bar of SPEC §5 with one end at angle θ on the ground; `end` = −1 the lower end at θ > 0.
-/// W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ) for the end s (SPEC §5 for s = −1, θ = π/4).
+/// The bar of the paper's Fig. 1 with one end at angle θ on the ground; `end` = −1 the lower end at
+/// θ > 0. W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ) for the end s (the paper's Fig. 1 for s
+/// = −1, θ = π/4).
 inline ImpactProblem bar_problem(double theta, Eigen::Vector3d qdot, bool both_ends = false) {
   const double l = kBarHalfLength, m = 1.0;
   ImpactProblem pb;
@@ -33,8 +34,8 @@ inline ImpactProblem bar_problem(double theta, Eigen::Vector3d qdot, bool both_e
   return pb;
 }
 
-/// The bar at its first impact from SPEC §5's initial state: a free fall from y = 1 until the lower
-/// end touches (centre at l sin θ), ẋ = 2, θ̇ = 0.
+/// The bar at its first impact from the paper's initial state: a free fall from y = 1 until the
+/// lower end touches (centre at l sin θ), ẋ = 2, θ̇ = 0.
 inline ImpactProblem paper_bar_first_impact() {
   const double th = std::numbers::pi / 4;
   const double drop = 1.0 - kBarHalfLength * std::sin(th);
@@ -87,6 +88,29 @@ inline ImpactProblem random_problem(std::mt19937_64& rng, int n, int c, bool tan
   const double dn = pb.W_N.col(0).dot(pb.qdot_A);
   if (dn > 0.0) pb.qdot_A -= (2.0 * dn / pb.W_N.col(0).squaredNorm()) * pb.W_N.col(0);
   return pb;
+}
+
+/// The problem with its contacts that separate before the impact (D_NA > 0) detached from the
+/// body: W_N and W_T columns zero, w_N = D_NA and w_T = D_TA, so that nothing can drive them and
+/// they leave as they came. That is the impact as it was solved before every contact took part
+/// (docs/concepts.md): regression cases found on that convention keep their numerical point, and
+/// their contacts' indices.
+inline ImpactProblem detach_separating(const ImpactProblem& pb) {
+  ImpactProblem out = pb;
+  const int c = pb.contacts();
+  if (out.w_N.size() == 0) out.w_N = VectorX::Zero(c);
+  if (pb.has_tangential() && out.w_T.size() == 0) out.w_T = VectorX::Zero(c);
+  for (int i = 0; i < c; ++i) {
+    const double d = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (!(d > 0.0)) continue;
+    out.w_N(i) = d;
+    out.W_N.col(i).setZero();
+    if (pb.has_tangential()) {
+      out.w_T(i) = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+      out.W_T.col(i).setZero();
+    }
+  }
+  return out;
 }
 
 }  // namespace fremond::testing

@@ -1,5 +1,5 @@
-// Newton's and Poisson's laws without friction (SPEC §2; paper eqs. 5-6), against eq. (6), the LCP
-// solved on its own, and hand derivations.
+// Newton's and Poisson's laws without friction (docs/laws.md; paper eqs. 5-6), against eq. (6), the
+// LCP solved on its own, and hand derivations.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -142,15 +142,25 @@ TEST(ClassicalNewton, TwoFrictionlessContactsInEachModeAgreeWithLemke) {
   }
 }
 
-TEST(ClassicalNewton, SeparatingContactsGetNoPercussion) {
-  // The flat bar turning fast: the right end (W_N = (0, 1, l)) moves up, D_NA = −0.5 + 0.5·3 > 0.
+TEST(ClassicalNewton, ASeparatingContactCarriesOnlyItsReaction) {
+  // The flat bar turning fast: the right end (W_N = (0, 1, l)) moves up, D_NA = −0.5 + 0.5·3 = 1,
+  // the left end arrives at −2. The left end's percussion would sink the right one, so both close:
+  // D_NE = (0.5·2, 0) = D_NA + G P with G = [[4, −2], [−2, 4]] gives P = (5/6, 1/6).
   const ImpactProblem p = flat_bar(Eigen::Vector3d(0, -0.5, 3), false);
   const ImpactResult r = solve_impact(p, ImpactLaw::newton(0.5));
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r.takes_part(1), 0);
-  EXPECT_EQ(r.P_N(1), 0.0);
-  // One contact left: eq. (6) with G_NN = 1 + l²/J = 4 for the end (0, 1, −l).
-  EXPECT_NEAR(r.P_N(0), -1.5 * (-0.5 - kL * 3) / 4, 1e-14);
+  EXPECT_NEAR(r.P_N(0), 5.0 / 6.0, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 1.0 / 6.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(0), 1.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(1), 0.0, 1e-14);
+  // Leaving fast enough (D_NA = 4 > 2 P_N(0)), it is not driven: eq. (6) on the left end alone,
+  // G_NN = 1 + l²/J = 4.
+  const ImpactResult fast =
+      solve_impact(flat_bar(Eigen::Vector3d(0, -0.5, 9), false), ImpactLaw::newton(0.5));
+  ASSERT_TRUE(fast.ok());
+  EXPECT_EQ(fast.P_N(1), 0.0);
+  EXPECT_NEAR(fast.P_N(0), -1.5 * (-0.5 - kL * 9) / 4, 1e-14);
   // Everything separating: nothing happens.
   const ImpactResult none =
       solve_impact(flat_bar(Eigen::Vector3d(0, 1, 0), false), ImpactLaw::newton(0.5));

@@ -1,4 +1,5 @@
-// Frémond's law (SPEC §2-4, paper §5) against closed forms, between methods, and on random data.
+// Frémond's law (docs/laws.md and docs/concepts.md, paper §5) against closed forms, between
+// methods, and on random data.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,7 +26,7 @@ SolverOptions with_method(SolverMethod m) {
   return o;
 }
 
-// SPEC §3, eq. (24) in our scaling: p = 2 on a point mass is Newton's law with
+// docs/laws.md, eq. (24) in our scaling: p = 2 on a point mass is Newton's law with
 // ε = (k − 2m)/(k + 2m) for k ≥ 2m; for k < 2m the reaction stops the mass (D_NE = 0).
 TEST(FremondPointMass, P2IsNewtonWithEq24Restitution) {
   for (double m : {1e-3, 0.5, 1.0, 7.0, 1e3}) {
@@ -45,7 +46,7 @@ TEST(FremondPointMass, P2IsNewtonWithEq24Restitution) {
   }
 }
 
-// SPEC §3 (erratum of the paper): when the reaction acts, D_NE = 0 and
+// docs/laws.md (erratum of the paper): when the reaction acts, D_NE = 0 and
 // I_reac = (m − k_paper |D_NA|^{p−2}) D_NA ≤ 0 with k_paper = k 2^{1−p}.
 TEST(FremondPointMass, ReactionMatchesCorrectedFormula) {
   for (double p : {1.5, 2.0, 3.0, 5.0}) {
@@ -66,8 +67,9 @@ TEST(FremondPointMass, ReactionMatchesCorrectedFormula) {
 }
 
 // A point mass obeys 2m(|D_NA| − t) = k t^{p−1} with t = −z the mean velocity's size (eq. 23 in
-// SPEC's convention), unless t > |D_NA|/2 where the reaction stops it (D_NE = 0). The reference
-// solves that scalar equation by bisection in long double, independently of the library's prox.
+// the library's convention), unless t > |D_NA|/2 where the reaction stops it (D_NE = 0). The
+// reference solves that scalar equation by bisection in long double, independently of the library's
+// prox.
 long double point_mass_reference(long double m, long double k, long double p, long double v) {
   const long double D = -v;
   long double lo = 0.0L, hi = D;
@@ -184,9 +186,10 @@ TEST(FremondBar, FlatBarTwoContactsSingularG) {
   }
 }
 
-// SPEC §2: "Frémond + Coulomb ... already with one contact when μ|G_NT| > G_NN" may have several
-// solutions or none; the result says which. The bar at θ = π/4 has G_NN = 2.5, |G_NT| = 1.5: μ = 2
-// is beyond. Every reported solution satisfies the law (residual ~ 0) and is admissible.
+// docs/laws.md: "Frémond + Coulomb ... already with one contact when μ|G_NT| > G_NN" may have
+// several solutions or none; the result says which. The bar at θ = π/4 has G_NN = 2.5, |G_NT|
+// = 1.5: μ = 2 is beyond. Every reported solution satisfies the law (residual ~ 0) and is
+// admissible.
 TEST(FremondBar, PainleveCaseReportsEverySolution) {
   int cases_with_several = 0, cases_without = 0;
   for (double mu : {1.0, 1.7, 2.0, 4.0, 20.0}) {
@@ -219,8 +222,8 @@ TEST(FremondBar, PainleveCaseReportsEverySolution) {
 // (normal −x, D_N = −ẋ + w₀), contact 1 one moving left (normal +x, D_N = ẋ + w₁), w = (−1, −1).
 // Both take part (D_NA = (−1.5, −0.5)), and D_NE ≥ 0 asks ẋ_E ≤ −1 and ẋ_E ≥ 1: by Farkas, y = (1,
 // 1) gives W_N y = 0 and y·w_N = −2 < 0, so no velocity after the impact keeps both from
-// penetrating, and Frémond's reaction (SPEC §2) admits no answer, whatever the potentials. Every
-// method used to end "stalled" or "failed" after its budget; the law now says no_solution and
+// penetrating, and Frémond's reaction (docs/laws.md) admits no answer, whatever the potentials.
+// Every method used to end "stalled" or "failed" after its budget; the law now says no_solution and
 // returns the state before the impact. Where the walls move together (w = (1, −1), ẋ_A = 1: both
 // touching, D_NA = 0) the single feasible velocity ẋ_E = 1 is the answer, with no percussion.
 TEST(FremondLaw, ObstaclesClosingInLeaveNoSolution) {
@@ -271,7 +274,9 @@ TEST(FremondRandom, AdmissibleAndConvergedOnThousandsOfProblems) {
     const int n = 1 + static_cast<int>(u(rng) * 6);
     const int c = 1 + static_cast<int>(u(rng) * 3);
     const int kind = trial % 3;  // 0 normal only, 1 viscous, 2 Coulomb (small μ)
-    const ImpactProblem pb = random_problem(rng, n, c, kind != 0);
+    // Separating contacts detached: driven ones are the stress runs' and
+    // separating_contacts_test's.
+    const ImpactProblem pb = testing::detach_separating(random_problem(rng, n, c, kind != 0));
     const double p = 1.1 + 4.0 * u(rng), k = std::pow(10.0, 4 * u(rng) - 2);
     ImpactLaw law = ImpactLaw::fremond(PowerPotential(k, p));
     if (kind == 1)

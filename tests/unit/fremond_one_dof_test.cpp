@@ -1,6 +1,6 @@
 // Frémond's law without Coulomb on one degree of freedom, where every contact-space method fails
 // and the scalar velocity-space solve (src/solvers/fremond_one_dof.cpp) answers. The references
-// are 60-digit minimisers of SPEC §2's F(u) = M u² + Σ φ_j(D_A,j + W_j u) over the reactions'
+// are 60-digit minimisers of docs/laws.md's F(u) = M u² + Σ φ_j(D_A,j + W_j u) over the reactions'
 // domain, found by golden-section search on F's values (mpmath; no subdifferential, no prox: a
 // different method from the library's bisection on ∂F). The four problems are stress cases of
 // fremond_viscous at seed 7 (#233, #729, #1834, #3973); before this solve each returned a velocity
@@ -87,37 +87,52 @@ TEST(FremondOneDof, KinkOfFourRowsGivesTheReversalAndZeroNormalPercussion) {
   EXPECT_EQ(robust::check_result(p, law, SolverOptions{}, r), "");
 }
 
-// Four contacts at speeds of 1e-11, one normal law almost linear (p = 1 + 5e-5): the reactions'
-// domain ends at u = 8.6e-11, which is the answer.
-TEST(FremondOneDof, FourContactsAtTinySpeedsConverge) {
+// Three contacts at speeds of 1e-11, one normal law almost linear (p = 1 + 5e-5): the reactions'
+// domain ends at u = 8.6e-11, which is the answer. (The stress case had a fourth contact, leaving
+// at D_NA = 1.9e-11 on the other side, W_N = −0.85, w_N = 2.8e-12: held with the others, its
+// obstacle and contact 0's close in on the body, D_NE ≥ 0 asks u ≥ 2.6e-11 and u ≤ 3.3e-12, so the
+// law has no solution, which the last lines check.)
+TEST(FremondOneDof, ThreeContactsAtTinySpeedsConverge) {
   const ImpactProblem p =
       one_dof(0.51041527414561838, -1.914934250583979e-11,
-              {0.45840554258339017, -0.85070917453656736, 0.10672335289785218, 0.97320450453861307},
-              {0.84188928136191388, 0.27532236336114968, 0.36649857114925188, 0.80829604723212167},
-              {-1.1916471948263793e-11, 2.8105205588814761e-12, -1.634328558252934e-11,
-               -4.3353772922717655e-12},
-              {1.2305860613472173e-11, -2.2595265879366724e-12, 1.6179426196886907e-11,
-               -2.1036214611362736e-11});
+              {0.45840554258339017, 0.10672335289785218, 0.97320450453861307},
+              {0.84188928136191388, 0.36649857114925188, 0.80829604723212167},
+              {-1.1916471948263793e-11, -1.634328558252934e-11, -4.3353772922717655e-12},
+              {1.2305860613472173e-11, 1.6179426196886907e-11, -2.1036214611362736e-11});
   PerContactPotential normal(PowerPotential(0.0, 18.077445441136941));
-  normal.potentials.emplace_back(
-      std::make_unique<PowerPotential>(3.7962022075654855e-05, 3.6297385002223397));
   normal.potentials.emplace_back(std::make_unique<PowerPotential>(0.00052043059924276229, 2.0));
   normal.potentials.emplace_back(
       std::make_unique<PowerPotential>(0.011497907361241498, 1.0000480157205487));
   PerContactPotential tangential(
       DeadZonePowerPotential(5.3499614384723214e-06, 2.0, 3.7175741114025769e-14));
   tangential.potentials.emplace_back(
-      std::make_unique<DeadZonePowerPotential>(3.2368446325042814, 3.4832954107645238, 0.0));
-  tangential.potentials.emplace_back(
       std::make_unique<DeadZonePowerPotential>(507.36552946566093, 2.0, 1.0712382117676927e-14));
   tangential.potentials.emplace_back(std::make_unique<DeadZonePowerPotential>(
       0.00034790106502862736, 2.0, 1.9976271882685692e-15));
-  const ImpactLaw law = ImpactLaw::fremond(std::move(normal), std::move(tangential));
+  const ImpactLaw law = ImpactLaw::fremond(normal, tangential);
   const ImpactResult r = solve_impact(p, law);
   ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
   EXPECT_NEAR(r.qdot_E(0), 1.5313692025935451217e-10, 1e-15 * 1.53e-10);
   expect_momentum(p, r);
   EXPECT_EQ(robust::check_result(p, law, SolverOptions{}, r), "");
+
+  ImpactProblem with_leaving = p;
+  with_leaving.W_N.conservativeResize(1, 4);
+  with_leaving.W_T.conservativeResize(1, 4);
+  with_leaving.w_N.conservativeResize(4);
+  with_leaving.w_T.conservativeResize(4);
+  with_leaving.W_N(0, 3) = -0.85070917453656736;
+  with_leaving.W_T(0, 3) = 0.27532236336114968;
+  with_leaving.w_N(3) = 2.8105205588814761e-12;
+  with_leaving.w_T(3) = -2.2595265879366724e-12;
+  normal.potentials.emplace_back(
+      std::make_unique<PowerPotential>(3.7962022075654855e-05, 3.6297385002223397));
+  tangential.potentials.emplace_back(
+      std::make_unique<DeadZonePowerPotential>(3.2368446325042814, 3.4832954107645238, 0.0));
+  const ImpactResult none =
+      solve_impact(with_leaving, ImpactLaw::fremond(std::move(normal), std::move(tangential)));
+  EXPECT_GT(none.D_NA(3), 0.0);
+  EXPECT_EQ(none.solver.status, SolverStatus::no_solution) << none.solver.message;
 }
 
 // Two contacts, steep laws (p = 38, q = 39): the first contact's reaction ends the domain.

@@ -7,16 +7,12 @@
 
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "support/simulation_log.hpp"
 
 namespace fremond {
 namespace {
 
-struct Log : SimulationObserver {
-  std::vector<ImpactRecord> impacts;
-  std::vector<TrajectorySample> samples;
-  void on_impact(const ImpactRecord& r) override { impacts.push_back(r); }
-  void on_sample(const TrajectorySample& s) override { samples.push_back(s); }
-};
+using Log = testing::SimulationLog;
 
 // Dropped from rest with its lowest point at h0 under gravity g, restitution e (Newton): the n-th
 // impact (n ≥ 1) leaves with speed e^n v1, v1 = √(2 g h0), and the n-th bounce rises to

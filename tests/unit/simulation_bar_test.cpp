@@ -1,6 +1,6 @@
-// The paper's bar (SPEC §5) under each of the paper's laws: the runs complete, the energy never
-// rises except at impacts the certificate flags, runs repeat bit for bit, and a flat drop stays
-// flat.
+// The paper's bar (the paper's Fig. 1) under each of the paper's laws: the runs complete, the
+// energy never rises except at impacts the certificate flags, runs repeat bit for bit, and a flat
+// drop stays flat.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "support/simulation_log.hpp"
 
 namespace fremond {
 namespace {
@@ -19,12 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr PaperLaw kLaws[] = {PaperLaw::newton, PaperLaw::newton_coulomb, PaperLaw::poisson_coulomb,
                               PaperLaw::fremond_coulomb, PaperLaw::fremond_viscous};
 
-struct Log : SimulationObserver {
-  std::vector<ImpactRecord> impacts;
-  std::vector<TrajectorySample> samples;
-  void on_impact(const ImpactRecord& r) override { impacts.push_back(r); }
-  void on_sample(const TrajectorySample& s) override { samples.push_back(s); }
-};
+using Log = testing::SimulationLog;
 
 const Scene& scene_of(PaperLaw law) {
   static const std::vector<Scene> scenes = [] {

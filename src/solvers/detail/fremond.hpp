@@ -1,5 +1,5 @@
 #pragma once
-// Private interface of Frémond's law solvers (SPEC §2): the driver calls solve_fremond; every
+// Private interface of Frémond's law solvers (docs/laws.md): the driver calls solve_fremond; every
 // method works on the same rows (fremond_rows.hpp) and ends in finish_fremond.
 #include <vector>
 
@@ -27,19 +27,21 @@ template <int N, int C>
 void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                    const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out);
 
-/// Every solution found: exact for one contact with Coulomb (mode enumeration), else one.
+/// Every solution found: exact for one contact with Coulomb (mode enumeration), else one;
+/// `held`: the contacts solved for (separating_contacts.hpp).
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
                                                    const ImpactLaw& law,
-                                                   const SolverOptions& options);
+                                                   const SolverOptions& options,
+                                                   HeldContacts held = HeldContacts::approaching);
 
 /// Semismooth Newton on R(P) = z − prox(z − τP) from the P given; P is overwritten.
 template <int N, int C>
 MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
                                 typename FremondRowsT<N, C>::Rows& P, const SolverOptions& options);
 
-/// Newton on the velocity-space problem of SPEC §2 (n unknowns instead of one per row), for a law
-/// without Coulomb whose potentials all have a prox; P (the start, then the answer) in contact
+/// Newton on the velocity-space problem of docs/laws.md (n unknowns instead of one per row), for a
+/// law without Coulomb whose potentials all have a prox; P (the start, then the answer) in contact
 /// space. Converged only when the answer passes the law's own stopping test: an answer that needs
 /// a reaction does not (fremond_velocity_newton.cpp).
 template <int N, int C>
@@ -47,7 +49,7 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
                                     typename FremondRowsT<N, C>::Rows& P,
                                     const SolverOptions& options);
 
-/// Frémond's law without Coulomb on one degree of freedom: SPEC §2's velocity-space problem is
+/// Frémond's law without Coulomb on one degree of freedom: docs/laws.md's velocity-space problem is
 /// scalar and strongly convex, and bisection on the sign of its subdifferential finds u = v − q̇_A
 /// to the last bit (q̇_E = q̇_A + 2u), whatever the percussions' scale; P gets each row's
 /// percussion in −∂ψ_j(z_j) with Σ W_j P_j = 2Mu, the least-norm choice where rows are
@@ -63,7 +65,8 @@ MethodOutcome proximal_iterations(const FremondRowsT<N, C>& rows,
                                   typename FremondRowsT<N, C>::Rows& P,
                                   const SolverOptions& options);
 
-/// NLopt (SLSQP) on the velocity-space minimisation of SPEC §2; uses value and one subgradient.
+/// NLopt (SLSQP) on the velocity-space minimisation of docs/laws.md; uses value and one
+/// subgradient.
 template <int N, int C>
 MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
                                    typename FremondRowsT<N, C>::Rows& P,

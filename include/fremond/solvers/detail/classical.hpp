@@ -30,11 +30,12 @@ void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                             const VecT<MaxDofs>* velocities = nullptr,
                             const VecT<MaxDofs>* compression_velocities = nullptr);
 
-/// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one.
+/// Every solution found by mode enumeration (friction, up to 4 active contacts), else the one;
+/// `held`: the contacts solved for.
 template <int MaxDofs, int MaxContacts>
 std::vector<ImpactResultT<MaxDofs, MaxContacts>> solve_classical_all(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
-    const SolverOptions& options);
+    const SolverOptions& options, HeldContacts held = HeldContacts::approaching);
 
 /// The scaled natural-map residual of a classical law at `result` (see laws/residual.hpp).
 /// `beyond_rounding`, if given, receives the same residual without the contacts whose every term

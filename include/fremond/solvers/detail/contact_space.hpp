@@ -1,5 +1,6 @@
 #pragma once
-/// @file The impact problem in contact space, restricted to the contacts that take part (SPEC §1).
+/// @file The impact problem in contact space, on the contacts a solve holds (docs/concepts.md):
+/// the approaching and touching ones (D_NA ≤ 0), or every contact.
 ///
 /// Rows are ordered [normal rows of the active contacts, then their tangential rows]. G = Wᵀ M⁻¹ W
 /// is formed from a Cholesky factor of M; it may be singular and is never inverted.
@@ -20,7 +21,7 @@
 
 namespace fremond::detail {
 
-/// A contact velocity Wᵀq̇ + w (SPEC §1) with an accurate dot product: a touching contact
+/// A contact velocity Wᵀq̇ + w (docs/concepts.md) with an accurate dot product: a touching contact
 /// (D_NA = 0 up to the data's last bits) takes part or not by the sign of a sum that cancels, and
 /// the plain dot product can get that sign wrong (accurate_dot.hpp). Every place that decides or
 /// reports D_A and D_E uses this one function, so that they agree to the last bit.
@@ -28,6 +29,12 @@ template <class Col, class Vec>
 double contact_velocity(const Col& W_col, const Vec& qdot, double w) {
   return accurate_dot(W_col, qdot, w);
 }
+
+/// Which contacts a contact space holds. Every contact of a problem takes part in the impact; a
+/// separating one (D_NA > 0) carries only the non-penetration reaction, so a solve first leaves
+/// the separating ones out (their answer is P = 0 when nothing drives them into the obstacle) and
+/// holds every contact only where one of them would penetrate (solve_impact.cpp).
+enum class HeldContacts { approaching, every };
 
 template <int MaxDofs, int MaxContacts>
 struct ContactSpaceT {
@@ -39,7 +46,7 @@ struct ContactSpaceT {
 
   int dofs = 0;
   int contacts = 0;  ///< all contacts of the problem
-  int active = 0;    ///< contacts that take part (D_NA ≤ 0)
+  int active = 0;    ///< contacts held: those with D_NA ≤ 0, or every one (HeldContacts::every)
   bool tangential = false;
   Index index;  ///< active → problem contact index
   Jac W;        ///< n × rows
@@ -102,7 +109,7 @@ double diagonal_inverse_and_delassus(const double* const* column, const double* 
 /// path then builds the contact space from the start and refuses what it refuses.
 template <int N, int MaxDofs, int MaxContacts>
 bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
-                            ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+                            ContactSpaceT<MaxDofs, MaxContacts>& cs, HeldContacts held) {
   using Col = Eigen::Map<const Eigen::Matrix<double, N, 1>>;
   const bool has_t = pb.has_tangential();
   if (pb.M.cols() != N || pb.qdot_A.size() != N || pb.W_N.rows() != N ||
@@ -130,7 +137,7 @@ bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool
     cs.D_N(i) = contact_velocity(Col(pb.W_N.data() + N * i), q, pb.w_N.size() ? pb.w_N(i) : 0.0);
     if (has_t)
       cs.D_T(i) = contact_velocity(Col(pb.W_T.data() + N * i), q, pb.w_T.size() ? pb.w_T(i) : 0.0);
-    if (cs.D_N(i) <= 0.0) cs.index(a++) = i;
+    if (held == HeldContacts::every || cs.D_N(i) <= 0.0) cs.index(a++) = i;
   }
   cs.active = a;
   cs.index.conservativeResize(a);
@@ -164,11 +171,12 @@ bool build_diagonal_of_size(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool
 /// build_diagonal_of_size for the sizes 1, 2, 3 and 6 that fit MaxDofs; false for the others.
 template <int MaxDofs, int MaxContacts>
 bool build_diagonal(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
-                    ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+                    ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                    HeldContacts held = HeldContacts::approaching) {
   auto fits = [&](auto size) {
     constexpr int N = decltype(size)::value;
     if constexpr (N <= MaxDofs)
-      return pb.dofs() == N && build_diagonal_of_size<N>(pb, with_tangential, cs);
+      return pb.dofs() == N && build_diagonal_of_size<N>(pb, with_tangential, cs, held);
     else
       return false;
   };
@@ -188,7 +196,8 @@ bool build_diagonal(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_ta
 /// M⁻¹W is refined and G recomputed from it.
 template <int MaxDofs, int MaxContacts>
 void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
-                                 bool with_tangential, ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+                                 bool with_tangential, ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                                 HeldContacts held = HeldContacts::approaching) {
   constexpr bool small = MaxDofs != Dynamic;
   const int n = pb.dofs(), c = pb.contacts();
   cs.dofs = n;
@@ -203,7 +212,7 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     cs.D_N(i) = contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
     if (pb.has_tangential())
       cs.D_T(i) = contact_velocity(pb.W_T.col(i), pb.qdot_A, pb.w_T.size() ? pb.w_T(i) : 0.0);
-    if (cs.D_N(i) <= 0.0) cs.index(a++) = i;
+    if (held == HeldContacts::every || cs.D_N(i) <= 0.0) cs.index(a++) = i;
   }
   cs.active = a;
   cs.index.conservativeResize(a);
@@ -285,15 +294,24 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     cs.v_scale = std::numeric_limits<double>::min();
 }
 
-/// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns).
-/// A stack-stored problem of 1, 2, 3 or 6 dofs with a diagonal M takes the fixed-size path
-/// (contact_space_detail::build_diagonal), every other one the general path.
+/// Builds the contact space; `with_tangential` adds the tangential rows (when W_T has columns),
+/// `held` says which contacts it holds. A stack-stored problem of 1, 2, 3 or 6 dofs with a
+/// diagonal M takes the fixed-size path (contact_space_detail::build_diagonal), every other one
+/// the general path.
 template <int MaxDofs, int MaxContacts>
 void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
-                         ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+                         ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                         HeldContacts held = HeldContacts::approaching) {
   if constexpr (MaxDofs != Dynamic)
-    if (contact_space_detail::build_diagonal(pb, with_tangential, cs)) return;
-  build_contact_space_general(pb, with_tangential, cs);
+    if (contact_space_detail::build_diagonal(pb, with_tangential, cs, held)) return;
+  build_contact_space_general(pb, with_tangential, cs, held);
+}
+
+/// Which contacts `cs` holds, to build the contact space of the same problem again: a space that
+/// holds all of them holds every contact (the approaching ones are then all of them anyway).
+template <int MaxDofs, int MaxContacts>
+HeldContacts held_by(const ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  return cs.active < cs.contacts ? HeldContacts::approaching : HeldContacts::every;
 }
 
 /// The velocity q = q̇_A + M⁻¹W P after the active-row percussions P (size rows()).

@@ -1,0 +1,141 @@
+// Every contact of an impact problem takes part (docs/concepts.md): a touching contact that
+// separates before the impact (D_NA > 0) carries the non-penetration reaction, so the others'
+// percussions cannot drive it into its obstacle. The cases are the flat bar (m = 1, l = 0.5,
+// J = 1/12) touching with both ends, solved by hand: W_N = (0, 1, ∓l), so G = [[4, −2], [−2, 4]].
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "classical_support.hpp"
+#include "fremond/fremond.hpp"
+
+namespace fremond {
+namespace {
+
+using test::flat_bar;
+
+// v_y = −1, ω = −4: the left end leaves at D_NA = +1, the right end arrives at −3.
+const Eigen::Vector3d kSpinning(0.0, -1.0, -4.0);
+
+double mean(double a, double b) {
+  return 0.5 * (a + b);
+}
+
+TEST(SeparatingContacts, NewtonStopsTheLeavingEndOfTheFlatBar) {
+  const ImpactProblem pb = flat_bar(kSpinning, false);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::newton(0.9));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  // Both contacts closed: D_NE = (0, 0.9·3) = D_NA + G P, so G P = (−1, 5.7) and
+  // P = G⁻¹(−1, 5.7) = (37/60, 26/15).
+  EXPECT_NEAR(r.P_N(0), 37.0 / 60.0, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 26.0 / 15.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(0), 0.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(1), 2.7, 1e-14);
+  EXPECT_EQ(r.takes_part(0), 0);  // separating: the reaction alone
+  EXPECT_LE(law_residual(pb, ImpactLaw::newton(0.9), r), 1e-14);
+  // T_E − T_A = P·z = (37/60)(1/2) + (26/15)(−0.15) = 29/600: Newton's law creates energy here,
+  // and the certificate says so (the law's finding, not the solver's failure).
+  EXPECT_NEAR(r.energy_change, 29.0 / 600.0, 1e-14);
+  EXPECT_FALSE(r.admissibility.admissible);
+  EXPECT_EQ(r.admissibility.failed, Inequality::total_15);
+}
+
+TEST(SeparatingContacts, PoissonStopsTheLeavingEndInBothPhases) {
+  const ImpactProblem pb = flat_bar(kSpinning, false);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::poisson(0.9));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.has_phases);
+  // Compression stops both ends: G P_C = −D_A = (−1, 3), P_C = (1/6, 5/6), both ≥ 0.
+  EXPECT_NEAR(r.P_NC(0), 1.0 / 6.0, 1e-14);
+  EXPECT_NEAR(r.P_NC(1), 5.0 / 6.0, 1e-14);
+  // Expansion: e P_C moves the ends by 0.9·(−D_A) = (−0.9, 2.7); the left end's ΔP = 0.9/4 stops
+  // it, and the right end leaves at 2.7 − 2·0.225 = 2.25.
+  EXPECT_NEAR(r.P_N(0), 1.9 / 6.0 + 0.225, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 1.9 * 5.0 / 6.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(0), 0.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(1), 2.25, 1e-14);
+  EXPECT_LE(law_residual(pb, ImpactLaw::poisson(0.9), r), 1e-14);
+  EXPECT_TRUE(r.admissibility.admissible);
+}
+
+TEST(SeparatingContacts, FremondAppliesNoPotentialToTheLeavingEnd) {
+  // φ_N = 4 z²/2 on both contacts. The right end: −P_R = 4 z_R (it leaves, no reaction); the left
+  // end: the reaction alone with D_NE = 0. Then 0 = 1 + 4 P_L − 2 P_R, D_R = −3 − 2 P_L + 4 P_R and
+  // P_R = 2 (3 − D_R): P = (15/28, 11/7), D_NE = (0, 31/14).
+  const ImpactProblem pb = flat_bar(kSpinning, false);
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(4.0, 2.0));
+  const ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.P_N(0), 15.0 / 28.0, 1e-13);
+  EXPECT_NEAR(r.P_N(1), 11.0 / 7.0, 1e-13);
+  EXPECT_NEAR(r.D_NE(0), 0.0, 1e-13);
+  EXPECT_NEAR(r.D_NE(1), 31.0 / 14.0, 1e-13);
+  EXPECT_NEAR(r.P_N_reaction(0), r.P_N(0), 1e-13);  // all of it is the reaction
+  EXPECT_LE(law_residual(pb, law, r), 1e-13);
+  // (17) read with the law's velocity before the impact, min(D_NA, 0) = 0: −P_L D_NE/2 = 0;
+  // (19) on the right end: −P_R z_R = (11/7)(3 − 31/14)/2 = 121/196.
+  EXPECT_NEAR(r.admissibility.reaction, 0.0, 1e-13);
+  EXPECT_NEAR(r.admissibility.dissipation, 121.0 / 196.0, 1e-13);
+  // (15) with the true mean velocities: −(P_L/2 + P_R z_R).
+  const double total = -(r.P_N(0) * mean(1.0, r.D_NE(0)) + r.P_N(1) * mean(-3.0, r.D_NE(1)));
+  EXPECT_NEAR(r.admissibility.total, total, 1e-13);
+  EXPECT_NEAR(total, 121.0 / 196.0 - 15.0 / 56.0, 1e-13);
+  EXPECT_TRUE(r.admissibility.admissible);
+}
+
+TEST(SeparatingContacts, FremondWithCoulombAndViscousKeepTheLeavingEndOut) {
+  const ImpactProblem pb = flat_bar(kSpinning, true);
+  for (const ImpactLaw& law :
+       {ImpactLaw::fremond_coulomb(PowerPotential(4.0, 2.0), 0.5),
+        ImpactLaw::fremond(PowerPotential(4.0, 2.0), DeadZonePowerPotential(1.5, 2.0, 0.2))}) {
+    const ImpactResult r = solve_impact(pb, law);
+    ASSERT_TRUE(r.ok()) << law.describe() << ": " << r.solver.message;
+    EXPECT_GE(r.D_NE(0), -1e-14) << law.describe();
+    EXPECT_GE(r.D_NE(1), -1e-14) << law.describe();
+    EXPECT_GT(r.P_N(0), 0.1) << law.describe();  // the left end is stopped, not left to sink
+    EXPECT_LE(law_residual(pb, law, r), 1e-12) << law.describe();
+  }
+}
+
+TEST(SeparatingContacts, NewtonWithCoulombStopsTheLeavingEnd) {
+  const ImpactProblem pb = flat_bar(kSpinning, true);
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 0.3);
+  const ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  // ẋ = 0 and W_T = (1, 0, 0) on both ends: no tangential motion, so P_T = 0 and the answer is
+  // the frictionless one.
+  EXPECT_NEAR(r.P_N(0), 37.0 / 60.0, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 26.0 / 15.0, 1e-14);
+  EXPECT_NEAR(r.P_T(0) + r.P_T(1), 0.0, 1e-14);
+  EXPECT_LE(law_residual(pb, law, r), 1e-14);
+  for (const ImpactResult& s : solve_impact_all(pb, law)) {
+    EXPECT_GE(s.D_NE(0), -1e-14);
+    EXPECT_GE(s.D_NE(1), -1e-14);
+    EXPECT_LE(law_residual(pb, law, s), 1e-12);
+  }
+}
+
+TEST(SeparatingContacts, AnUndrivenLeavingEndChangesNothing) {
+  // ω = 9: the left end arrives at −5, the right end leaves at +4. Newton e = 0.5 on the left end
+  // alone gives P = 1.5·5/4 and leaves the right end at 4 − 2·1.875 = 0.25 > 0: the same bits as
+  // the problem without the right end.
+  const ImpactProblem pb = flat_bar(Eigen::Vector3d(0.0, -0.5, 9.0), false);
+  ImpactProblem left = pb;
+  left.W_N = pb.W_N.leftCols(1);
+  for (const ImpactLaw& law : {ImpactLaw::newton(0.5), ImpactLaw::poisson(0.5),
+                               ImpactLaw::fremond(PowerPotential(1.0, 3.0))}) {
+    const ImpactResult r = solve_impact(pb, law);
+    const ImpactResult one = solve_impact(left, law);
+    ASSERT_TRUE(r.ok() && one.ok()) << law.describe();
+    EXPECT_EQ(r.P_N(1), 0.0) << law.describe();
+    EXPECT_GT(r.D_NE(1), 0.0) << law.describe();
+    EXPECT_EQ(r.P_N(0), one.P_N(0)) << law.describe();
+    EXPECT_EQ(r.qdot_E, one.qdot_E) << law.describe();
+  }
+  const ImpactResult newton = solve_impact(pb, ImpactLaw::newton(0.5));
+  EXPECT_NEAR(newton.P_N(0), 1.875, 1e-14);
+  EXPECT_NEAR(newton.D_NE(1), 0.25, 1e-14);
+}
+
+}  // namespace
+}  // namespace fremond
