@@ -1,9 +1,9 @@
-// `fremond impact FILE|-` (SPEC §7): reads one impact problem, solves it, prints the result as
-// JSON.
+// `fremond impact FILE|-` (docs/problem-file.md): reads one impact problem, solves it, prints the
+// result as JSON.
 //
 // Exit status: 0 solved; 1 input refused (the message names the key; nothing on stdout); 2 the
 // solver did not converge (the result is printed anyway, so the status can be seen); 3 the law has
-// no solution for these data (SPEC §2; the result is printed, with a message on stderr); 4 the
+// no solution for these data (docs/laws.md; the result is printed, with a message on stderr); 4 the
 // result could not be written to standard output (message on stderr).
 #include <cerrno>
 #include <cstdio>
@@ -30,6 +30,7 @@ constexpr int kExitRefused = 1;
 constexpr int kExitNotConverged = 2;
 constexpr int kExitNoSolution = 3;
 constexpr int kExitWriteFailed = 4;
+constexpr int kExitInadmissible = 5;
 
 struct ImpactArguments {
   std::string file;
@@ -37,6 +38,7 @@ struct ImpactArguments {
   std::string method = "automatic";
   double tolerance = SolverOptions{}.tolerance;
   bool pretty = false;
+  bool require_admissible = false;
 };
 
 // The input's name in messages.
@@ -86,6 +88,22 @@ void print(const std::string& json) {
   }
 }
 
+// An answer whose certificate fails is still the law's answer (Newton + Coulomb creates energy on
+// the paper's bar): said on stderr, and an error only when asked for.
+void report_inadmissible(const ImpactResult& r, const ImpactArguments& args) {
+  if (r.admissibility.admissible || !r.ok()) return;
+  const auto& a = r.admissibility;
+  std::fprintf(
+      stderr,
+      "fremond impact: %s: the answer is not admissible: %s fails by %.6g%s "
+      "(T_E - T_A = %.6g)\n",
+      args.require_admissible ? "error" : "note", std::string(to_string(a.failed)).c_str(),
+      a.violation,
+      a.failed_contact >= 0 ? (" at contact " + std::to_string(a.failed_contact)).c_str() : "",
+      r.energy_change);
+  if (args.require_admissible) exit_with(kExitInadmissible);
+}
+
 void run(const ImpactArguments& args) {
   io::ProblemFile file;
   SolverOptions options;
@@ -119,6 +137,7 @@ void run(const ImpactArguments& args) {
                      std::string(r.solver.message).c_str());
         exit_with(kExitNotConverged);
       }
+    for (const auto& r : all) report_inadmissible(r, args);
     return;
   }
 
@@ -135,14 +154,15 @@ void run(const ImpactArguments& args) {
                  std::string(result.solver.message).c_str());
     exit_with(kExitNotConverged);
   }
+  report_inadmissible(result, args);
 }
 
 }  // namespace
 
 void add_impact_command(CLI::App& app) {
   auto args = std::make_shared<ImpactArguments>();
-  auto* cmd = app.add_subcommand("impact",
-                                 "Solve one impact problem (SPEC §7) and print the result as JSON");
+  auto* cmd = app.add_subcommand(
+      "impact", "Solve one impact problem (docs/problem-file.md) and print the result as JSON");
   cmd->add_option("FILE", args->file, "The impact-problem file (JSON), or - for standard input")
       ->required();
   cmd->add_flag("--all-solutions", args->all_solutions,
@@ -155,11 +175,16 @@ void add_impact_command(CLI::App& app) {
                   "Relative tolerance on the law's residual, in [1e-16, 1e-2]")
       ->capture_default_str();
   cmd->add_flag("--pretty", args->pretty, "Indent the JSON output");
+  cmd->add_flag("--require-admissible", args->require_admissible,
+                "Exit with status 5 when the answer fails its admissibility certificate "
+                "(inequalities 15-19; the result is printed anyway)");
   cmd->footer(
       "Exit status: 0 solved; 1 input refused (message on stderr naming the key, nothing on "
       "stdout); 2 the solver did not converge (the result is printed anyway, with its status); "
       "3 the law has no solution for these data (the result is printed, message on stderr); "
-      "4 the result could not be written.");
+      "4 the result could not be written; 5 with --require-admissible, the answer is not "
+      "admissible "
+      "(a note on stderr says which inequality fails, with or without the flag).");
   cmd->callback([args] { run(*args); });
 }
 

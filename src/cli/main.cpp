@@ -12,8 +12,12 @@ int main(int argc, char** argv) {
   fremond::cli::add_curve_command(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command's own exit status (documented in its --help)
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // Help prints and exits 0; every usage error (unknown option, missing or bad value) exits 1,
+    // as the commands' help says, not with the parser's own codes.
+    return app.exit(e) == 0 ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fremond: error: %s\n", e.what());
     return 1;
