@@ -210,7 +210,8 @@ double relative_error(const SmallImpactProblem& p, const ReferenceAnswer& r, con
 // ---------------------------------------------------------------------------------------------
 // The problems.
 
-/// The bar's lower end at θ = π/4 (SPEC §5) with the given q̇_A and mass matrix scale of θ.
+/// The bar's lower end at θ = π/4 (the paper's Fig. 1) with the given q̇_A and mass matrix scale of
+/// θ.
 inline SmallImpactProblem bar_one_contact(const Eigen::Vector3d& qdot_A,
                                           double inertia_scale = 1.0) {
   SmallImpactProblem p = bar_first_impact(true);
@@ -287,7 +288,8 @@ inline std::vector<FremondCase> fremond_suite(const SuiteOptions& o = {}) {
   std::vector<FremondCase> v;
   const double kN3 = bar_fremond_k_normal(3.0);
   const FremondLawSpec p3 = normal_only(kN3, 3.0);
-  const FremondLawSpec viscous = with_dead_zone(kN3, 3.0, 1.5, 2.0, 0.2);  // SPEC §5 (our scaling)
+  const FremondLawSpec viscous =
+      with_dead_zone(kN3, 3.0, 1.5, 2.0, 0.2);  // the paper's Fig. 1 (our scaling)
   const FremondLawSpec coulomb = with_coulomb(kN3, 3.0, kFriction);
   if (o.bar) {
     v.push_back(make_case("bar_first_impact", "fremond_p3", p3, {bar_first_impact(false)}));

@@ -3,7 +3,8 @@
 /// peers), so that every time printed is for the same data; and their answers in closed form, so
 /// that every benchmark can check that it solved the problem it timed.
 ///
-/// Conventions are SPEC §1: `D = Wᵀ q̇ + w`, `G = Wᵀ M⁻¹ W`, P_N ≥ 0 pushes the bodies apart.
+/// Conventions are docs/concepts.md: `D = Wᵀ q̇ + w`, `G = Wᵀ M⁻¹ W`, P_N ≥ 0 pushes the bodies
+/// apart.
 ///
 /// Labels: every benchmark that solves one of these problems sets its label with `bench_label()`,
 /// e.g. "problem=bar_first_impact law=newton_coulomb". `bench/compare.py` groups Google Benchmark's
@@ -23,7 +24,7 @@
 namespace fremond::bench {
 
 // ---------------------------------------------------------------------------------------------
-// The scene of SPEC §5 (paper Fig. 1).
+// The scene of the paper's Fig. 1 (paper Fig. 1).
 
 inline constexpr double kMass = 1.0;                                       ///< m, kg.
 inline constexpr double kHalfLength = 0.5;                                 ///< l, m.
@@ -50,7 +51,7 @@ inline SmallImpactProblem::Mat bar_mass() {
 }
 
 /// Normal and tangential directions of the bar's end s = ±1, at (x + s l cos θ, y + s l sin θ):
-/// W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ). For s = −1, θ = π/4 these are SPEC §5's.
+/// W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ). For s = −1, θ = π/4 these are the paper's.
 inline Eigen::Vector3d bar_end_normal(double s, double theta) {
   return {0.0, 1.0, s * kHalfLength * std::cos(theta)};
 }
@@ -58,14 +59,15 @@ inline Eigen::Vector3d bar_end_tangent(double s, double theta) {
   return {1.0, 0.0, -s * kHalfLength * std::sin(theta)};
 }
 
-/// Time of the first impact from the initial state of SPEC §5: the bar falls without turning
-/// (θ̇ = 0, no torque) until its lower end, at height y − l sin θ, reaches the ground.
+/// Time of the first impact from the initial state of the paper's Fig. 1: the bar falls without
+/// turning (θ̇ = 0, no torque) until its lower end, at height y − l sin θ, reaches the ground.
 inline double bar_first_impact_time() {
   return std::sqrt(2.0 * (kY0 - kHalfLength * std::sin(kTheta0)) / kGravity);
 }
 
-/// The bar at its first impact (SPEC §5): one contact, the lower end (s = −1) at θ = π/4, with
-/// q̇_A = (2, −g t₁, 0), so D_NA = −g t₁ ≈ −3.5613 and D_TA = 2. Without friction W_T has no column.
+/// The bar at its first impact (the paper's Fig. 1): one contact, the lower end (s = −1) at θ =
+/// π/4, with q̇_A = (2, −g t₁, 0), so D_NA = −g t₁ ≈ −3.5613 and D_TA = 2. Without friction W_T has
+/// no column.
 inline SmallImpactProblem bar_first_impact(bool with_friction = true) {
   SmallImpactProblem p;
   p.M = bar_mass();
@@ -201,8 +203,8 @@ inline SmallImpactProblem random_spd_problem(int index, bool with_friction = tru
 // ---------------------------------------------------------------------------------------------
 // Derived quantities and answers in closed form.
 
-/// The contact-space data of a problem (SPEC §1), rows ordered contact by contact as (N, T):
-/// G = Wᵀ M⁻¹ W with W = [W_N,1, W_T,1, W_N,2, W_T,2, ...] (frictionless: only the N rows), and
+/// The contact-space data of a problem (docs/concepts.md), rows ordered contact by contact as (N,
+/// T): G = Wᵀ M⁻¹ W with W = [W_N,1, W_T,1, W_N,2, W_T,2, ...] (frictionless: only the N rows), and
 /// D_A = Wᵀ q̇_A + w. This is Siconos's ordering of a friction-contact problem.
 struct ContactSpace {
   Eigen::MatrixXd W;    ///< n × rows.
@@ -239,9 +241,9 @@ inline Eigen::VectorXd velocity_after(const SmallImpactProblem& p, const Contact
   return Eigen::VectorXd(p.qdot_A) + M.ldlt().solve(cs.W * P);
 }
 
-/// Frémond's k_N for the bar (SPEC §3): with the normal law alone at the first impact, D_NE = −e
-/// D_NA and P_N = (D_NE − D_NA)/G_NN = −k z|z|^(p−2) with z = (D_NA + D_NE)/2 = (1 − e) D_NA/2, so
-/// k_N = (1 + e)/(G_NN ((1 − e)/2)^(p−1) |D_NA|^(p−2)); for p = 3 that is ≈ 85.36.
+/// Frémond's k_N for the bar (docs/laws.md): with the normal law alone at the first impact, D_NE =
+/// −e D_NA and P_N = (D_NE − D_NA)/G_NN = −k z|z|^(p−2) with z = (D_NA + D_NE)/2 = (1 − e) D_NA/2,
+/// so k_N = (1 + e)/(G_NN ((1 − e)/2)^(p−1) |D_NA|^(p−2)); for p = 3 that is ≈ 85.36.
 inline double bar_fremond_k_normal(double p, double e = kRestitution) {
   const ContactSpace cs = contact_space(bar_first_impact(false));
   const double dna = std::abs(cs.D_A(0)), gnn = cs.G(0, 0);
@@ -261,7 +263,7 @@ inline BarFremondLaws bar_fremond_laws() {
           ImpactLaw::fremond_coulomb(PowerPotential(k3, 3.0), 1.0)};
 }
 
-/// Newton + Coulomb on ONE contact in closed form (SPEC §2, paper §4): with b = (−(1+e) D_NA,
+/// Newton + Coulomb on ONE contact in closed form (docs/laws.md, paper §4): with b = (−(1+e) D_NA,
 /// −D_TA) either the contact sticks, P = G⁻¹ b with |P_T| ≤ μ P_N, or it slides with P_T = −σ μ
 /// P_N, P_N = −(1+e) D_NA/(G_NN − σ μ G_NT), σ = sign(D_TE) ≠ 0. Returns (P_N, P_T); throws when no
 /// mode fits (μ|G_NT| > G_NN can make that happen) or when D_NA > 0 (no impact).
@@ -329,11 +331,12 @@ inline Eigen::Vector3d flat_bar_newton_coulomb_velocity(double e = kRestitution,
   return qE;
 }
 
-/// Every solution of Newton + Coulomb (SPEC §2; e, μ the same for every contact) by enumeration of
-/// the 4^c contact modes (separate, stick, slide with D_TE > 0, slide with D_TE < 0), each a linear
-/// system in the percussions of the contacts that touch; for c ≤ 4 contacts that all take part and
-/// problems whose mode systems are regular (G singular, as on the flat bar, can hide a continuum of
-/// solutions: use the closed form there). Returns q̇_E of each distinct solution.
+/// Every solution of Newton + Coulomb (docs/laws.md; e, μ the same for every contact) by
+/// enumeration of the 4^c contact modes (separate, stick, slide with D_TE > 0, slide with D_TE <
+/// 0), each a linear system in the percussions of the contacts that touch; for c ≤ 4 contacts that
+/// all take part and problems whose mode systems are regular (G singular, as on the flat bar, can
+/// hide a continuum of solutions: use the closed form there). Returns q̇_E of each distinct
+/// solution.
 inline std::vector<Eigen::VectorXd> newton_coulomb_enumerate(const SmallImpactProblem& p, double e,
                                                              double mu) {
   const ContactSpace cs = contact_space(p);

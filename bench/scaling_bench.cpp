@@ -1,7 +1,8 @@
 // Scaling (issue 6, item 4): the cost of one impact solve as the contacts grow, and the throughput
 // of a batch of independent impacts on both cores.
 //
-//  - BM_Contacts/<law>/<c>: a flat plate (the bar of SPEC §5 lying at θ = 0) touching the ground at
+//  - BM_Contacts/<law>/<c>: a flat plate (the bar of the paper's Fig. 1 lying at θ = 0) touching
+//  the ground at
 //    c = 1, 2, 4, 8, 16, 32 points at once; 3 degrees of freedom, so G is singular from c = 4 on.
 //    Heap-stored problem (ImpactProblem); for c ≤ 4 also the stack-stored one ("storage=small").
 //  - BM_RandomSize/<law>/<n>: random bodies with n = 6, 12, 18, 24, 30 degrees of freedom and n/2

@@ -2,8 +2,8 @@
 // Coulomb as an LCP (the planar friction LCP, Glocker's form) and as a 2-D friction-contact problem
 // (Siconos's NSGS, Lemke and enumeration), at two depths:
 //  - BM_Siconos_<problem type>_<solver>: from the problem (M, W, q̇_A) to the percussions, the
-//    Delassus matrix G = Wᵀ M⁻¹ W (SPEC §1) on the stack, then Siconos's driver: the work of our
-//    BM_Classical_FromData.
+//    Delassus matrix G = Wᵀ M⁻¹ W (docs/concepts.md) on the stack, then Siconos's driver: the work
+//    of our BM_Classical_FromData.
 //  - the same with _Driver ("stage=driver" in the label): Siconos's driver alone on its own problem
 //    (G and q assembled before the timing), the work of our BM_Classical_Kernel, which also starts
 //    from G and D_A.

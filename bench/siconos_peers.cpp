@@ -186,9 +186,9 @@ SolveInfo FrictionContact2d::solve(const double* M, const double* q, const doubl
 
 namespace {
 
-/// One end s = ±1 of the bar, at (x + s l cos θ, y + s l sin θ) (SPEC §5): the gap is its height,
-/// h = y + s l sin θ, and the Jacobian's rows are W_Nᵀ = (0, 1, s l cos θ), W_Tᵀ = (1, 0, −s l sin
-/// θ).
+/// One end s = ±1 of the bar, at (x + s l cos θ, y + s l sin θ) (the paper's Fig. 1): the gap is
+/// its height, h = y + s l sin θ, and the Jacobian's rows are W_Nᵀ = (0, 1, s l cos θ), W_Tᵀ = (1,
+/// 0, −s l sin θ).
 class BarEnd : public LagrangianScleronomousR {
  public:
   BarEnd(double s, double l) : s_(s), l_(l) { _jachq.reset(new SimpleMatrix(2, 3)); }
@@ -213,7 +213,7 @@ class BarEnd : public LagrangianScleronomousR {
 }  // namespace
 
 MoreauJeanRun simulate_bar_moreau_jean(const MoreauJeanSettings& st) {
-  // SPEC §5.
+  // the paper's Fig. 1.
   constexpr double m = 1.0, l = 0.5, J = m * l * l / 3.0, g = 9.81;
   auto q0 = std::make_shared<SiconosVector>(3);
   auto v0 = std::make_shared<SiconosVector>(3);

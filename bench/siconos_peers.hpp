@@ -1,18 +1,18 @@
 #pragma once
 /// @file Siconos peers of our solvers, for the benchmarks: Siconos Numerics' LCP and 2-D
 /// friction-contact solvers on one impact, and Siconos Kernel's Moreau-Jean time stepping on the
-/// bar of SPEC §5.
+/// bar of the paper's Fig. 1.
 ///
 /// This header names no Siconos type and needs only C++17, so the benchmarks that include it build
 /// in the project's C++20 while the peers themselves (siconos_peers.cpp: Siconos Kernel's headers
 /// do not compile as C++20) build apart as C++17. It is only usable when CMake found Siconos
 /// (FREMOND_HAVE_SICONOS); without it the benchmarks say so and skip.
 ///
-/// Conventions (Siconos's, which match SPEC §1 here): an LCP is `w = M z + q, 0 ≤ z ⊥ w ≥ 0`; a 2-D
-/// friction-contact problem is `u = M r + q` with, per contact, r = (r_N, r_T), u = (u_N, u_T),
-/// 0 ≤ u_N ⊥ r_N ≥ 0 and Coulomb's law |r_T| ≤ μ r_N, r_T = −μ r_N sign(u_T) where u_T ≠ 0. For a
-/// Newton + Coulomb impact, M = G (rows N, T contact by contact), r = P, q = ((1 + e) D_NA, D_TA),
-/// so u_N = D_NE + e D_NA and u_T = D_TE (SPEC §2). Matrices are column-major.
+/// Conventions (Siconos's, which match docs/concepts.md here): an LCP is `w = M z + q, 0 ≤ z ⊥ w ≥
+/// 0`; a 2-D friction-contact problem is `u = M r + q` with, per contact, r = (r_N, r_T), u = (u_N,
+/// u_T), 0 ≤ u_N ⊥ r_N ≥ 0 and Coulomb's law |r_T| ≤ μ r_N, r_T = −μ r_N sign(u_T) where u_T ≠ 0.
+/// For a Newton + Coulomb impact, M = G (rows N, T contact by contact), r = P, q = ((1 + e) D_NA,
+/// D_TA), so u_N = D_NE + e D_NA and u_T = D_TE (docs/laws.md). Matrices are column-major.
 #include <memory>
 #include <string>
 #include <vector>
@@ -78,10 +78,11 @@ class FrictionContact2d {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Siconos Kernel's Moreau-Jean on the bar of SPEC §5: a LagrangianLinearTIDS q = (x, y, θ) with
-/// M = diag(m, m, m l²/3) and weight −m g on y, one Interaction per end (a LagrangianScleronomousR
-/// with h = y ± l sin θ and the Jacobian rows W_Nᵀ, W_Tᵀ of SPEC §5) under NewtonImpactFrictionNSL,
-/// a FrictionContact(2) one-step problem, MoreauJeanOSI(θ_MJ) and TimeStepping.
+/// Siconos Kernel's Moreau-Jean on the bar of the paper's Fig. 1: a LagrangianLinearTIDS q = (x, y,
+/// θ) with M = diag(m, m, m l²/3) and weight −m g on y, one Interaction per end (a
+/// LagrangianScleronomousR with h = y ± l sin θ and the Jacobian rows W_Nᵀ, W_Tᵀ of the paper's
+/// Fig. 1) under NewtonImpactFrictionNSL, a FrictionContact(2) one-step problem,
+/// MoreauJeanOSI(θ_MJ) and TimeStepping.
 struct MoreauJeanSettings {
   double h = 1e-4;        ///< time step, s.
   double duration = 3.0;  ///< simulated time, s.
@@ -104,7 +105,7 @@ struct MoreauJeanRun {
   double max_penetration = 0.0;        ///< max over steps and ends of max(0, −end height), m.
   std::vector<double> qdot_after_first_impact;  ///< q̇ at the end of the first impact's step.
   std::vector<double> q_final, qdot_final;
-  double energy_initial = 0.0, energy_final = 0.0;  ///< ½ q̇ᵀMq̇ + m g y (SPEC §5).
+  double energy_initial = 0.0, energy_final = 0.0;  ///< ½ q̇ᵀMq̇ + m g y (the paper's Fig. 1).
   double energy_max_increase = 0.0;  ///< max over steps of E(t_{k+1}) − E(t_k), ≥ 0.
 };
 

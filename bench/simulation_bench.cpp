@@ -1,5 +1,6 @@
-// The paper's bar (SPEC §5) over 3 s of simulated time, no files written: event-driven with
-// Frémond's law (target < 0.1 ms a run) and Moreau–Jean on the same scene (target < 0.1 µs a step).
+// The paper's bar (the paper's Fig. 1) over 3 s of simulated time, no files written: event-driven
+// with Frémond's law (target < 0.1 ms a run) and Moreau–Jean on the same scene (target < 0.1 µs a
+// step).
 #include <benchmark/benchmark.h>
 
 #include "fremond/scenes/presets.hpp"

@@ -1,5 +1,5 @@
-// Fuzz target: the impact-problem file reader (SPEC §7), then every solver fed from what it
-// accepts, then the JSON writer.
+// Fuzz target: the impact-problem file reader (docs/problem-file.md), then every solver fed from
+// what it accepts, then the JSON writer.
 //
 // Contract checked on every input:
 //  - the reader either accepts or throws InvalidArgument with a name and a reason; nothing else

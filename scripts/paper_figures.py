@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The paper's comparison on the bar, reproduced: every figure, and the table of the five laws.
 
-Runs the paper's scene (SPEC §5) under each of its five laws through the Python bindings, prints
+Runs the paper's scene (the paper's Fig. 1) under each of its five laws through the Python bindings, prints
 a table (per law: impacts, energy before and after each of the first impacts, whether every impact
 was admissible, which inequality failed), and writes into the output folder:
 
@@ -87,7 +87,7 @@ def law_row(f, name, scene, run, n_first):
 
 
 def table_text(rows, n_first, t_end):
-    head = (f"The paper's bar (SPEC §5) under its five laws, t = 0 to {t_end:g} s; "
+    head = (f"The paper's bar (the paper's Fig. 1) under its five laws, t = 0 to {t_end:g} s; "
             f"energy ½q̇ᵀMq̇ + mgy in J\n")
     cols = ["law", "impacts", f"energy before→after, impacts 1..{n_first}", "admissible",
             "failed"]
@@ -109,7 +109,7 @@ def table_text(rows, n_first, t_end):
     out = [head, fmt(cols), fmt(["-" * w for w in widths])]
     out += [fmt(l) for l in lines]
     out.append("")
-    out.append("! marks an impact that creates energy or otherwise fails the SPEC §4 certificate; "
+    out.append("! marks an impact that creates energy or otherwise fails the docs/concepts.md certificate; "
                "total_15 is (15), -P·z ≥ 0, i.e. T_E ≤ T_A (eq. 9).")
     for r in rows:
         out.append(f"{r['law']}: {r['description']}")
@@ -181,14 +181,14 @@ def main(argv=None):
         rows.append(law_row(f, name, scene, run, args.first))
 
     # Fig. 8: a point mass, normal law alone, the same k for every p (the library's default, 4 in
-    # SPEC's scaling: the paper does not give its own).
+    # the library's scaling: the paper does not give its own).
     speeds = [5.0 * i / 200 for i in range(201)]
     curves = [f.normal_restitution_curve(f.NormalCurveParameters(p=p), speeds)
               for p in FIG8_P]
     save(f.plots.restitution_plot(
         curves, title="Fig. 8: Frémond's normal law on a point mass (m = 1 kg), "
                       "D_NE against |D_NA| for several p\n"
-                      "φ_N = k|z|^p/p, k = 4 in SPEC's scaling (paper's k = 4·2^(1−p))"),
+                      "φ_N = k|z|^p/p, k = 4 in the library's scaling (paper's k = 4·2^(1−p))"),
         "fig08_normal_restitution.png")
 
     # Fig. 9: the viscous dead zone with the paper's r = 0.4, k_T = 0.75, q = 2 (paper's scaling).
@@ -197,7 +197,7 @@ def main(argv=None):
     tcurve = f.tangential_curve(fig9, d_ta)
     save(f.plots.tangential_plot(
         tcurve, title="Fig. 9: viscous dead zone on a point mass (m = 1 kg), D_TE against D_TA\n"
-                      "paper's r = 0.4, k_T = 0.75, q = 2 (SPEC's r = 0.2, k_T = 1.5)\n"
+                      "paper's r = 0.4, k_T = 0.75, q = 2 (the library's r = 0.2, k_T = 1.5)\n"
                       f"normal law fixed: k = {fig9.in_spec_scaling().k_N:g}, p = {fig9.p:g}, "
                       f"D_NA = {fig9.D_NA:g} m/s"),
         "fig09_tangential_dead_zone.png")

@@ -4,7 +4,7 @@
 
 namespace fremond::cli {
 
-/// `fremond impact FILE|-` (SPEC §7).
+/// `fremond impact FILE|-` (docs/problem-file.md).
 void add_impact_command(CLI::App& app);
 /// `fremond simulate SCENE.json --out DIR` and `--preset paper-bar`.
 void add_simulate_command(CLI::App& app);

@@ -1,5 +1,6 @@
 // `fremond curve normal|tangential`: the data of the paper's Figs. 8 and 9 as CSV, from the
-// library's curves (include/fremond/curves/curves.hpp), in SPEC's scaling or the paper's (SPEC §3).
+// library's curves (include/fremond/curves/curves.hpp), in the library's scaling or the paper's
+// (docs/laws.md).
 //
 // The CSV starts with '#' lines that say which figure, which parameters and which scaling; then one
 // header row and one row per impact. Exit status: 0 written; 1 a value refused (the message names
@@ -130,9 +131,11 @@ void write_output(const CommonArguments& a, const std::string& text, const std::
 
 std::string scaling_note(Scaling s) {
   return s == Scaling::spec
-             ? "scaling: spec (potentials of the mean velocity z = (D_A + D_E)/2, SPEC §3; the "
+             ? "scaling: spec (potentials of the mean velocity z = (D_A + D_E)/2, docs/laws.md; "
+               "the "
                "paper's constants are k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2 r)"
-             : "scaling: paper (eqs. 23 and 25 on D_E + D_A, SPEC §3; in SPEC's scaling "
+             : "scaling: paper (eqs. 23 and 25 on D_E + D_A, docs/laws.md; in the library's "
+               "scaling "
                "k = k_paper 2^(p-1), k_T = k_T,paper 2^(q-1), r = r_paper / 2)";
 }
 
@@ -157,8 +160,8 @@ void run_normal(const NormalArguments& a) {
       par.mass = a.common.mass;
       par.p = a.p[i];
       par.scaling = scaling;
-      // Without --k: the library's default k (4 in SPEC's scaling, ε = 1/3 at p = 2 by eq. 24) for
-      // every p, written in the chosen scaling.
+      // Without --k: the library's default k (4 in the library's scaling, ε = 1/3 at p = 2 by eq.
+      // 24) for every p, written in the chosen scaling.
       if (a.k) {
         par.k = *a.k;
       } else {
@@ -266,7 +269,7 @@ void add_common(CLI::App* cmd, CommonArguments& a, const char* points_help,
                 const char* max_speed_help) {
   cmd->add_option("--scaling", a.scaling,
                   "Scaling of k, k_T, r: spec (potentials of the mean velocity) or paper "
-                  "(k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2 r; SPEC §3)")
+                  "(k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2 r; docs/laws.md)")
       ->capture_default_str();
   cmd->add_option("--mass", a.mass, "Mass of the point (kg), > 0")->capture_default_str();
   cmd->add_option("--points", a.points, points_help);
@@ -291,7 +294,7 @@ void add_curve_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   normal->add_option("--k", na->k,
-                     "Stiffness k >= 0 in the chosen scaling (default: 4 in SPEC's scaling, "
+                     "Stiffness k >= 0 in the chosen scaling (default: 4 in the library's scaling, "
                      "i.e. restitution 1/3 for p = 2 by eq. 24)");
   add_common(normal, na->common, "Speeds per exponent, in [2, 1000000] (default 101)",
              "Largest |D_NA| (m/s), > 0; the speeds run from 0 (default 5)");
@@ -300,12 +303,14 @@ void add_curve_command(CLI::App& app) {
   auto ta = std::make_shared<TangentialArguments>();
   auto* tangential = curve->add_subcommand(
       "tangential", "Fig. 9: D_TE against D_TA, viscous dead zone (point mass, normal law fixed)");
-  tangential->add_option("--kt", ta->k_T,
-                         "Tangential stiffness k_T >= 0 (default: the paper's 0.75, SPEC's 1.5)");
+  tangential->add_option(
+      "--kt", ta->k_T,
+      "Tangential stiffness k_T >= 0 (default: the paper's 0.75, the library's 1.5)");
   tangential->add_option("--q", ta->q, "Tangential exponent q > 1 (default 2)");
-  tangential->add_option("--r", ta->r,
-                         "Dead-zone half-width r >= 0 (default: the paper's 0.4, SPEC's 0.2)");
-  tangential->add_option("--k", ta->k_N, "Normal stiffness k >= 0 (default: 4 in SPEC's scaling)");
+  tangential->add_option(
+      "--r", ta->r, "Dead-zone half-width r >= 0 (default: the paper's 0.4, the library's 0.2)");
+  tangential->add_option("--k", ta->k_N,
+                         "Normal stiffness k >= 0 (default: 4 in the library's scaling)");
   tangential->add_option("--p", ta->p, "Normal exponent p > 1 (default 2)");
   tangential->add_option("--dna", ta->D_NA,
                          "Normal velocity before the impact D_NA <= 0 (m/s, default -1)");

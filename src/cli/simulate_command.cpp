@@ -86,7 +86,7 @@ Setup preset_scene(const std::string& preset, const std::string& law_name) {
     throw InvalidArgument("--law", std::string(e.what()).substr(e.name().size() + 2));
   }
   const bool fremond = law == PaperLaw::fremond_coulomb || law == PaperLaw::fremond_viscous;
-  // Frémond's k_N as SPEC §3 asks: e = 0.9 at the scene's own first impact, computed here.
+  // Frémond's k_N as docs/laws.md asks: e = 0.9 at the scene's own first impact, computed here.
   const auto with_law = [&](const auto& make, const auto& params) {
     const Scene probe = make(params, ImpactLaw::newton(PaperConstants::e));
     const double k_N =
@@ -316,8 +316,9 @@ void print_summary(const Setup& s, const SimulationResult& r, const std::filesys
   std::printf("impacts:      %ld (%ld event-driven, %ld in Moreau-Jean steps)\n", r.impacts,
               r.event_impacts, r.impacts - r.event_impacts);
   if (r.inadmissible_impacts > 0)
-    std::printf("inadmissible: %ld impacts fail SPEC 4 (first at t = %.9g s)\n",
-                r.inadmissible_impacts, r.first_inadmissible_time);
+    std::printf(
+        "inadmissible: %ld impacts fail the admissibility certificate (first at t = %.9g s)\n",
+        r.inadmissible_impacts, r.first_inadmissible_time);
   else
     std::printf("inadmissible: none\n");
   if (r.accumulations > 0)
@@ -394,10 +395,11 @@ void add_simulate_command(CLI::App& app) {
       "Simulate a scene (a planar rigid body against half-planes): trajectory, every impact, "
       "accumulations");
   cmd->add_option("SCENE", args->scene_file, "The scene file (JSON)");
-  cmd->add_option("--preset", args->preset, "A ready-made scene: paper-bar (SPEC 5), ball, block");
+  cmd->add_option("--preset", args->preset,
+                  "A ready-made scene: paper-bar (the paper's Fig. 1), ball, block");
   cmd->add_option("--law", args->law,
                   "With --preset: newton, newton_coulomb, poisson_coulomb, fremond_coulomb, "
-                  "fremond_viscous, with the paper's parameters (SPEC 5)");
+                  "fremond_viscous, with the paper's parameters (the paper's Fig. 1)");
   cmd->add_option("--out", args->out,
                   "The directory to write trajectory.csv, impacts.json and "
                   "summary.json into (created if needed)");

@@ -18,9 +18,9 @@ namespace {
 constexpr detail::EnumNames<Scaling, 2> kScalings{
     {{Scaling::spec, "spec"}, {Scaling::paper, "paper"}}};
 
-// SPEC §3: the paper applies its potentials to D_E + D_A = 2z, so a paper constant c of a term
-// |2z|^p equals ours times 2^(1−p) once the 1/p of SPEC's φ is matched by the paper's derivative
-// k z|z|^(p−2) (eq. 22): k_paper = k·2^(1−p), k_T,paper = k_T·2^(1−q), and the dead zone
+// docs/laws.md: the paper applies its potentials to D_E + D_A = 2z, so a paper constant c of a term
+// |2z|^p equals ours times 2^(1−p) once the 1/p of the library's φ is matched by the paper's
+// derivative k z|z|^(p−2) (eq. 22): k_paper = k·2^(1−p), k_T,paper = k_T·2^(1−q), and the dead zone
 // |2z| ≤ r_paper is |z| ≤ r_paper/2.
 double to_paper_stiffness(double k, double exponent) {
   return k * std::exp2(1.0 - exponent);
@@ -104,7 +104,7 @@ void NormalCurveParameters::validate() const {
 }
 
 TangentialCurveParameters TangentialCurveParameters::paper_figure(Scaling scaling) {
-  TangentialCurveParameters spec;  // the defaults are the paper's figure in SPEC's scaling
+  TangentialCurveParameters spec;  // the defaults are the paper's figure in the library's scaling
   return scaling == Scaling::spec ? spec : spec.in_paper_scaling();
 }
 

@@ -1,7 +1,7 @@
-// JSON → library types for the files of SPEC §7 (and the scene file), with messages that name the
-// key as the file spells it. The library's own checks (ImpactLaw::validate, the potentials'
-// constructors, the registry) stay the authority on values; this file only adds what JSON brings:
-// types, shapes, key names, and keys nobody asked for.
+// JSON → library types for the files of docs/problem-file.md (and the scene file), with messages
+// that name the key as the file spells it. The library's own checks (ImpactLaw::validate, the
+// potentials' constructors, the registry) stay the authority on values; this file only adds what
+// JSON brings: types, shapes, key names, and keys nobody asked for.
 #include "detail/json_law.hpp"
 
 #include <algorithm>
@@ -421,14 +421,15 @@ ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& re
       check_keys(j, where, {"type", "normal", "tangential"}, context);
       const std::string normal_key = key_path(where, "normal");
       const json& normal = required_key(j, where, "normal");
-      // Coulomb is a law on the tangential velocity, not a potential of the normal one (SPEC §2).
+      // Coulomb is a law on the tangential velocity, not a potential of the normal one
+      // (docs/laws.md).
       if (normal.is_object() && normal.contains("potential") && normal["potential"] == "coulomb")
         throw InvalidArgument(key_path(normal_key, "potential"),
                               "'coulomb' is a tangential law only (use it under " +
                                   key_path(where, "tangential") + ")");
       auto normal_potential = potential_from_json(normal, normal_key, contacts, registry);
       const json* tangential = optional_key(j, "tangential");
-      if (!tangential) {  // SPEC §7: omitted means no tangential percussion
+      if (!tangential) {  // docs/problem-file.md: omitted means no tangential percussion
         law = ImpactLaw::fremond(std::move(normal_potential));
         break;
       }

@@ -1,4 +1,4 @@
-// The impact-problem file of SPEC §7: reader and result writer.
+// The impact-problem file of docs/problem-file.md: reader and result writer.
 #include "fremond/io/problem_file.hpp"
 
 #include <cmath>
@@ -46,7 +46,7 @@ ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegist
   const json doc = detail::parse_json(json_text, "problem");
   detail::require_object(doc, "problem");
   // Unknown keys before anything else: a misspelt optional key (say "w_n") must not leave its
-  // default in place silently (SPEC §7).
+  // default in place silently (docs/problem-file.md).
   detail::check_keys(doc, "", {"M", "W_N", "W_T", "w_N", "w_T", "qdot_A", "law"},
                      "the impact-problem file");
   for (const char* key : {"M", "W_N", "qdot_A", "law"}) detail::required_key(doc, "", key);
@@ -58,7 +58,7 @@ ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegist
   if (const json* j = detail::optional_key(doc, "W_T"))
     pb.W_T = detail::matrix_from_json(*j, "W_T");
   else
-    pb.W_T.resize(pb.W_N.rows(), 0);  // frictionless: no tangential rows (SPEC §7)
+    pb.W_T.resize(pb.W_N.rows(), 0);  // frictionless: no tangential rows (docs/problem-file.md)
   if (const json* j = detail::optional_key(doc, "w_N"))
     pb.w_N = detail::vector_from_json(*j, "w_N");
   if (const json* j = detail::optional_key(doc, "w_T"))
@@ -67,8 +67,8 @@ ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegist
   check_given_W_T(pb, doc);
   validate(pb);  // sizes, symmetry, positive definiteness; messages name M, W_N, ...
   check_given_w(pb, doc);
-  // Fixed obstacles by default (SPEC §1: w_N, w_T are zero for a fixed obstacle); stored explicitly
-  // so that every user of the problem sees c entries.
+  // Fixed obstacles by default (docs/concepts.md: w_N, w_T are zero for a fixed obstacle); stored
+  // explicitly so that every user of the problem sees c entries.
   if (pb.w_N.size() == 0) pb.w_N.setZero(pb.W_N.cols());
   if (pb.w_T.size() == 0 && pb.has_tangential()) pb.w_T.setZero(pb.W_N.cols());
 
@@ -84,7 +84,7 @@ ProblemFile read_problem_file(std::istream& in, const PotentialRegistry& registr
 
 namespace {
 
-using ojson = nlohmann::ordered_json;  // keeps the order of SPEC §7 in the output
+using ojson = nlohmann::ordered_json;  // keeps the order of docs/problem-file.md in the output
 
 // JSON has no NaN or infinity: a value that is not finite (a residual that was never computed,
 // a failed solve) is null, so that any JSON reader accepts the output.
@@ -157,7 +157,7 @@ ojson result_json(const ImpactResultT<N, C>& r) {
     j["P_N_reaction"] = numbers(r.P_N_reaction);
   j["takes_part"] = flags(r.takes_part);
   j["energy_change"] = number(r.energy_change);
-  if (r.has_phases) {  // Poisson: the end of compression (SPEC §2)
+  if (r.has_phases) {  // Poisson: the end of compression (docs/laws.md)
     j["P_NC"] = numbers(r.P_NC);
     j["P_TC"] = numbers(r.P_TC);
     j["D_NC"] = numbers(r.D_NC);

@@ -119,10 +119,10 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
     throw InvalidArgument("qdot_A", "must have " + std::to_string(n) + " entries, got " +
                                         std::to_string(pb.qdot_A.size()));
   require_all_finite("qdot_A", pb.qdot_A);
-  // Every datum finite is not enough: the certificate compares energies (SPEC §4, eq. 9) and every
-  // law reads the contact velocities D_A (SPEC §1). Where those overflow, no answer can be
-  // certified in double precision (T_E − T_A would be ∞ − ∞); refuse, rather than return a NaN
-  // energy.
+  // Every datum finite is not enough: the certificate compares energies (docs/concepts.md, eq. 9)
+  // and every law reads the contact velocities D_A (docs/concepts.md). Where those overflow, no
+  // answer can be certified in double precision (T_E − T_A would be ∞ − ∞); refuse, rather than
+  // return a NaN energy.
   const double kinetic = detail::kinetic_energy(pb.M, pb.qdot_A);
   if (!std::isfinite(kinetic))
     throw InvalidArgument("qdot_A",

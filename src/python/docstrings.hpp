@@ -1,7 +1,7 @@
 #pragma once
 // Every docstring of the Python module, in one place, so the bindings stay a list of names and the
 // documentation reads as one text. Each restates the C++ header it binds (the headers are the
-// manual); equation numbers are the paper's, sections SPEC's.
+// manual); equation numbers are the paper's, conventions in docs/.
 
 namespace fremond::python::doc {
 
@@ -10,12 +10,12 @@ fremond: impact laws of rigid bodies (Newton, Poisson, Coulomb, Frémond), after
 Sampaio's comparison on a falling bar.
 
 Problems, laws and potentials go in as NumPy arrays and Python objects; every answer comes back
-with its thermodynamic admissibility certificate (SPEC §4: (15) total and per contact, (17)
+with its thermodynamic admissibility certificate (docs/concepts.md: (15) total and per contact, (17)
 reaction, (19) dissipation, the Fenchel-Young gap). The module is a thin layer over the C++
 library: each function here calls the library function of the same name.
 
 Main entry points:
-  solve_impact(problem, law)            one impact (SPEC §1-2)
+  solve_impact(problem, law)            one impact (docs/concepts.md and docs/laws.md)
   simulate(scene, options)              a scene's motion: trajectory, energy and impact log
   normal_restitution_curve(...)         data of the paper's Fig. 8
   tangential_curve(...)                 data of the paper's Fig. 9
@@ -39,8 +39,9 @@ inline constexpr const char* kInequality =
     "dissipation_19, complementarity_16, fenchel_young, non_penetration).";
 inline constexpr const char* kScaling =
     "Which constants a curve's parameters are written in: spec (potentials of the mean velocity) "
-    "or paper (k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2r; SPEC §3).";
-inline constexpr const char* kPaperLaw = "The five laws the paper compares on the bar (SPEC §5).";
+    "or paper (k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2r; docs/laws.md).";
+inline constexpr const char* kPaperLaw =
+    "The five laws the paper compares on the bar (the paper's Fig. 1).";
 inline constexpr const char* kIntegrator = "event_driven (exact flights) or moreau_jean.";
 inline constexpr const char* kPhase = "The phase of a run: event_driven or moreau_jean.";
 inline constexpr const char* kSimulationStatus = "How a run ended.";
@@ -54,7 +55,7 @@ inline constexpr const char* kCapabilities =
     "What a potential can do, so the solver picks the cheapest exact method it allows.";
 inline constexpr const char* kPotential = R"doc(
 A convex pseudo-potential of dissipation phi of one contact's mean velocity z (paper §5.2,
-SPEC §3): non-negative, zero at the origin. The impact law is -P in d phi(z).
+docs/laws.md): non-negative, zero at the origin. The impact law is -P in d phi(z).
 
 Public interface: value, subgradient, subdifferential, prox, conjugate, fenchel_young_gap,
 describe, clone, capabilities.
@@ -85,10 +86,10 @@ inline constexpr const char* kFenchelYoung =
 inline constexpr const char* kDescribe = "One line naming the kind and its parameters.";
 inline constexpr const char* kClone = "A copy with the same parameters.";
 inline constexpr const char* kPower =
-    "PowerPotential(k, p): phi(z) = k|z|^p/p, k >= 0, p > 1 (eq. 22 in SPEC's scaling).";
+    "PowerPotential(k, p): phi(z) = k|z|^p/p, k >= 0, p > 1 (eq. 22 in the library's scaling).";
 inline constexpr const char* kDeadZone =
     "DeadZonePowerPotential(k, q, r): phi(y) = (k/q) max(0, |y| - r)^q, the viscous dead zone "
-    "(eq. 25 in SPEC's scaling; the paper's k_T,paper = k 2^(1-q), r_paper = 2r).";
+    "(eq. 25 in the library's scaling; the paper's k_T,paper = k 2^(1-q), r_paper = 2r).";
 inline constexpr const char* kAbsoluteValue =
     "AbsoluteValuePotential(b): b|y|, Coulomb's dissipation with a fixed bound b = mu P_N.";
 inline constexpr const char* kIndicator =
@@ -117,7 +118,7 @@ Fenchel-Young >= 0, = 0 at prox points, and Moreau's identity.
 
 // ---- laws, problems, results
 inline constexpr const char* kImpactLaw = R"doc(
-An impact law with its parameters (SPEC §2). Build it with the named constructors:
+An impact law with its parameters (docs/laws.md). Build it with the named constructors:
   ImpactLaw.newton(e), ImpactLaw.poisson(e), ImpactLaw.newton_coulomb(e, mu),
   ImpactLaw.poisson_coulomb(e, mu), ImpactLaw.fremond(normal, tangential=None),
   ImpactLaw.fremond_coulomb(normal, mu).
@@ -128,7 +129,7 @@ inline constexpr const char* kLawValidate =
     "Checks the parameters against the number of contacts; raises ValueError naming law.e, "
     "law.mu, law.normal or law.tangential.";
 inline constexpr const char* kImpactProblem = R"doc(
-ImpactProblem(M, W_N, qdot_A, W_T=None, w_N=None, w_T=None): one impact (SPEC §1),
+ImpactProblem(M, W_N, qdot_A, W_T=None, w_N=None, w_T=None): one impact (docs/concepts.md),
 M (qdot_E - qdot_A) = W_N P_N + W_T P_T, contact velocities D = W^T qdot + w. W_N and W_T are
 n x c (one column a contact); without W_T the problem is frictionless. Checked on construction:
 sizes, finite numbers, M symmetric positive definite (ValueError naming the member).
@@ -139,7 +140,7 @@ inline constexpr const char* kSolverOptions =
 inline constexpr const char* kSolverReport =
     "How the solver ended: method, status, criterion, message, iterations, residual.";
 inline constexpr const char* kAdmissibility = R"doc(
-The admissibility certificate of one impact (SPEC §4; eqs. 9, 15-19): kinetic_energy_A,
+The admissibility certificate of one impact (docs/concepts.md; eqs. 9, 15-19): kinetic_energy_A,
 energy_change = T_E - T_A, total = -P.z (15), per_contact, reaction (17), dissipation (19),
 complementarity (16), penetration, fenchel_young_gap, admissible, failed (the first inequality
 violated), failed_contact, violation.
@@ -159,12 +160,12 @@ inline constexpr const char* kSolveImpactAll =
     "Every solution found (mode enumeration for laws with friction on small problems); an empty "
     "list means the law has no solution for these data.";
 inline constexpr const char* kCheckAdmissibility =
-    "The SPEC §4 certificate of any answer (e.g. one you computed yourself).";
+    "The docs/concepts.md certificate of any answer (e.g. one you computed yourself).";
 inline constexpr const char* kLawResidual =
     "The law's scaled natural-map residual at an answer: zero exactly when it satisfies the law.";
 inline constexpr const char* kParseProblem =
     "parse_problem_file(text, registry=None) -> (problem, law): reads an impact-problem file "
-    "(SPEC §7, JSON text).";
+    "(docs/problem-file.md, JSON text).";
 inline constexpr const char* kResultToJson =
     "result_to_json(result, indent=-1): the JSON form of a result (as `fremond impact` prints).";
 
@@ -178,16 +179,17 @@ inline constexpr const char* kScene =
     "A planar rigid body, its obstacles, gravity, initial state and impact law; contact k is "
     "point k // len(obstacles), obstacle k % len(obstacles).";
 inline constexpr const char* kBarParameters =
-    "The paper's bar: mass 1 kg, half_length 0.5 m (SPEC §3), gravity 9.81, the initial state "
+    "The paper's bar: mass 1 kg, half_length 0.5 m (docs/laws.md), gravity 9.81, the initial state "
     "of paper §3 (x 0, xdot 2, y 1, theta pi/4).";
 inline constexpr const char* kPaperBarScene =
     "paper_bar_scene(law: PaperLaw, bar=BarParameters()): the paper's scene with one of its laws, "
-    "Frémond's k_N calibrated so that the first impact's normal restitution is 0.9 (SPEC §3).";
+    "Frémond's k_N calibrated so that the first impact's normal restitution is 0.9 (docs/laws.md).";
 inline constexpr const char* kPaperLawFn =
-    "paper_law(law: PaperLaw, k_N): the law with the paper's parameters (SPEC §5).";
+    "paper_law(law: PaperLaw, k_N): the law with the paper's parameters (the paper's Fig. 1).";
 inline constexpr const char* kPaperStiffness =
-    "paper_bar_normal_stiffness(bar=BarParameters()): SPEC §3's k_N (about 85.36 for p = 3).";
-inline constexpr const char* kEnergy = "Total energy 1/2 qdot^T M qdot + m g y (SPEC §5).";
+    "paper_bar_normal_stiffness(bar=BarParameters()): docs/laws.md's k_N (about 85.36 for p = 3).";
+inline constexpr const char* kEnergy =
+    "Total energy 1/2 qdot^T M qdot + m g y (the paper's Fig. 1).";
 inline constexpr const char* kSimulationOptions =
     "Options of simulate: integrator, t_end, step, max_impacts, tolerances, sample_interval, "
     "solver (SolverOptions).";
@@ -219,7 +221,7 @@ inline constexpr const char* kNormalCurveParameters =
     "Fig. 8: NormalCurveParameters(mass=1, k=4, p=2, scaling=Scaling.spec).";
 inline constexpr const char* kTangentialCurveParameters =
     "Fig. 9: TangentialCurveParameters(mass, k_N, p, D_NA, k_T, q, r, scaling); the defaults are "
-    "the paper's Fig. 9 in SPEC's scaling (k_T 1.5, q 2, r 0.2; paper k_T 0.75, r 0.4).";
+    "the paper's Fig. 9 in the library's scaling (k_T 1.5, q 2, r 0.2; paper k_T 0.75, r 0.4).";
 inline constexpr const char* kCurve = R"doc(
 A curve as NumPy arrays, one entry an impact of the point mass: D_NA, D_NE, D_TA, D_TE, P_N,
 P_N_reaction, P_T, energy_change, in_dead_zone, admissible, failed (list of Inequality), status
@@ -238,7 +240,7 @@ Fig. 9: one impact per tangential velocity D_TA under Frémond's law with the vi
 (eq. 25), the normal law fixed. Inside the dead zone |D_TA| <= r, D_TE = D_TA.
 )doc";
 inline constexpr const char* kEquivalentRestitution =
-    "Eq. (24): for p = 2, epsilon = (k - 2m)/(k + 2m) in SPEC's scaling (negative: the mass "
+    "Eq. (24): for p = 2, epsilon = (k - 2m)/(k + 2m) in the library's scaling (negative: the mass "
     "stops, D_NE = 0). Raises ValueError unless p = 2.";
 inline constexpr const char* kPointMassProblem =
     "point_mass_problem(mass, D_NA, D_TA=None): the point-mass problem of Figs. 8 and 9.";

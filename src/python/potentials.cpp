@@ -1,6 +1,6 @@
 // Potentials: the shared interface bound once on the base class, the built-in kinds as thin
-// subclasses, and a trampoline so that a Python class can be a potential (SPEC §3: users add their
-// own).
+// subclasses, and a trampoline so that a Python class can be a potential (docs/laws.md: users add
+// their own).
 #include <memory>
 #include <string>
 #include <utility>

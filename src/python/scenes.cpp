@@ -1,5 +1,5 @@
 // Scenes: a planar rigid body against half-planes, the presets, the paper's bar and laws, and the
-// calibration of Frémond's k_N (SPEC §3, §5).
+// calibration of Frémond's k_N (docs/laws.md, §5).
 #include <string>
 #include <vector>
 

@@ -1,4 +1,4 @@
-// The preset scenes and the paper's laws (SPEC §5).
+// The preset scenes and the paper's laws (the paper's Fig. 1).
 #include "fremond/scenes/presets.hpp"
 
 #include "fremond/core/enum_names.hpp"

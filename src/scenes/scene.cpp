@@ -1,4 +1,4 @@
-// Scene checks and the energy of SPEC §5.
+// Scene checks and the energy of the paper's Fig. 1.
 #include "fremond/scenes/scene.hpp"
 
 #include <cmath>
@@ -70,7 +70,7 @@ void Scene::validate() {
   require_finite_at_least("gravity", gravity, 0.0);
   require_finite_vector("initial.q", initial.q);
   require_finite_vector("initial.qdot", initial.qdot);
-  // Finite data can still overflow what every impact computes (SPEC §5's energy, the contact
+  // Finite data can still overflow what every impact computes (the paper's energy, the contact
   // velocities D = W^T q̇): refuse here what the first impact would refuse.
   if (!std::isfinite(energy(*this, initial)))
     throw InvalidArgument("initial",

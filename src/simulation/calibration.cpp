@@ -1,4 +1,4 @@
-// First impact of a scene and the calibration of Frémond's k_N (SPEC §3).
+// First impact of a scene and the calibration of Frémond's k_N (docs/laws.md).
 #include "fremond/simulation/calibration.hpp"
 
 #include <algorithm>
@@ -74,7 +74,7 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
   if (contact < 0 || contact >= problem_in.contacts())
     throw InvalidArgument("contact", "no contact " + std::to_string(contact));
   SmallImpactProblem problem = problem_in;
-  problem.W_T.resize(problem.dofs(), 0);  // the normal law alone (SPEC §3)
+  problem.W_T.resize(problem.dofs(), 0);  // the normal law alone (docs/laws.md)
   problem.w_T.resize(0);
   const double w = problem.w_N.size() ? problem.w_N(contact) : 0.0;
   const double d_na = problem.W_N.col(contact).dot(problem.qdot_A) + w;

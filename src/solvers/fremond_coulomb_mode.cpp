@@ -1,5 +1,5 @@
 // Frémond + Coulomb on several contacts, solved in contact modes with the exact conditions along
-// the null space of the columns a mode fixes (SPEC §2). Why: see solve_in_coulomb_mode in
+// the null space of the columns a mode fixes (docs/laws.md). Why: see solve_in_coulomb_mode in
 // detail/fremond.hpp.
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -472,7 +472,7 @@ class CoulombModes {
     return rows_.rounding_floor(row, X) / rows_.tau(row);
   }
 
-  /// The mode's inequalities (SPEC §2) at its root X; the rows that break them are switched.
+  /// The mode's inequalities (docs/laws.md) at its root X; the rows that break them are switched.
   bool keeps_inequalities(Mode& mode, const Rows& X) {
     rows_.mean_velocity(X, z_);
     const Rows z = z_;

@@ -1,4 +1,4 @@
-// The last fallback for Frémond's law: NLopt's SLSQP on the velocity-space problem of SPEC §2,
+// The last fallback for Frémond's law: NLopt's SLSQP on the velocity-space problem of docs/laws.md,
 // which needs only each potential's value and one subgradient.
 //
 //   minimise  uᵀ M u + Σ φ_N(z_N) + Σ φ_T(z_T)     z = D_A + Wᵀu,  u = v − q̇_A

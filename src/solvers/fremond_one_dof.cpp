@@ -1,4 +1,4 @@
-// Frémond's law without Coulomb on one degree of freedom, exactly: SPEC §2's velocity-space
+// Frémond's law without Coulomb on one degree of freedom, exactly: docs/laws.md's velocity-space
 // problem is then a scalar one,
 //
 //   minimise  F(u) = M u² + Σ_j ψ_j(D_A,j + a_j u),   u = v − q̇_A,   q̇_E = q̇_A + 2u,
@@ -158,10 +158,10 @@ bool solve_one_dof(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& row
   }
   if (!found || !std::isfinite(u)) return false;
 
-  // The percussions: each row's P_j ∈ −∂ψ_j(z_j), with Σ_j a_j P_j = 2Mu (momentum, SPEC §1:
-  // M(q̇_E − q̇_A) = W P). Where that leaves a choice (set-valued rows: a reaction, a kink), the
-  // least-norm one, P_j = clamp(λ a_j) into its interval, λ found by bisection (the sum is
-  // nondecreasing in λ).
+  // The percussions: each row's P_j ∈ −∂ψ_j(z_j), with Σ_j a_j P_j = 2Mu (momentum,
+  // docs/concepts.md: M(q̇_E − q̇_A) = W P). Where that leaves a choice (set-valued rows: a reaction,
+  // a kink), the least-norm one, P_j = clamp(λ a_j) into its interval, λ found by bisection (the
+  // sum is nondecreasing in λ).
   using Rows = typename FremondRowsT<N, C>::Rows;
   Rows lo(r), hi(r);
   for (int j = 0; j < r; ++j) {

@@ -1,4 +1,4 @@
-// Newton on the velocity-space problem of Frémond's law (SPEC §2), for contacts whose rows
+// Newton on the velocity-space problem of Frémond's law (docs/laws.md), for contacts whose rows
 // outnumber the degrees of freedom:
 //
 //   minimise  F(u) = uᵀ M u + Σ_j φ_j(z_j),   z = D_A + Wᵀ u,   u = v − q̇_A = M⁻¹ W P / 2,

@@ -10,7 +10,7 @@ assert sorted({r["p"] for r in rows}) == [1.5, 2.0, 3.0, 4.0]
 assert len(rows) == 4 * 101
 assert all(r["status"] == "converged" and r["admissible"] == 1 for r in rows)
 assert rows[0]["abs_D_NA"] == 0 and max(r["abs_D_NA"] for r in rows) == 5'
-# Eq. (24) in SPEC's scaling: ε = (k − 2m)/(k + 2m), here k = 4, m = 1: ε = 1/3.
+# Eq. (24) in the library's scaling: ε = (k − 2m)/(k + 2m), here k = 4, m = 1: ε = 1/3.
 check_csv "p = 2 is eq. (24)" '
 for r in rows:
     if r["p"] == 2:

@@ -32,7 +32,7 @@ assert any(c.startswith("# scaling: paper") for c in comments), comments'
 if diff -q <(grep -v '^#' "$TMP/out") "$TMP/spec.csv" >/dev/null; then
   pass
 else
-  fail "paper scaling: the rows differ from SPEC's scaling for the same law"
+  fail "paper scaling: the rows differ from the library's scaling for the same law"
 fi
 
 # Given explicitly in the paper's scaling: r_paper = 0.8 is our dead zone |D_TA| <= 0.4.

@@ -1,4 +1,4 @@
-# `fremond impact --all-solutions` prints every solution found (SPEC §2):
+# `fremond impact --all-solutions` prints every solution found (docs/laws.md):
 # {"count": N, "solutions": [result, ...]}, each result in the format of a single solve.
 source "$(dirname "$0")/impact_common.bash" "$1"
 

@@ -1,4 +1,4 @@
-# `fremond impact` with the classical laws of SPEC §2 (newton, poisson, newton_coulomb,
+# `fremond impact` with the classical laws of docs/laws.md (newton, poisson, newton_coulomb,
 # poisson_coulomb), on problems whose answer is known by hand.
 source "$(dirname "$0")/impact_common.bash" "$1"
 
@@ -14,7 +14,7 @@ Minv = lambda v: [v[k] / M[k][k] for k in range(n)]  # the mass matrices here ar
 energy = lambda q: 0.5 * sum(q[i] * M[i][j] * q[j] for i in range(n) for j in range(n))
 '
 
-# Newton, one frictionless contact: the closed form of eq. (6) on the bar of SPEC §5,
+# Newton, one frictionless contact: the closed form of eq. (6) on the bar of the paper's Fig. 1,
 # P_N = −(1 + e) D_NA / G_NN, D_NE = −e D_NA; W_T is given but the law has no friction: P_T = 0.
 NEWTON_BAR="$SETUP"'
 e = p["law"]["e"]
@@ -90,7 +90,7 @@ near(d["P_NC"], [1.0, 2.0])
 near(d["P_TC"], [-0.1, -0.4])
 '
 
-# The example of SPEC §7: Newton + Coulomb at the bar's lower end, mu = 1 below the Painlevé bound
+# The example of docs/problem-file.md: Newton + Coulomb at the bar's lower end, mu = 1 below the Painlevé bound
 # (mu|G_NT| < G_NN). Sliding either way contradicts its own sign; the contact sticks: D_TE = 0,
 # D_NE = −e D_NA, i.e. G P = (−(1 + e) D_NA, −D_TA), with |P_T| ≤ mu P_N.
 run_impact "$DATA/spec_example.json"

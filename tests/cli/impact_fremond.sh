@@ -1,7 +1,7 @@
-# `fremond impact` with Frémond's law (SPEC §2, §3), on problems whose answer is known by hand.
+# `fremond impact` with Frémond's law (docs/laws.md, §3), on problems whose answer is known by hand.
 source "$(dirname "$0")/impact_common.bash" "$1"
 
-# p = 2 on a point mass m: Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24 in SPEC's scaling).
+# p = 2 on a point mass m: Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24 in the library's scaling).
 # m = 2, k = 12: ε = 1/2; D_NA = −3: D_NE = 1.5, P_N = m (D_NE − D_NA) = 9, no reaction.
 run_impact "$DATA/fremond_point.json"
 expect_status "fremond p = 2, point mass" 0

@@ -1,4 +1,4 @@
-# The result of `fremond impact` (SPEC §7): valid JSON (never NaN), every key of SPEC §7 plus the
+# The result of `fremond impact` (docs/problem-file.md): valid JSON (never NaN), every key of docs/problem-file.md plus the
 # full admissibility and solver reports, enum values by their names, and the same answer whether
 # the problem comes from a file or standard input, compact or --pretty.
 source "$(dirname "$0")/impact_common.bash" "$1"
@@ -57,7 +57,7 @@ for problem in newton_bar.json poisson_bar.json spec_example.json newton_coulomb
     "import json; assert d == json.load(open('$TMP/from_file')), 'values differ'"
 done
 
-# Poisson's phases appear when the solver reports them (SPEC §2), with one entry per contact.
+# Poisson's phases appear when the solver reports them (docs/laws.md), with one entry per contact.
 run_impact "$DATA/poisson_coulomb_two_contacts.json"
 check_json "poisson: phases" '
 for key in ["P_NC", "P_TC", "D_NC", "D_TC"]:

@@ -1,4 +1,4 @@
-# `fremond impact` refuses input that is not a JSON object, and files it cannot read (SPEC §7):
+# `fremond impact` refuses input that is not a JSON object, and files it cannot read (docs/problem-file.md):
 # exit status 1, nothing on stdout, a message naming the key (or the file) and the reason.
 source "$(dirname "$0")/impact_common.bash" "$1"
 

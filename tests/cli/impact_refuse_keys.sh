@@ -1,4 +1,4 @@
-# `fremond impact` refuses keys SPEC §7 does not list (never ignored) and missing required keys
+# `fremond impact` refuses keys docs/problem-file.md does not list (never ignored) and missing required keys
 # (never defaulted), at the top level, in the law and in its potentials.
 source "$(dirname "$0")/impact_common.bash" "$1"
 

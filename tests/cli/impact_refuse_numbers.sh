@@ -1,4 +1,4 @@
-# `fremond impact` refuses numbers that are not finite and values that are not numbers (SPEC §7).
+# `fremond impact` refuses numbers that are not finite and values that are not numbers (docs/problem-file.md).
 # Standard JSON has no NaN or infinity (their spellings are refused as bad JSON, see
 # impact_refuse_input.sh); 1e999 is valid JSON that overflows a double, i.e. an infinity.
 source "$(dirname "$0")/impact_common.bash" "$1"

@@ -1,5 +1,5 @@
 # `fremond impact` refuses law parameters out of range, unknown law types and unknown potentials
-# (SPEC §7): p ≤ 1, q ≤ 1, r < 0, k < 0, e outside [0, 1], mu < 0. A per-contact list names the
+# (docs/problem-file.md): p ≤ 1, q ≤ 1, r < 0, k < 0, e outside [0, 1], mu < 0. A per-contact list names the
 # entry at fault.
 source "$(dirname "$0")/impact_common.bash" "$1"
 

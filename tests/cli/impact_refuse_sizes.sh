@@ -1,4 +1,4 @@
-# `fremond impact` refuses matrices and lists of the wrong size or shape (SPEC §7): M n×n, W_N and
+# `fremond impact` refuses matrices and lists of the wrong size or shape (docs/problem-file.md): M n×n, W_N and
 # W_T n×c, w_N and w_T c entries, qdot_A n entries, per-contact parameters one value or c.
 source "$(dirname "$0")/impact_common.bash" "$1"
 
@@ -38,7 +38,7 @@ refuse_edit "qdot_A length != n" "qdot_A" "must have 2 entries, got 3" \
 refuse_edit "qdot_A a matrix" "qdot_A[0]" "must be a number, got a list" \
   fremond_point.json 'd["qdot_A"] = [[-3]]'
 
-# Per-contact law parameters: one value, or one per contact (SPEC §7).
+# Per-contact law parameters: one value, or one per contact (docs/problem-file.md).
 refuse_edit "law.e list too long" "law.e" "needs one value or one per contact (1), got a list of 2" \
   newton_bar.json 'd["law"]["e"] = [0.9, 0.9]'
 refuse_edit "law.e empty list" "law.e" "an empty list" newton_bar.json 'd["law"]["e"] = []'

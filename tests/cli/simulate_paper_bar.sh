@@ -1,4 +1,4 @@
-# `fremond simulate --preset paper-bar --law LAW --out DIR` for each law of the paper (SPEC §5):
+# `fremond simulate --preset paper-bar --law LAW --out DIR` for each law of the paper (the paper's Fig. 1):
 # the files are complete and consistent, the energy never rises except at flagged impacts, and a
 # rerun writes the same bytes.
 set -u
@@ -32,7 +32,7 @@ assert len(data) > 3000, len(data)
 t = [r[0] for r in data]
 assert t[0] == 0.0 and t[-1] == 3.0, (t[0], t[-1])
 assert all(b >= a for a, b in zip(t, t[1:])), "time goes back"
-# Energy column: 1/2 qdot'M qdot + m g y, M = diag(1, 1, 1/12) (SPEC 5).
+# Energy column: 1/2 qdot'M qdot + m g y, M = diag(1, 1, 1/12) (the paper's Fig. 1).
 for r in data:
     e = 0.5 * (r[4] ** 2 + r[5] ** 2 + r[6] ** 2 / 12) + 9.81 * r[2]
     assert abs(e - r[7]) <= 1e-9 * (1 + abs(e)), (r, e)

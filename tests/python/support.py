@@ -43,7 +43,7 @@ def bisect(f, lo, hi, iterations=200):
 
 
 def fremond_point_mass_D_NE(m, k, p, speed):
-    """D_NE of a point mass hitting the ground at |D_NA| = speed under φ_N = k|z|^p/p (SPEC's
+    """D_NE of a point mass hitting the ground at |D_NA| = speed under φ_N = k|z|^p/p (the library's
     scaling): m(D_NE + a) = k((a - D_NE)/2)^(p-1) when that has a root D_NE in [0, a], otherwise
     the reaction stops the mass (D_NE = 0). Eq. (23) with the mean z = (D_NA + D_NE)/2."""
     a = speed

@@ -11,13 +11,13 @@ import numpy as np
 from support import near, run_tests
 import fremond as f
 
-L = 0.5  # the bar's half-length (SPEC §3)
+L = 0.5  # the bar's half-length (docs/laws.md)
 G = 9.81
 THETA = math.pi / 4
 
 
 def bar_first_impact():
-    """The bar's first impact built by hand (SPEC §5): the lower end at θ = π/4 reaches the
+    """The bar's first impact built by hand (the paper's Fig. 1): the lower end at θ = π/4 reaches the
     ground after falling 1 − l sin θ, with ẋ = 2, θ̇ = 0."""
     v = math.sqrt(2 * G * (1 - L * math.sin(THETA)))
     M = np.diag([1.0, 1.0, L * L / 3])
@@ -117,7 +117,7 @@ def test_newton_coulomb_creates_energy_on_the_bar():
 
 
 def test_fremond_calibrated_restitution_on_the_bar():
-    # SPEC §3: k_N such that the normal law alone gives −D_NE/D_NA = 0.9 at the first impact.
+    # docs/laws.md: k_N such that the normal law alone gives −D_NE/D_NA = 0.9 at the first impact.
     pb, v = bar_first_impact()
     k = f.paper_bar_normal_stiffness()
     near([k], [85.36], rel=1e-3)

@@ -1,8 +1,8 @@
 """`fremond impact` on hard one-contact problems, against references computed with mpmath at 40
-digits from the laws themselves (SPEC §2), independently of the library and of its __float128
+digits from the laws themselves (docs/laws.md), independently of the library and of its __float128
 reference in tests/reference.
 
-The problems are the paper's bar (SPEC §5) at random angles, with the issue's hard parameters:
+The problems are the paper's bar (the paper's Fig. 1) at random angles, with the issue's hard parameters:
 mass ratios up to 1e6 (a light rotor: J = m l²/3 / 1e6), velocities from 1e-10 to 1e6, p from
 1.01 to 50, q from 1.01, dead zones from 0 to far above every velocity, k from 1e-6 to 1e6. Each
 answer must be `converged` and its velocity after impact within 1e-9 of the reference in the
@@ -28,7 +28,7 @@ import mpmath as mp
 from support import cli, run_tests
 
 mp.mp.dps = 40
-L = 0.5  # the bar's half-length (SPEC §5)
+L = 0.5  # the bar's half-length (the paper's Fig. 1)
 
 
 def bar_problem(rng, law):
@@ -99,7 +99,7 @@ def dead_zone_slope(k, q, r):
 
 
 def normal_row(G, D, dphi, a0, a1):
-    """P_N of Frémond's normal row (power law and reaction, SPEC §2) with P_T = a0 + a1 P_N; None
+    """P_N of Frémond's normal row (power law and reaction, docs/laws.md) with P_T = a0 + a1 P_N; None
     where the row is not monotone (a Painlevé-type slide, μ|G_NT| > G_NN)."""
     c = G[0][0] + G[0][1] * a1
     if c <= 0:

@@ -14,7 +14,7 @@ SPEEDS = np.linspace(0.0, 5.0, 41)
 
 
 def test_fig8_p2_is_the_straight_line_of_eq_24():
-    # ε = (k − 2m)/(k + 2m) in SPEC's scaling (SPEC §3), written here from eq. (24) directly.
+    # ε = (k − 2m)/(k + 2m) in the library's scaling (docs/laws.md), written here from eq. (24) directly.
     for m, k in [(1.0, 4.0), (1.0, 38.0), (2.5, 7.0), (0.3, 100.0)]:
         c = f.normal_restitution_curve(f.NormalCurveParameters(mass=m, k=k, p=2.0), SPEEDS)
         eps = (k - 2 * m) / (k + 2 * m)
@@ -88,7 +88,7 @@ def test_fig9_dead_zone_keeps_D_TE_equal_to_D_TA():
 def test_fig9_outside_the_dead_zone_q2_closed_form():
     # q = 2: m(D_TE − D_TA) = −k_T(z − r sign z), z = (D_TA + D_TE)/2, so
     # D_TE = ((m − k_T/2) D_TA + k_T r sign D_TA)/(m + k_T/2).
-    par = f.TangentialCurveParameters()  # the paper's figure in SPEC's scaling
+    par = f.TangentialCurveParameters()  # the paper's figure in the library's scaling
     m, k, r = par.mass, par.k_T, par.r
     near([k, r], [1.5, 0.2])
     d_ta = np.linspace(-2.0, 2.0, 81)

@@ -1,6 +1,6 @@
 #pragma once
-/// @file A problem and its law as an impact-problem file (SPEC §7), every number to 17 digits: the
-/// reproducer a stress failure prints, runnable as `fremond impact FILE`.
+/// @file A problem and its law as an impact-problem file (docs/problem-file.md), every number to 17
+/// digits: the reproducer a stress failure prints, runnable as `fremond impact FILE`.
 #include <sstream>
 #include <string>
 

@@ -143,7 +143,7 @@ class Draw {
     return pb;
   }
 
-  /// The paper's bar (SPEC §5) near the degenerate angles, one or both ends, scaled.
+  /// The paper's bar (the paper's Fig. 1) near the degenerate angles, one or both ends, scaled.
   ImpactProblem bar(bool tangential, std::string& shape) {
     const double l = 0.5, m = decades(-3.0, 3.0);
     double theta;

@@ -1,6 +1,6 @@
-// The paper's bar at its first impact (SPEC §5, paper §4.1 and Figs. 5, 7): Newton + Coulomb
-// creates kinetic energy and the admissibility report says so; Poisson + Coulomb does not. Both
-// against a hand computation from eqs. (7)-(9).
+// The paper's bar at its first impact (the paper's Fig. 1, paper §4.1 and Figs. 5, 7): Newton +
+// Coulomb creates kinetic energy and the admissibility report says so; Poisson + Coulomb does not.
+// Both against a hand computation from eqs. (7)-(9).
 #include <gtest/gtest.h>
 
 #include <cmath>

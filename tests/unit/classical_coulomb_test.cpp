@@ -1,6 +1,6 @@
-// Newton + Coulomb and Poisson + Coulomb (SPEC §2, paper §4): stick, slide and reversal against
-// hand derivations, the frictionless limit, several solutions, the singular flat bar, and the
-// enumeration against Lemke.
+// Newton + Coulomb and Poisson + Coulomb (docs/laws.md, paper §4): stick, slide and reversal
+// against hand derivations, the frictionless limit, several solutions, the singular flat bar, and
+// the enumeration against Lemke.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,6 @@
 #pragma once
-// Scenes and independent references for the tests of the classical laws (SPEC §5, paper Fig. 1).
+// Scenes and independent references for the tests of the classical laws (the paper's Fig. 1, paper
+// Fig. 1).
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
@@ -11,8 +12,8 @@ namespace fremond::test {
 
 inline constexpr double kM = 1.0, kL = 0.5, kJ = kM * kL * kL / 3, kG = 9.81;
 
-/// The bar of SPEC §5 with its lower end on the ground at angle θ: W_N = (0, 1, −l cos θ),
-/// W_T = (1, 0, l sin θ), M = diag(m, m, J).
+/// The bar of the paper's Fig. 1 with its lower end on the ground at angle θ: W_N = (0, 1, −l cos
+/// θ), W_T = (1, 0, l sin θ), M = diag(m, m, J).
 inline ImpactProblem bar(double theta, const Eigen::Vector3d& qdot, bool friction = true) {
   ImpactProblem p;
   p.M = Eigen::Vector3d(kM, kM, kJ).asDiagonal();
@@ -63,7 +64,7 @@ inline double kinetic(const ImpactProblem& p, const VectorX& qdot) {
   return 0.5 * qdot.dot(p.M * qdot);
 }
 
-/// q̇_E = q̇_A + M⁻¹(W_N P_N + W_T P_T), from the data (the impact equation, SPEC §1).
+/// q̇_E = q̇_A + M⁻¹(W_N P_N + W_T P_T), from the data (the impact equation, docs/concepts.md).
 inline VectorX velocity_after(const ImpactProblem& p, const VectorX& PN, const VectorX& PT) {
   VectorX f = p.W_N * PN;
   if (p.has_tangential()) f += p.W_T * PT;

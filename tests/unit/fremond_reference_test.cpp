@@ -13,7 +13,7 @@
 //    NLopt's answers are accepted at its own nlopt_tolerance (1e-9 by default): its bound is
 //    4 × nlopt_tolerance; the proximal splitting (linear convergence, stopped on the residual) is
 //    held to 100 × tolerance;
-//  - a result marked converged is admissible (SPEC §4);
+//  - a result marked converged is admissible (docs/concepts.md);
 //  - a result that is not converged says so: a status other than converged and other than
 //    not_run (a wrong answer is never marked converged: that is the first check);
 //  - where the reference finds no solution (Coulomb, Painlevé-type data), the library says

@@ -1,7 +1,7 @@
 // Independent groups of contacts (src/solvers/detail/independent_groups.hpp): a problem made of
 // two bodies that do not touch each other separates, and each body must get the answer of its own
-// problem, to its own velocity scale, whatever the other body's (SPEC §1-2: the laws read
-// D_E = D_A + G P row by row, and G has no entry between the bodies).
+// problem, to its own velocity scale, whatever the other body's (docs/concepts.md and docs/laws.md:
+// the laws read D_E = D_A + G P row by row, and G has no entry between the bodies).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,8 +130,8 @@ TEST(IndependentGroups, EverySolutionIsOneOfEachBodysSolutions) {
   // Two bars (m = 1, l = 0.5, J = 1/12) touching at their lower end at θ = π/4 with D_NA = 0 and
   // sliding back, q̇_A = (−v, 0, 0): under Newton + Coulomb with μ = 2 each has two solutions, the
   // open contact and sticking with P = v (1.5, 2.5)/4 (ClassicalCoulomb.GrazingBar…), which loses
-  // ½ P_T D_TA = 0.3125 v² (SPEC §1, eq. 9). At v = 1 and v = 1e-9 the problem has the four
-  // pairs, most dissipative first, and solve_impact returns the first.
+  // ½ P_T D_TA = 0.3125 v² (docs/concepts.md, eq. 9). At v = 1 and v = 1e-9 the problem has the
+  // four pairs, most dissipative first, and solve_impact returns the first.
   const double l = 0.5, c = l * std::cos(std::numbers::pi / 4), v[2] = {1.0, 1e-9};
   ImpactProblem p;
   p.M =

@@ -1,5 +1,5 @@
-// The impact-problem file (SPEC §7): what the reader accepts and fills in, the names its refusals
-// give, user-registered potentials by name, and the JSON form of results.
+// The impact-problem file (docs/problem-file.md): what the reader accepts and fills in, the names
+// its refusals give, user-registered potentials by name, and the JSON form of results.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -246,7 +246,7 @@ TEST(ResultJson, SolutionsListCountsThem) {
 }
 
 TEST(ProblemFile, SolvesTheFremondClosedForm) {
-  // p = 2 on a point mass m = 2, k = 12: ε = (k − 2m)/(k + 2m) = 1/2 (SPEC §3).
+  // p = 2 on a point mass m = 2, k = 12: ε = (k − 2m)/(k + 2m) = 1/2 (docs/laws.md).
   const auto file = parse_problem_file(R"({"M": [[2]], "W_N": [[1]], "qdot_A": [-3],
       "law": {"type": "fremond", "normal": {"potential": "power", "k": 12, "p": 2}}})",
                                        builtins());

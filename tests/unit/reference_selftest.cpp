@@ -1,6 +1,6 @@
 // The quad-precision reference (tests/reference/fremond_reference.hpp) against closed forms:
-// Frémond's point mass at p = 2 (SPEC §3, paper eq. 24 corrected), the reaction of a point mass
-// (SPEC §3's corrected I_reac), Newton's eq. (6); Frémond + Coulomb at p = 2 against its
+// Frémond's point mass at p = 2 (docs/laws.md, paper eq. 24 corrected), the reaction of a point
+// mass (docs/laws.md's corrected I_reac), Newton's eq. (6); Frémond + Coulomb at p = 2 against its
 // piecewise-linear closed forms; and its own consistency: the law's residual in quad precision, and
 // the one-contact scalar method against the several-contact velocity-space method on the same
 // problems.
@@ -39,7 +39,7 @@ ref::Problem point_mass(quad m, quad xdot, quad ydot, bool tangential = true) {
   return p;
 }
 
-/// The paper's bar at θ (SPEC §5): M = diag(m, m, m l²/3), the lower end's W_N, W_T.
+/// The paper's bar at θ (the paper's Fig. 1): M = diag(m, m, m l²/3), the lower end's W_N, W_T.
 ref::Problem bar(quad theta, quad xdot, quad ydot, quad thetadot) {
   const quad m = 1, l = q(0.5), J = m * l * l / 3;
   ref::Problem p;
@@ -111,7 +111,7 @@ ref::Problem random_problem(Rng& rng, int n, int c, double speed, double mass_ra
 // ---------------------------------------------------------------------------------------------
 // Closed forms
 
-// SPEC §3 (paper eq. 24 in our scaling): p = 2, one point mass, normal law alone:
+// docs/laws.md (paper eq. 24 in our scaling): p = 2, one point mass, normal law alone:
 // ε = −D_NE/D_NA = (k − 2m)/(k + 2m), for k ≥ 2m (below, the reaction stops the mass: D_NE = 0).
 TEST(ReferenceSelfTest, PointMassLinearLawGivesPaperRestitution) {
   for (double m : {1.0, 3.7, 1e3, 1e-3})
@@ -130,7 +130,7 @@ TEST(ReferenceSelfTest, PointMassLinearLawGivesPaperRestitution) {
       }
 }
 
-// SPEC §3's corrected erratum: with D_NE = 0, I_reac = (m − k_paper|D_NA|^(p−2)) D_NA ≤ 0 with
+// docs/laws.md's corrected erratum: with D_NE = 0, I_reac = (m − k_paper|D_NA|^(p−2)) D_NA ≤ 0 with
 // k_paper = k 2^(1−p); our reaction percussion is P_reac = −I_reac. k is chosen below the value at
 // which the normal law alone would stop the mass, so the reaction acts.
 TEST(ReferenceSelfTest, PointMassReactionMatchesCorrectedErratum) {
@@ -156,7 +156,7 @@ TEST(ReferenceSelfTest, PointMassReactionMatchesCorrectedErratum) {
 }
 
 // Newton's eq. (6) on one contact: P_N = −(1 + e) D_NA / G_NN; here on the paper's bar at its first
-// impact (G_NN = (1 + 3 cos²θ)/m, SPEC §5), and q̇_E = q̇_A + M⁻¹ W_N P_N.
+// impact (G_NN = (1 + 3 cos²θ)/m, the paper's Fig. 1), and q̇_E = q̇_A + M⁻¹ W_N P_N.
 TEST(ReferenceSelfTest, NewtonOneContactIsEquationSix) {
   const quad theta = acosq(q(-1)) / 4, vy = -sqrtq(2 * q(9.81) * (1 - q(0.5) * sinq(theta)));
   ref::Problem p = bar(theta, 2, vy, 0);
@@ -279,7 +279,7 @@ TEST(ReferenceSelfTest, CoulombP2MatchesPiecewiseLinearClosedForms) {
 TEST(ReferenceSelfTest, CoulombPaperBarHasOneSolution) {
   const quad theta = acosq(q(-1)) / 4, vy = -sqrtq(2 * q(9.81) * (1 - q(0.5) * sinq(theta)));
   for (double p : {1.01, 1.1, 1.5, 2.0, 3.0, 10.0, 50.0}) {
-    // k_N of SPEC §3: the normal law alone gives restitution 0.9 at this impact.
+    // k_N of docs/laws.md: the normal law alone gives restitution 0.9 at this impact.
     const quad pq = q(p), e = q(0.9);
     const quad k = (1 + e) / (q(2.5) * powq((1 - e) / 2, pq - 1) * powq(fabsq(vy), pq - 2));
     const auto normal_only =
@@ -673,7 +673,7 @@ TEST(ReferenceSelfTest, SingularModeOfASqueezeHasNoAnswer) {
   EXPECT_TRUE(some.exists);
 }
 
-// Poisson without friction on one contact is Newton (SPEC §2): P_N = (1 + e) P_NC with
+// Poisson without friction on one contact is Newton (docs/laws.md): P_N = (1 + e) P_NC with
 // P_NC = −D_NA/G_NN; with friction, the residual of both phases is quad-small on random bodies.
 TEST(ReferenceSelfTest, ClassicalModesPoissonOnRandomBodies) {
   Rng rng{23};

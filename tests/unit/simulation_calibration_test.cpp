@@ -1,4 +1,4 @@
-// Frémond's k_N calibrated as SPEC §3 asks, against the closed form of a one-contact impact.
+// Frémond's k_N calibrated as docs/laws.md asks, against the closed form of a one-contact impact.
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
@@ -28,7 +28,7 @@ TEST(Calibration, PaperBarStiffnessMatchesTheClosedForm) {
   const double G = 1 + 3 * std::cos(kPi / 4) * std::cos(kPi / 4);
   const double k = paper_bar_normal_stiffness();
   EXPECT_NEAR(k, closed_form_k(G, a, 0.9, 3.0), 1e-10 * k);
-  EXPECT_NEAR(k, 85.36, 0.01);  // SPEC §3: ≈ 85.36 (≈ 21.34 in the paper's scaling)
+  EXPECT_NEAR(k, 85.36, 0.01);  // docs/laws.md: ≈ 85.36 (≈ 21.34 in the paper's scaling)
   // And the normal restitution it gives at that impact is the paper's e = 0.9.
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   const FirstImpact first = first_impact(bar, 10.0);
@@ -64,7 +64,7 @@ TEST(Calibration, OtherExponentsAndRestitutions) {
       EXPECT_LT(c.solves, 80);
     }
   }
-  // p = 2 is Newton's law with ε = (k − 2m)/(k + 2m) for a point mass (SPEC §3, eq. 24).
+  // p = 2 is Newton's law with ε = (k − 2m)/(k + 2m) for a point mass (docs/laws.md, eq. 24).
   SmallImpactProblem point = pb;
   point.W_N.col(0) << 0.0, 1.0, 0.0;
   const StiffnessCalibration c = calibrate_normal_stiffness(point, 2.0, 0.6);

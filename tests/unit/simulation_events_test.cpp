@@ -38,7 +38,7 @@ TEST(FreeFlight, GapFunctionMatchesTheKinematicsAlongTheFlight) {
       double gv, gd, gdd;
       g.eval(s, gv, gd, gdd);
       EXPECT_NEAR(gv, fr.gap, 1e-12);
-      // D_N = W_Nᵀ q̇ is the gap's derivative (SPEC §1).
+      // D_N = W_Nᵀ q̇ is the gap's derivative (docs/concepts.md).
       EXPECT_NEAR(gd, fr.W_N.dot(st.qdot), 1e-12);
       // g'' by central differences of g'.
       double a, da, dda, b, db, ddb;
@@ -51,7 +51,7 @@ TEST(FreeFlight, GapFunctionMatchesTheKinematicsAlongTheFlight) {
 }
 
 TEST(FreeFlight, SpecSection5ContactDirectionsOfTheBar) {
-  // SPEC §5: lower end at θ = π/4, W_N = (0, 1, −l cos θ), W_T = (1, 0, l sin θ).
+  // the paper's Fig. 1: lower end at θ = π/4, W_N = (0, 1, −l cos θ), W_T = (1, 0, l sin θ).
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   const double l = 0.5, th = kPi / 4;
   const ContactFrame f = contact_frame(bar, 0, Eigen::Vector3d(0.0, 1.0, th));

@@ -49,7 +49,7 @@ struct Case {
 
 std::vector<Case> cases() {
   const auto [p3, viscous, coulomb] = bar_fremond_laws();
-  // A normal law too weak to stop the bar by itself: the reaction does (SPEC §3).
+  // A normal law too weak to stop the bar by itself: the reaction does (docs/laws.md).
   const ImpactLaw reaction = ImpactLaw::fremond(PowerPotential(1e-3, 2.0));
   std::vector<Case> v{
       {"bar newton_coulomb (energy gain)", bar_first_impact(true),

@@ -91,8 +91,8 @@ TEST(TutorialCustomPotential, SymmetricCaseEqualsTheBuiltinDeadZone) {
   }
 }
 
-// Step 4: register it by name and use it from a problem file (SPEC §7). The registry is an
-// object you pass: nothing global changes.
+// Step 4: register it by name and use it from a problem file (docs/problem-file.md). The registry
+// is an object you pass: nothing global changes.
 TEST(TutorialCustomPotential, FromAProblemFileByName) {
   PotentialRegistry registry = PotentialRegistry::with_builtins();
   registry.add("asymmetric_deadzone", {{"k", "a", "b"},
@@ -110,7 +110,7 @@ TEST(TutorialCustomPotential, FromAProblemFileByName) {
   const auto r = solve_impact(file.problem, file.law);
   ASSERT_TRUE(r.ok()) << r.solver.message;
   EXPECT_TRUE(r.admissibility.admissible);
-  // A point mass, decoupled rows (G = I): each row is one prox with τ = 1/2 (SPEC §2).
+  // A point mass, decoupled rows (G = I): each row is one prox with τ = 1/2 (docs/laws.md).
   // Normal, p = 2: z = D/(1 + k/2), D_NE = 2z − D; eq. (24): ε = (k − 2m)/(k + 2m) = 0.6.
   EXPECT_NEAR(r.D_NE(0), 0.6 * 2.0, 1e-14);
   // Tangential: x = 0.3 > a, z = (x + τka)/(1 + τk) = (0.3 + 0.1)/2 = 0.2, D_TE = 2z − x = 0.1.

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Computes the admissibility certificate (SPEC §4) of any law's answer.
+/// @file Computes the admissibility certificate (docs/concepts.md) of any law's answer.
 #include "fremond/admissibility/admissibility_report.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"

@@ -1,5 +1,6 @@
 #pragma once
-/// @file The thermodynamic admissibility certificate of one impact (SPEC §4; paper eqs. 9, 15-19).
+/// @file The thermodynamic admissibility certificate of one impact (docs/concepts.md; paper eqs. 9,
+/// 15-19).
 #include <string_view>
 
 #include "fremond/core/types.hpp"

@@ -3,7 +3,7 @@
 /// Frémond's law, swept over the velocity before the impact.
 ///
 ///  - Fig. 8 (normal law alone, paper §5.3): D_NE against |D_NA| for φ_N = k|z|^p/p. For p = 2 the
-///    curve is the straight line D_NE = ε|D_NA| of eq. (24), ε = (k − 2m)/(k + 2m) in SPEC's
+///    curve is the straight line D_NE = ε|D_NA| of eq. (24), ε = (k − 2m)/(k + 2m) in the library's
 ///    scaling, while ε ≥ 0; for k < 2m the reaction stops the mass (D_NE = 0). For p > 2 the
 ///    restitution grows with the speed, for p < 2 it falls.
 ///  - Fig. 9 (viscous dead zone, paper §5.4, eq. 25): D_TE against D_TA for
@@ -13,9 +13,10 @@
 /// Every point is one call of solve_impact on the point-mass problem (M = m I, W_N = (0, 1),
 /// W_T = (1, 0)), so the curves are the library's answers, with their admissibility certificates.
 ///
-/// Parameters may be given in SPEC's scaling (potentials of the mean velocity z, SPEC §3) or in the
-/// paper's (eqs. 23 and 25 applied to D_E + D_A): k_paper = k·2^(1−p), k_T,paper = k_T·2^(1−q),
-/// r_paper = 2r. A curve always records which scaling its parameters were given in.
+/// Parameters may be given in the library's scaling (potentials of the mean velocity z,
+/// docs/laws.md) or in the paper's (eqs. 23 and 25 applied to D_E + D_A): k_paper = k·2^(1−p),
+/// k_T,paper = k_T·2^(1−q), r_paper = 2r. A curve always records which scaling its parameters were
+/// given in.
 #include <span>
 #include <string_view>
 #include <vector>
@@ -28,9 +29,9 @@
 
 namespace fremond {
 
-/// Which constants a curve's parameters are written in (SPEC §3).
+/// Which constants a curve's parameters are written in (docs/laws.md).
 enum class Scaling {
-  spec,   ///< SPEC's: φ_N = k|z|^p/p, φ_T = (k_T/q) max(0, |z| − r)^q of the mean velocity z.
+  spec,  ///< the library's: φ_N = k|z|^p/p, φ_T = (k_T/q) max(0, |z| − r)^q of the mean velocity z.
   paper,  ///< the paper's: k_paper = k·2^(1−p), k_T,paper = k_T·2^(1−q), r_paper = 2r.
 };
 std::string_view to_string(Scaling s);
@@ -41,14 +42,14 @@ Scaling scaling_from_string(std::string_view s);
 struct NormalCurveParameters {
   double mass = 1.0;  ///< m > 0 (kg).
   /// Stiffness ≥ 0 in `scaling` (units N s^p m^(1−p)). The paper does not give the k of its Fig. 8;
-  /// the default 4 (SPEC's scaling) spreads the curves over a few m/s: for p = 2,
+  /// the default 4 (the library's scaling) spreads the curves over a few m/s: for p = 2,
   /// ε = (4 − 2)/(4 + 2) = 1/3 (eq. 24); for p > 2 the mass stops below |D_NA| = (2^(p−1)
   /// m/k)^(1/(p−2)) (1 m/s for p = 3); for p < 2 the restitution falls with the speed.
   double k = 4.0;
   double p = 2.0;  ///< exponent > 1.
   Scaling scaling = Scaling::spec;
 
-  /// The same law with k in SPEC's scaling (k = k_paper·2^(p−1)).
+  /// The same law with k in the library's scaling (k = k_paper·2^(p−1)).
   NormalCurveParameters in_spec_scaling() const;
   /// The same law with k in the paper's scaling (k_paper = k·2^(1−p)).
   NormalCurveParameters in_paper_scaling() const;
@@ -57,9 +58,9 @@ struct NormalCurveParameters {
 };
 
 /// Fig. 9: a point mass m under Frémond's law with the viscous dead zone (eq. 25), the normal law
-/// fixed. The defaults are the paper's Fig. 9 (r_paper = 0.4, k_T,paper = 0.75, q = 2) in SPEC's
-/// scaling; the normal law (k_N, p) and D_NA do not change D_TE for a point mass (G is diagonal),
-/// they only fix the normal percussion.
+/// fixed. The defaults are the paper's Fig. 9 (r_paper = 0.4, k_T,paper = 0.75, q = 2) in the
+/// library's scaling; the normal law (k_N, p) and D_NA do not change D_TE for a point mass (G is
+/// diagonal), they only fix the normal percussion.
 struct TangentialCurveParameters {
   double mass = 1.0;   ///< m > 0 (kg).
   double k_N = 4.0;    ///< normal stiffness ≥ 0 in `scaling` (Fig. 8's default law).
@@ -70,8 +71,8 @@ struct TangentialCurveParameters {
   double r = 0.2;      ///< dead-zone half-width ≥ 0 in `scaling` (m/s; paper: 0.4).
   Scaling scaling = Scaling::spec;
 
-  /// The paper's Fig. 9 (r_paper = 0.4, k_T,paper = 0.75, q = 2; normal law k = 4, p = 2 in SPEC's
-  /// scaling), written in `scaling`.
+  /// The paper's Fig. 9 (r_paper = 0.4, k_T,paper = 0.75, q = 2; normal law k = 4, p = 2 in the
+  /// library's scaling), written in `scaling`.
   static TangentialCurveParameters paper_figure(Scaling scaling);
   TangentialCurveParameters in_spec_scaling() const;
   TangentialCurveParameters in_paper_scaling() const;
@@ -87,10 +88,10 @@ struct CurvePoint {
   double P_N_reaction = 0.0;      ///< its reaction part −I_reac ≥ 0 (eq. 16).
   double P_T = 0.0;               ///< tangential percussion (N s).
   double energy_change = 0.0;     ///< T_E − T_A (J), ≤ 0 for an admissible impact (eq. 9).
-  /// Fig. 9: |D_TA| ≤ r (SPEC's scaling), so the law gives no tangential percussion and
+  /// Fig. 9: |D_TA| ≤ r (the library's scaling), so the law gives no tangential percussion and
   /// D_TE = D_TA. Always false for Fig. 8.
   bool in_dead_zone = false;
-  bool admissible = false;               ///< the SPEC §4 certificate holds.
+  bool admissible = false;               ///< the docs/concepts.md certificate holds.
   Inequality failed = Inequality::none;  ///< the first inequality that failed.
   SolverStatus status = SolverStatus::not_run;
 };
@@ -102,9 +103,10 @@ ImpactProblem point_mass_problem(double mass, double D_NA);
 /// q̇_A = (D_TA, D_NA).
 ImpactProblem point_mass_problem(double mass, double D_NA, double D_TA);
 
-/// Frémond's normal law of Fig. 8, φ_N = k|z|^p/p with k in SPEC's scaling.
+/// Frémond's normal law of Fig. 8, φ_N = k|z|^p/p with k in the library's scaling.
 ImpactLaw normal_curve_law(const NormalCurveParameters& parameters);
-/// Frémond's law of Fig. 9: φ_N = k_N|z|^p/p and φ_T = (k_T/q) max(0, |z| − r)^q, SPEC's scaling.
+/// Frémond's law of Fig. 9: φ_N = k_N|z|^p/p and φ_T = (k_T/q) max(0, |z| − r)^q, the library's
+/// scaling.
 ImpactLaw tangential_curve_law(const TangentialCurveParameters& parameters);
 
 /// Fig. 8: one impact per approach speed |D_NA| ≥ 0 (D_NA = −speed). Throws InvalidArgument naming
@@ -120,8 +122,8 @@ std::vector<CurvePoint> tangential_curve(const TangentialCurveParameters& parame
                                          const SolverOptions& options = {});
 
 /// Eq. (24): for p = 2 Frémond's normal law on a point mass is Newton's law with
-/// ε = (k − 2m)/(k + 2m) (SPEC's scaling; the paper's (k_paper − m)/(k_paper + m)), where ε ≥ 0.
-/// Returns ε, negative when k < 2m (then the reaction stops the mass and D_NE = 0). Throws
+/// ε = (k − 2m)/(k + 2m) (the library's scaling; the paper's (k_paper − m)/(k_paper + m)), where ε
+/// ≥ 0. Returns ε, negative when k < 2m (then the reaction stops the mass and D_NE = 0). Throws
 /// InvalidArgument("p", ...) unless p = 2.
 double equivalent_restitution(const NormalCurveParameters& parameters);
 

@@ -1,12 +1,12 @@
 #pragma once
-/// @file The impact-problem file (SPEC §7): one problem and its law as a JSON object, and the JSON
-/// form of a result.
+/// @file The impact-problem file (docs/problem-file.md): one problem and its law as a JSON object,
+/// and the JSON form of a result.
 ///
 /// The reader refuses anything that is not a valid problem, never filling in a default the file
-/// did not ask for: bad JSON, keys SPEC §7 does not list, missing required keys, wrong sizes,
-/// a mass matrix that is not symmetric positive definite, numbers that are not finite, parameters
-/// out of range, unknown law types or potentials. Each refusal is an InvalidArgument whose name()
-/// is the key as the file spells it (`M`, `W_N[2]`, `law.e`, `law.normal.p[1]`, ...).
+/// did not ask for: bad JSON, keys docs/problem-file.md does not list, missing required keys, wrong
+/// sizes, a mass matrix that is not symmetric positive definite, numbers that are not finite,
+/// parameters out of range, unknown law types or potentials. Each refusal is an InvalidArgument
+/// whose name() is the key as the file spells it (`M`, `W_N[2]`, `law.e`, `law.normal.p[1]`, ...).
 ///
 /// Potentials are made by name through a PotentialRegistry passed by the caller (no global state),
 /// so a user's own kinds can be used from a file:
@@ -34,23 +34,23 @@ struct ProblemFile {
   ImpactLaw law;          ///< validated for problem.contacts().
 };
 
-/// Reads an impact-problem file from its text. Keys (SPEC §7): `M` (n×n), `W_N` (n×c), `qdot_A`
-/// (n) and `law` are required; `W_T` (n×c; without it the problem is frictionless and P_T = 0),
-/// `w_N`, `w_T` (c; zero when absent) are optional. Matrices are lists of rows.
-/// Throws InvalidArgument naming the key and the reason; a message without a key (empty input,
-/// a document that is not an object) is named "problem".
+/// Reads an impact-problem file from its text. Keys (docs/problem-file.md): `M` (n×n), `W_N` (n×c),
+/// `qdot_A` (n) and `law` are required; `W_T` (n×c; without it the problem is frictionless and P_T
+/// = 0), `w_N`, `w_T` (c; zero when absent) are optional. Matrices are lists of rows. Throws
+/// InvalidArgument naming the key and the reason; a message without a key (empty input, a document
+/// that is not an object) is named "problem".
 ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry);
 
 /// The same, reading the whole stream first.
 ProblemFile read_problem_file(std::istream& in, const PotentialRegistry& registry);
 
-/// One result as a JSON object: the keys of SPEC §7 (qdot_E, P_N, P_T, D_NA, D_TA, D_NE, D_TE,
-/// energy_change, admissibility, unique, solver) plus P_N_reaction, takes_part, solutions_found,
-/// Poisson's compression phase (P_NC, P_TC, D_NC, D_TC) when the result has it, every field of the
-/// admissibility report and of the solver report. Doubles are printed so that they read back to
-/// the same double; a number that is not finite (e.g. the residual of a solve that did not run) is
-/// printed as null, so the output is always valid JSON.
-/// `indent` < 0 prints one line; otherwise that many spaces per level.
+/// One result as a JSON object: the keys of docs/problem-file.md (qdot_E, P_N, P_T, D_NA, D_TA,
+/// D_NE, D_TE, energy_change, admissibility, unique, solver) plus P_N_reaction, takes_part,
+/// solutions_found, Poisson's compression phase (P_NC, P_TC, D_NC, D_TC) when the result has it,
+/// every field of the admissibility report and of the solver report. Doubles are printed so that
+/// they read back to the same double; a number that is not finite (e.g. the residual of a solve
+/// that did not run) is printed as null, so the output is always valid JSON. `indent` < 0 prints
+/// one line; otherwise that many spaces per level.
 template <int MaxDofs, int MaxContacts>
 std::string result_to_json(const ImpactResultT<MaxDofs, MaxContacts>& result, int indent = -1);
 

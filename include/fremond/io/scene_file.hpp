@@ -21,12 +21,13 @@
 /// SimulationOptions: method, step, max_impacts, max_gap_evaluations, simultaneity_tolerance,
 /// gap_tolerance, velocity_tolerance, accumulation_interval, accumulation_impacts,
 /// return_after_free_steps; the defaults of simulation_options.hpp), output (sample_interval).
-/// The law is read exactly as in the impact-problem file (SPEC §7), with one value per contact in
-/// the order of Scene::contact_count(). Unknown keys, missing keys, wrong types and out-of-range
-/// values are refused with an InvalidArgument naming the key (`body.mass`, `integrator.step`,
-/// `law.e`, ...). So is what every impact of the scene would refuse (Scene::validate): an inertia
-/// more than 1e24 times above or below the mass (named `body.inertia`, or `body` when a shape's
-/// dimensions gave it), and an initial energy or contact velocity beyond double precision
+/// The law is read exactly as in the impact-problem file (docs/problem-file.md), with one value per
+/// contact in the order of Scene::contact_count(). Unknown keys, missing keys, wrong types and
+/// out-of-range values are refused with an InvalidArgument naming the key (`body.mass`,
+/// `integrator.step`, `law.e`, ...). So is what every impact of the scene would refuse
+/// (Scene::validate): an inertia more than 1e24 times above or below the mass (named
+/// `body.inertia`, or `body` when a shape's dimensions gave it), and an initial energy or contact
+/// velocity beyond double precision
 /// (`initial`).
 #include <string>
 #include <string_view>

@@ -1,5 +1,6 @@
 #pragma once
-/// @file The impact laws of SPEC §2: Newton, Poisson (each with or without Coulomb) and Frémond.
+/// @file The impact laws of docs/laws.md: Newton, Poisson (each with or without Coulomb) and
+/// Frémond.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,7 +25,7 @@ LawType law_type_from_string(std::string_view s);
 enum class TangentialLaw {
   none,       ///< no tangential percussion.
   potential,  ///< −P_T ∈ ∂φ_T(z_T), e.g. the viscous dead zone (eq. 25).
-  coulomb,    ///< Coulomb on (P_T, z_T) with bound μ|P_N| (quasi-variational, SPEC §2).
+  coulomb,    ///< Coulomb on (P_T, z_T) with bound μ|P_N| (quasi-variational, docs/laws.md).
 };
 std::string_view to_string(TangentialLaw t);
 TangentialLaw tangential_law_from_string(std::string_view s);

@@ -1,5 +1,5 @@
 #pragma once
-/// @file One impact problem (SPEC §1): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
+/// @file One impact problem (docs/concepts.md): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
 #include <Eigen/Core>
 
 #include "fremond/core/detail/cholesky.hpp"

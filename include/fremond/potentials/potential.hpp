@@ -1,8 +1,8 @@
 #pragma once
-/// @file The interface of a pseudo-potential of dissipation (paper §5.2; SPEC §3).
+/// @file The interface of a pseudo-potential of dissipation (paper §5.2; docs/laws.md).
 ///
 /// A pseudo-potential is a convex, lower semicontinuous function φ: R → R ∪ {+∞}, non-negative and
-/// zero at the origin, of one contact's *mean* velocity z (SPEC §1). The impact law is the
+/// zero at the origin, of one contact's *mean* velocity z (docs/concepts.md). The impact law is the
 /// inclusion −P ∈ ∂φ(z). Solvers use, in this order of preference, the proximal map
 ///     prox_{τφ}(x) = argmin_y  φ(y) + (y − x)²/(2τ)
 /// with its derivative (semismooth Newton), then the subdifferential, then value and one

@@ -1,12 +1,12 @@
 #pragma once
-/// @file φ_N(z) = k|z|^p / p, the normal power law of Frémond's model (paper eq. 22, SPEC §3).
+/// @file φ_N(z) = k|z|^p / p, the normal power law of Frémond's model (paper eq. 22, docs/laws.md).
 #include "fremond/potentials/potential.hpp"
 
 namespace fremond {
 
 /// k|z|^p/p with k ≥ 0, p > 1. ∂φ(z) = k z|z|^{p−2}; φ*(s) = |s|^{p'}/(p' k^{p'−1}), 1/p + 1/p'
 /// = 1. For p = 2 the impact of one point mass m is Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24
-/// in SPEC's scaling).
+/// in the library's scaling).
 class PowerPotential final : public Potential {
  public:
   /// Throws InvalidArgument unless k ≥ 0 and p > 1, both finite.

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Contact kinematics of a planar rigid body against a half-plane (SPEC §1, §5).
+/// @file Contact kinematics of a planar rigid body against a half-plane (docs/concepts.md, §5).
 ///
 /// For a point at body-frame r (radius ρ) and a half-plane with unit normal n and tangent
 /// t = (n_y, −n_x) (t = (1, 0) on the ground), the material contact point is a = R(θ) r − ρ n
@@ -8,7 +8,7 @@
 ///   W_N      = (n_x, n_y, (a × n)_z),   D_N = W_Nᵀ q̇ = ġ,
 ///   W_T      = (t_x, t_y, (a × t)_z),   D_T = W_Tᵀ q̇.
 /// For the paper's bar at θ = π/4 the lower end a = (−l cos θ, −l sin θ) gives
-/// W_N = (0, 1, −l cos θ) and W_T = (1, 0, l sin θ), as in SPEC §5.
+/// W_N = (0, 1, −l cos θ) and W_T = (1, 0, l sin θ), as in the paper's Fig. 1.
 #include <Eigen/Core>
 
 #include "fremond/scenes/scene.hpp"

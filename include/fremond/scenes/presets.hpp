@@ -1,17 +1,18 @@
 #pragma once
-/// @file Ready-made scenes: the paper's bar (SPEC §5), a ball and a rectangular block, each on the
-/// ground y = 0, and the laws the paper compares.
+/// @file Ready-made scenes: the paper's bar (the paper's Fig. 1), a ball and a rectangular block,
+/// each on the ground y = 0, and the laws the paper compares.
 #include <string_view>
 
 #include "fremond/scenes/scene.hpp"
 
 namespace fremond {
 
-/// A uniform bar of length 2l, its two ends as contact points (r = (∓l, 0)), J = m l²/3 (SPEC §5).
-/// Defaults: the paper's bar and initial state (§3): x = 0, ẋ = 2, y = 1, ẏ = 0, θ = π/4, θ̇ = 0.
+/// A uniform bar of length 2l, its two ends as contact points (r = (∓l, 0)), J = m l²/3 (the
+/// paper's Fig. 1). Defaults: the paper's bar and initial state (§3): x = 0, ẋ = 2, y = 1, ẏ = 0, θ
+/// = π/4, θ̇ = 0.
 struct BarParameters {
   double mass = 1.0;         ///< kg
-  double half_length = 0.5;  ///< l (m); the paper does not give it, SPEC §3 fixes 0.5.
+  double half_length = 0.5;  ///< l (m); the paper does not give it, docs/laws.md fixes 0.5.
   double gravity = 9.81;     ///< m/s²
   PlanarState initial{Eigen::Vector3d(0.0, 1.0, 0.78539816339744830962),
                       Eigen::Vector3d(2.0, 0.0, 0.0)};
@@ -40,31 +41,31 @@ struct BlockParameters {
 };
 Scene block_scene(const BlockParameters& block, ImpactLaw law);
 
-/// The five laws of the paper (SPEC §5), by their command-line names.
+/// The five laws of the paper (the paper's Fig. 1), by their command-line names.
 enum class PaperLaw {
   newton,           ///< Newton, e = 0.9, frictionless (§3, Figs. 2-3).
   newton_coulomb,   ///< Newton + Coulomb, e = 0.9, μ = 1 (§4, Figs. 4-5).
   poisson_coulomb,  ///< Poisson + Coulomb, e = 0.9, μ = 1 (§4, Figs. 6-7).
   fremond_coulomb,  ///< Frémond p = 3 + Coulomb on the mean velocity, μ = 1 (§5, Figs. 10-11).
-  fremond_viscous,  ///< Frémond p = 3 + viscous dead zone k_T = 1.5, q = 2, r = 0.2 in SPEC's
-                    ///< scaling (the paper's k_T = 0.75, r = 0.4; §5.4, Figs. 12-13).
+  fremond_viscous,  ///< Frémond p = 3 + viscous dead zone k_T = 1.5, q = 2, r = 0.2 in the
+                    ///< library's scaling (the paper's k_T = 0.75, r = 0.4; §5.4, Figs. 12-13).
 };
 std::string_view to_string(PaperLaw l);
 /// Throws InvalidArgument("law", ...) naming the accepted values.
 PaperLaw paper_law_from_string(std::string_view s);
 
-/// The paper's constants (SPEC §5).
+/// The paper's constants (the paper's Fig. 1).
 struct PaperConstants {
   static constexpr double e = 0.9;
   static constexpr double mu = 1.0;
   static constexpr double p = 3.0;    ///< Frémond's normal exponent.
-  static constexpr double k_T = 1.5;  ///< viscous dead zone, SPEC scaling (paper: 0.75).
+  static constexpr double k_T = 1.5;  ///< viscous dead zone, the library's scaling (paper: 0.75).
   static constexpr double q = 2.0;
-  static constexpr double r = 0.2;  ///< SPEC scaling (paper: 0.4).
+  static constexpr double r = 0.2;  ///< the library's scaling (paper: 0.4).
 };
 
 /// The paper's law with its parameters; `k_N` is Frémond's normal stiffness (unused by the
-/// classical laws). The simulation module computes k_N as SPEC §3 asks (paper_bar_scene()).
+/// classical laws). The simulation module computes k_N as docs/laws.md asks (paper_bar_scene()).
 ImpactLaw paper_law(PaperLaw law, double k_N);
 
 }  // namespace fremond

@@ -1,6 +1,6 @@
 #pragma once
-/// @file A planar rigid body against fixed half-planes: what the paper's scene (Fig. 1, SPEC §5)
-/// needs, and no more.
+/// @file A planar rigid body against fixed half-planes: what the paper's scene (Fig. 1, the paper's
+/// Fig. 1) needs, and no more.
 ///
 /// Coordinates q = (x, y, θ): the centre of mass and the angle of the body frame. Gravity pulls
 /// along −y. A contact is one (point, obstacle) pair; contact k is point k / obstacles, obstacle
@@ -81,7 +81,7 @@ void require_usable_mass_matrix(const std::string& name, double mass, double ine
 /// impact log).
 inline constexpr int kMaxSceneContacts = 16;
 
-/// Total energy ½ q̇ᵀMq̇ + m g y (SPEC §5).
+/// Total energy ½ q̇ᵀMq̇ + m g y (the paper's Fig. 1).
 double energy(const Scene& scene, const PlanarState& state);
 /// Kinetic energy ½ q̇ᵀMq̇.
 double kinetic_energy(const PlanarBody& body, const Eigen::Vector3d& qdot);

@@ -1,6 +1,7 @@
 #pragma once
-/// @file The first impact of a scene, and the calibration of Frémond's normal stiffness that SPEC
-/// §3 asks for: k_N such that at the bar's first impact from the initial state of §5, with the
+/// @file The first impact of a scene, and the calibration of Frémond's normal stiffness the paper
+/// leaves out (docs/concepts.md): k_N such that at the bar's first impact from the paper's initial
+/// state (its §3), with the
 /// normal law alone, the normal restitution −D_NE/D_NA is exactly the paper's e = 0.9 (k_N ≈ 85.36
 /// for p = 3). It is computed at run time, never hard-coded.
 #include <array>
@@ -55,11 +56,11 @@ StiffnessCalibration calibrate_normal_stiffness(const SmallImpactProblem& proble
 /// its first flight cannot be resolved, or the calibration does not converge.
 double first_impact_normal_stiffness(const Scene& scene, double p, double restitution);
 
-/// SPEC §3's k_N for the bar: first_impact_normal_stiffness of the bar of §5 (p = 3,
+/// docs/laws.md's k_N for the bar: first_impact_normal_stiffness of the bar of §5 (p = 3,
 /// restitution e = 0.9).
 double paper_bar_normal_stiffness(const BarParameters& bar = {});
 
-/// The paper's scene (SPEC §5) with one of its laws, Frémond's k_N calibrated as above.
+/// The paper's scene (the paper's Fig. 1) with one of its laws, Frémond's k_N calibrated as above.
 Scene paper_bar_scene(PaperLaw law, const BarParameters& bar = {});
 
 }  // namespace fremond

@@ -3,10 +3,10 @@
 /// of the Moreau–Jean step, and the closing step of an accumulation of impacts.
 ///
 /// Over a step the contacts that stay closed carry the impulse that keeps them closed: Signorini's
-/// condition V_N ≥ 0 ⊥ P_N ≥ 0 (the reaction of SPEC §2) and Coulomb's law with bound μP_N on a
-/// tangential velocity V_T, where each of V_N, V_T is either
+/// condition V_N ≥ 0 ⊥ P_N ≥ 0 (the reaction of docs/laws.md) and Coulomb's law with bound μP_N on
+/// a tangential velocity V_T, where each of V_N, V_T is either
 ///  - the velocity at the end of the step, D_E (a plastic contact; sticking stops the slip), or
-///  - the mean z = (D_before + D_E)/2 (Frémond's variable, SPEC §1).
+///  - the mean z = (D_before + D_E)/2 (Frémond's variable, docs/concepts.md).
 /// The velocities obey M (v⁺ − v_free) = W_N P_N + W_T P_T with v_free = v_before + h M⁻¹ f, and
 /// with midpoint positions the step changes the energy by exactly P·z, z = W(v_before + v⁺)/2
 /// (paper eq. 9 with the work of gravity). Hence:
@@ -72,7 +72,7 @@ double step_energy(const PersistentContactProblem& problem, const PersistentCont
                    double* rounding = nullptr);
 
 /// Solves the step. `warm` (may be null) is the mode of each contact to try first. When no mode
-/// passes the checks (a Painlevé-type case, SPEC §2), `solved` is false and v = v_free.
+/// passes the checks (a Painlevé-type case, docs/laws.md), `solved` is false and v = v_free.
 PersistentContactResult solve_persistent_contact(const PersistentContactProblem& problem,
                                                  const ContactMode* warm = nullptr);
 

@@ -100,7 +100,7 @@ struct ImpactRecord {
   Eigen::Vector3d qdot_A = Eigen::Vector3d::Zero(), qdot_E = Eigen::Vector3d::Zero();
   CVec P_N, P_T, D_NA, D_NE, D_TA, D_TE;
   double energy_A = 0.0, energy_E = 0.0;  ///< total energy just before and just after.
-  bool admissible = true;                 ///< SPEC §4 certificate of the law's answer.
+  bool admissible = true;                 ///< docs/concepts.md certificate of the law's answer.
   Inequality failed = Inequality::none;   ///< the first inequality that failed.
   int failed_contact = -1;                ///< scene contact index of a per-contact failure.
   double violation = 0.0;
@@ -135,7 +135,7 @@ struct SimulationResult {
   double energy_initial = 0.0, energy_final = 0.0;
   long impacts = 0;               ///< impacts with the scene's law (kinds event and time_step).
   long event_impacts = 0;         ///< of which in the event-driven phase.
-  long inadmissible_impacts = 0;  ///< impacts whose SPEC §4 certificate failed.
+  long inadmissible_impacts = 0;  ///< impacts whose docs/concepts.md certificate failed.
   double first_inadmissible_time = std::numeric_limits<double>::quiet_NaN();
   int accumulations = 0;  ///< accumulations of impacts closed.
   double first_accumulation_time = std::numeric_limits<double>::quiet_NaN();  ///< its t∞.

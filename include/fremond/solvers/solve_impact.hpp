@@ -1,6 +1,6 @@
 #pragma once
 /// @file The one entry point for every law: validate → trivial → closed form → Newton → proximal →
-/// NLopt, then the admissibility certificate (SPEC §4) on the answer.
+/// NLopt, then the admissibility certificate (docs/concepts.md) on the answer.
 #include <vector>
 
 #include "fremond/laws/impact_law.hpp"
@@ -17,10 +17,11 @@ namespace fremond {
 /// small form (fits_small) is solved in it: the only allocations are then the result's vectors.
 ///
 /// Contacts that G = WᵀM⁻¹W does not couple (two bodies in one problem) form independent groups,
-/// each solved as a problem of its own, to its own velocity scale (SPEC §1-2: the laws separate).
-/// The report is then the hardest group's (the first not converged, else the one that worked
-/// most): its method, status and message; `iterations` is summed over the groups, `residual` is
-/// the largest group residual, each relative to its group's velocities.
+/// each solved as a problem of its own, to its own velocity scale (docs/concepts.md and
+/// docs/laws.md: the laws separate). The report is then the hardest group's (the first not
+/// converged, else the one that worked most): its method, status and message; `iterations` is
+/// summed over the groups, `residual` is the largest group residual, each relative to its group's
+/// velocities.
 template <int MaxDofs, int MaxContacts>
 ImpactResultT<MaxDofs, MaxContacts> solve_impact(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,

@@ -1,8 +1,8 @@
 #pragma once
-// Private to the library: JSON → library types, shared by the impact-problem reader (SPEC §7) and
-// the scene reader. Every function refuses what it cannot use with InvalidArgument naming the key
-// as the file spells it (`M[1][2]`, `law.normal.p`, `law.e[1]`) and the reason; nothing is filled
-// in silently, and no function here prints.
+// Private to the library: JSON → library types, shared by the impact-problem reader
+// (docs/problem-file.md) and the scene reader. Every function refuses what it cannot use with
+// InvalidArgument naming the key as the file spells it (`M[1][2]`, `law.normal.p`, `law.e[1]`) and
+// the reason; nothing is filled in silently, and no function here prints.
 #include <cstddef>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -51,14 +51,14 @@ double number_from_json(const json& j, const std::string& key);
 std::vector<double> number_or_list(const json& j, const std::string& key, int contacts = -1);
 /// A list of finite numbers.
 VectorX vector_from_json(const json& j, const std::string& key);
-/// A list of rows, each a list of finite numbers, all of one length (SPEC §7: matrices are lists
-/// of rows). `[]` is the 0×0 matrix; `[[], []]` is 2×0.
+/// A list of rows, each a list of finite numbers, all of one length (docs/problem-file.md: matrices
+/// are lists of rows). `[]` is the 0×0 matrix; `[[], []]` is 2×0.
 MatrixX matrix_from_json(const json& j, const std::string& key);
 
-/// An impact law from its JSON object (SPEC §7, `law`): `type` is one of newton, poisson,
-/// newton_coulomb, poisson_coulomb, fremond; e and mu are a number or one per contact; a Frémond
-/// law names its potentials by their registry name ("normal", optional "tangential", which may
-/// also be {"potential": "coulomb", "mu": ...}), every parameter a number or one per contact.
+/// An impact law from its JSON object (docs/problem-file.md, `law`): `type` is one of newton,
+/// poisson, newton_coulomb, poisson_coulomb, fremond; e and mu are a number or one per contact; a
+/// Frémond law names its potentials by their registry name ("normal", optional "tangential", which
+/// may also be {"potential": "coulomb", "mu": ...}), every parameter a number or one per contact.
 /// Keys a law type does not use are refused. Messages are prefixed by `where` (e.g. "law", so
 /// `law.normal.p: must be > 1, got 0.5`). The law is validated for `contacts` contacts.
 ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& registry,

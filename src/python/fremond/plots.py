@@ -71,8 +71,8 @@ def _potential_text(p, scaling_note: bool) -> str:
 def describe_law(law, scaling_note: bool = True) -> str:
     """A human title for an ImpactLaw with its parameters, e.g. 'Newton + Coulomb (e = 0.9, μ = 1)'.
 
-    Frémond's constants are SPEC's (potentials of the mean velocity); with ``scaling_note`` the
-    paper's values (SPEC §3) follow in parentheses.
+    Frémond's constants are the library's (potentials of the mean velocity); with ``scaling_note`` the
+    paper's values (docs/laws.md) follow in parentheses.
     """
     t = law.type
     if t == _f.LawType.newton:
@@ -153,7 +153,7 @@ def _moreau_jean_spans(run):
 def energy_plot(run, ax=None, title=None, label_inadmissible: int = 3, show_initial: bool = True):
     """Energy ½q̇ᵀMq̇ + mgy against time (paper Figs. 3, 5, 7, 11, 13).
 
-    Every impact of the log is marked at its energy after the impact: a green dot when its SPEC §4
+    Every impact of the log is marked at its energy after the impact: a green dot when its docs/concepts.md
     certificate holds, a red cross when it fails, labelled with the inequality that failed and the
     energy it created (the first ``label_inadmissible`` of them). Grey triangles mark closed
     accumulations of impacts; shaded spans are the Moreau-Jean (persistent contact) phase.
@@ -372,7 +372,7 @@ def restitution_plot(curves, ax=None, title=None):
 
 def tangential_plot(curve, ax=None, title=None):
     """D_TE against D_TA for the viscous dead zone (paper Fig. 9), from tangential_curve. The
-    shaded band is the dead zone |D_TA| ≤ r (SPEC's scaling), where D_TE = D_TA; the dotted line is
+    shaded band is the dead zone |D_TA| ≤ r (the library's scaling), where D_TE = D_TA; the dotted line is
     D_TE = D_TA."""
     fig, ax = _new_axes(ax, (7, 5))
     par = curve.parameters

@@ -1,7 +1,7 @@
 #pragma once
-// One phase of a classical impact law in contact space (SPEC §2), and the exact methods that solve
-// it: the closed form for one contact, the LCP by lexicographic Lemke, the enumeration of contact
-// modes, and the choice of the minimum-norm percussion when G is singular.
+// One phase of a classical impact law in contact space (docs/laws.md), and the exact methods that
+// solve it: the closed form for one contact, the LCP by lexicographic Lemke, the enumeration of
+// contact modes, and the choice of the minimum-norm percussion when G is singular.
 //
 // Every classical law is one or two phases of the same form. Unknowns: normal percussions x ≥ 0
 // and tangential percussions t on the a contacts that take part; velocities
@@ -13,7 +13,7 @@
 //  - Newton (eq. 5):   q = ((1 + e)∘D_NA, D_TA), b0 = 0; then P = (x, t), w = D_NE + e D_NA.
 //  - Poisson, compression: q = D_A, b0 = 0; then P_C = (x, t), D_C = D_A + G P_C.
 //  - Poisson, expansion: x = ΔP, q = D_C + G (e∘P_NC, 0), b0 = μ∘e∘P_NC; then
-//    P_E = (e∘P_NC + ΔP, t) (SPEC table: P_NE = e P_NC + ΔP, bound μ P_NE).
+//    P_E = (e∘P_NC + ΔP, t) (docs/laws.md: P_NE = e P_NC + ΔP, bound μ P_NE).
 // Without friction rows (or with zero bounds everywhere) t = 0 and the phase is LCP(G_NN, q_N).
 #include <Eigen/Cholesky>
 #include <Eigen/LU>

@@ -1,5 +1,5 @@
 #pragma once
-// Iterative refinement of a classical law's answer in the contact mode it found (SPEC §2).
+// Iterative refinement of a classical law's answer in the contact mode it found (docs/laws.md).
 //
 // The exact methods solve each mode's linear equations with G = WᵀM⁻¹W as formed in double
 // precision, so their percussions are off by about cond(G)·ε relative. Where W_T is nearly
@@ -59,7 +59,7 @@ struct ModeOffsets {
   Rows cN, cT, cB, target;  ///< cN, cB, target: active contacts; cT: active contacts
 };
 
-/// Poisson's expansion around the compression P_C (SPEC table): P_NE = e P_NC + ΔP with bound
+/// Poisson's expansion around the compression P_C (docs/laws.md): P_NE = e P_NC + ΔP with bound
 /// μ P_NE, so P_N = (1 + e) P_NC + ΔP and P_T = P_TC + t with |t| ≤ μ (P_N − P_NC); target 0.
 template <int N, int C>
 void hold_compression(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,

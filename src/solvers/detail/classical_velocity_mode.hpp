@@ -1,6 +1,6 @@
 #pragma once
 // A classical law's answer solved for its velocities and its percussions together, in one
-// contact mode (SPEC §2, eqs. 5-6 with Coulomb's stick and slip), without M⁻¹.
+// contact mode (docs/laws.md, eqs. 5-6 with Coulomb's stick and slip), without M⁻¹.
 //
 // The unknowns are q̇_E and the mode's free percussions p (the closed normal rows' P_N, the
 // sticking rows' P_T; a sliding row's P_T = s μ P_N is carried by its normal column). The

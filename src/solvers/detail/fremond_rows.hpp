@@ -1,5 +1,5 @@
 #pragma once
-// Frémond's law row by row in contact space (SPEC §2-3), shared by every Frémond solver and by
+// Frémond's law row by row in contact space (docs/laws.md), shared by every Frémond solver and by
 // law_residual: one residual for the law.
 //
 // With z = D_A + G P/2 (the mean velocity, paper eq. 21) each row j obeys −P_j ∈ ∂ψ_j(z_j):
@@ -56,7 +56,7 @@ struct FremondRowsT {
   /// With fixed_modes: the sign σ = ±1 of each contact's P_N held fixed as well, so that the bound
   /// μ|P_N| is the linear μσP_N. Newton on a sliding mode otherwise meets the kink of |P_N| at 0
   /// and can stop there (two contacts, one pulling with P_N = −0.76 and sliding); σ = −1 is the
-  /// pull of Frémond's two-sided normal law (SPEC §2).
+  /// pull of Frémond's two-sided normal law (docs/laws.md).
   /// nullptr: the sign of P_N itself.
   const signed char* fixed_signs = nullptr;
   /// With fixed_modes: each contact's normal row held in one branch of its law too, 0 the law's

@@ -2,16 +2,16 @@
 /// @file Independent groups of contacts, each solved as a problem of its own.
 ///
 /// Where G = Wᵀ M⁻¹ W has no entry between the rows of two sets of contacts (two bodies in one
-/// problem, or contacts whose directions are M⁻¹-orthogonal), every law of SPEC §2 separates: its
-/// equations read D_E = D_A + G P (z = D_A + G P/2 for Frémond's) row by row, and Poisson's phases
-/// and Coulomb's bounds are per contact. Solved together, the stopping tests, the closed forms'
-/// tolerances and Lemke's pivots are relative to the largest velocity of the whole problem, and a
-/// group whose velocities are 1e9 times smaller is answered to that scale only: a body approaching
-/// at 3.7e-10 m/s beside one at 1.5e5 got P_N = 0 and kept approaching (Newton + Coulomb, its
-/// velocities wrong by 4 % of their size), "converged". Each group is therefore solved on its own,
-/// with the contacts of the other groups lifted off (their D_NA made positive through w_N, so that
-/// the contact indices, and the law's per-contact parameters, stay those of the problem), and the
-/// percussions are gathered and written once for the whole problem.
+/// problem, or contacts whose directions are M⁻¹-orthogonal), every law of docs/laws.md separates:
+/// its equations read D_E = D_A + G P (z = D_A + G P/2 for Frémond's) row by row, and Poisson's
+/// phases and Coulomb's bounds are per contact. Solved together, the stopping tests, the closed
+/// forms' tolerances and Lemke's pivots are relative to the largest velocity of the whole problem,
+/// and a group whose velocities are 1e9 times smaller is answered to that scale only: a body
+/// approaching at 3.7e-10 m/s beside one at 1.5e5 got P_N = 0 and kept approaching (Newton +
+/// Coulomb, its velocities wrong by 4 % of their size), "converged". Each group is therefore solved
+/// on its own, with the contacts of the other groups lifted off (their D_NA made positive through
+/// w_N, so that the contact indices, and the law's per-contact parameters, stay those of the
+/// problem), and the percussions are gathered and written once for the whole problem.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -66,7 +66,7 @@ bool coupled_to_first(const ContactSpaceT<N, C>& cs) {
   return true;
 }
 
-/// The law stage (SPEC §2) on one contact space: Frémond's chain or the classical laws.
+/// The law stage (docs/laws.md) on one contact space: Frémond's chain or the classical laws.
 template <int N, int C>
 void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
