@@ -47,6 +47,17 @@ TEST(Conformance, BuiltinsConform) {
   }
 }
 
+TEST(Conformance, KinkedSumsConform) {
+  // k|z|^p/p + c|z| has a kink at 0, where ∂φ(0) = [−c, c]: its prox by bisection returns 2e-29
+  // or −3.9e-21 for the exact 0, and the optimality test must read ∂φ within that rounding.
+  const SumPotential kinked(PowerPotential(10.0, 2.5), AbsoluteValuePotential(0.3));
+  const auto rep = check_potential(kinked);
+  EXPECT_TRUE(rep.ok) << rep.summary();
+  EXPECT_LE(rep.max_prox_optimality, 1e-12);
+  const SumPotential dead(DeadZonePowerPotential(1.5, 2.0, 0.2), AbsoluteValuePotential(0.1));
+  EXPECT_TRUE(check_potential(dead).ok) << check_potential(dead).summary();
+}
+
 TEST(Conformance, CatchesAWrongProx) {
   CallablePotentialParts parts;
   parts.name = "broken";
