@@ -121,9 +121,9 @@ ConformanceReport check_potential(const Potential& f, const ConformanceOptions& 
           // y is the exact prox rounded: s must lie in ∂φ somewhere within y's rounding. ∂φ is
           // monotone, so over [y − δ, y + δ] it spans [lo ∂φ(y − δ), hi ∂φ(y + δ)]; at a kink
           // (|z| at 0) a prox of 2e-29 for the exact 0 then meets the whole interval there.
-          const double delta = 64 * std::numeric_limits<double>::epsilon() *
-                                   (std::fabs(x) + std::fabs(y)) +
-                               std::numeric_limits<double>::denorm_min();
+          const double delta =
+              64 * std::numeric_limits<double>::epsilon() * (std::fabs(x) + std::fabs(y)) +
+              std::numeric_limits<double>::denorm_min();
           Interval near = f.subdifferential(y);
           const Interval below = f.subdifferential(y - delta), above = f.subdifferential(y + delta);
           if (!below.is_empty() && !above.is_empty() && !near.is_empty())
