@@ -165,7 +165,12 @@ ojson result_json(const ImpactResultT<N, C>& r) {
     j["qdot_C"] = numbers(r.qdot_C);
   }
   j["unique"] = r.unique;
-  j["solutions_found"] = r.solutions_found;
+  // 0 means "not counted" (uniqueness decided without listing the solutions): null, so that it
+  // does not read as "no solution" beside "unique": true.
+  if (r.solutions_found > 0)
+    j["solutions_found"] = r.solutions_found;
+  else
+    j["solutions_found"] = nullptr;
   j["admissibility"] = admissibility_json(r.admissibility);
   j["solver"] = solver_json(r.solver);
   return j;
