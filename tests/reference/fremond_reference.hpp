@@ -702,7 +702,8 @@ inline quad consistency(const ContactData& d, const Solution& s, quad vs) {
 inline quad fremond_residual(const Problem& p, const std::vector<PowerLaw>& normal,
                              const std::vector<TangentialLaw>& tangential, const Solution& s) {
   const detail::ContactData d = detail::contact_data(p);
-  const auto [vs, Ps] = detail::scales(d, s);
+  const std::pair<quad, quad> scale_pair = detail::scales(d, s);
+  const quad vs = scale_pair.first, Ps = scale_pair.second;
   quad r = detail::consistency(d, s, vs);
   for (int i = 0; i < d.c; ++i) {
     if (!d.part[i]) {
@@ -754,7 +755,8 @@ inline quad fremond_residual(const Problem& p, const std::vector<PowerLaw>& norm
 /// contacts that take part, |P|/P_s over the others, and the agreement of q̇_E with P.
 inline quad newton_residual(const Problem& p, const QVec& e, const Solution& s) {
   const detail::ContactData d = detail::contact_data(p);
-  const auto [vs, Ps] = detail::scales(d, s);
+  const std::pair<quad, quad> scale_pair = detail::scales(d, s);
+  const quad vs = scale_pair.first, Ps = scale_pair.second;
   quad r = detail::consistency(d, s, vs);
   for (int i = 0; i < d.c; ++i) {
     if (!d.part[i]) {
@@ -1176,7 +1178,8 @@ inline Solution fremond_coulomb_near(const Problem& p, const std::vector<PowerLa
     start.P_T[i] = PT0[i];
   }
   complete(p, d, start);
-  const auto [vs, Ps] = scales(d, start);
+  const std::pair<quad, quad> scale_pair = scales(d, start);
+  const quad vs = scale_pair.first, Ps = scale_pair.second;
   const std::vector<TangentialLaw> tangential = [&] {
     std::vector<TangentialLaw> t;
     for (int i = 0; i < c; ++i) t.push_back(TangentialLaw::coulomb(mu_of(i)));
@@ -1704,7 +1707,8 @@ inline quad classical_residual(const Problem& p, ClassicalLaw law, const QVec& e
                                const Solution& s) {
   using namespace detail;
   const ContactData d = contact_data(p);
-  const auto [vs, Ps] = scales(d, s);
+  const std::pair<quad, quad> scale_pair = scales(d, s);
+  const quad vs = scale_pair.first, Ps = scale_pair.second;
   auto pick_e = [&](int i) { return e.size() == 1 ? e[0] : e.at(i); };
   auto pick_mu = [&](int i) { return mu.empty() ? quad(0) : (mu.size() == 1 ? mu[0] : mu.at(i)); };
   QVec q, DN, DT, DNC, DTC;

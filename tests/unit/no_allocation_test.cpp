@@ -256,7 +256,8 @@ TEST(NoAllocation, ClassicalLawsSmallProblem) {
         opt.check_uniqueness = unique;
         SmallImpactResult r;
         std::string where;
-        const long n = allocations([&] { r = solve_impact(p, law, opt); }, &where);
+        const long n =
+            allocations([&, &p = p, &law = law] { r = solve_impact(p, law, opt); }, &where);
         EXPECT_EQ(n, 0) << lname << " on " << pname << ", check_uniqueness " << unique << " ("
                         << to_string(r.solver.method) << ", " << to_string(r.solver.status)
                         << "): first allocation at\n"
@@ -282,7 +283,7 @@ TEST(NoAllocation, ClassicalModeSolvedForItsVelocities) {
   for (const ImpactLaw& law : {ImpactLaw::newton(e), ImpactLaw::newton_coulomb(e, {0.3, 0.3})}) {
     SmallImpactResult r;
     std::string where;
-    const long n = allocations([&] { r = solve_impact(p, law); }, &where);
+    const long n = allocations([&, &law = law] { r = solve_impact(p, law); }, &where);
     EXPECT_EQ(r.solver.status, SolverStatus::converged) << to_string(law.type);
     EXPECT_EQ(n, 0) << to_string(law.type) << ": first allocation at\n" << where;
   }
@@ -312,7 +313,7 @@ TEST(NoAllocation, HeapStoredSmallProblemAllocatesOnlyItsResult) {
       const ImpactProblem p = to_dynamic(small);
       ImpactResult r;
       std::string where;
-      const long n = allocations([&] { r = solve_impact(p, law); }, &where);
+      const long n = allocations([&, &law = law] { r = solve_impact(p, law); }, &where);
       EXPECT_TRUE(r.ok()) << name;
       EXPECT_GE(heap_blocks(r), 9) << name;
       EXPECT_EQ(n, heap_blocks(r))
