@@ -743,8 +743,10 @@ void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactRes
   both.W_N.topLeftCorner(n, c) = pb.W_N;
   both.W_N.bottomRightCorner(n, c) = pb.W_N;
   both.W_T = Eigen::MatrixXd::Zero(2 * n, 2 * ct);
-  both.W_T.topLeftCorner(n, ct) = pb.W_T;
-  both.W_T.bottomRightCorner(n, ct) = pb.W_T;
+  if (ct > 0) {  // a block of no column offsets a null pointer (UBSan)
+    both.W_T.topLeftCorner(n, ct) = pb.W_T;
+    both.W_T.bottomRightCorner(n, ct) = pb.W_T;
+  }
   auto stack = [](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
     Eigen::VectorXd z(x.size() + y.size());
     z << x, y;
