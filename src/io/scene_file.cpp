@@ -10,6 +10,7 @@
 #include "fremond/core/error.hpp"
 #include "fremond/potentials/detail/validate.hpp"
 #include "fremond/scenes/presets.hpp"
+#include "fremond/simulation/simulate.hpp"
 
 namespace fremond::io {
 
@@ -204,6 +205,7 @@ SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& regis
   s.law = detail::law_from_json(doc["law"], s.contact_count(), registry, "law");
   s.validate();
   o.validate();
+  validate_start(s, o);
   return out;
 }
 

@@ -91,19 +91,7 @@ class Run {
     }
     t_ = 0.0;
     st_ = sc_.initial;
-    // A body that starts inside an obstacle is not a state the laws can start from: no impact
-    // would push it out, and the run would go on buried.
-    const double c = std::cos(st_.q.z()), s = std::sin(st_.q.z());
-    for (int k = 0; k < nc_; ++k) {
-      const double gap = frame(k, st_.q, c, s).gap;
-      if (gap < -opt_.gap_tolerance)
-        throw InvalidArgument("initial", "contact point " + std::to_string(sc_.point_of(k)) +
-                                             " starts " + std::to_string(-gap) +
-                                             " m inside obstacle " +
-                                             std::to_string(sc_.obstacle_of(k)) +
-                                             " (gap below -integrator.gap_tolerance); start the "
-                                             "body on or above the obstacles");
-    }
+    validate_start(sc_, opt_);
   }
 
   SimulationResult go() {
@@ -681,6 +669,20 @@ class Run {
 };
 
 }  // namespace
+
+void validate_start(const Scene& scene, const SimulationOptions& options) {
+  const Eigen::Vector3d& q = scene.initial.q;
+  for (int k = 0; k < scene.contact_count(); ++k) {
+    const double gap = contact_frame(scene, k, q).gap;
+    if (gap < -options.gap_tolerance)
+      throw InvalidArgument("initial", "contact point " + std::to_string(scene.point_of(k)) +
+                                           " starts " + std::to_string(-gap) +
+                                           " m inside obstacle " +
+                                           std::to_string(scene.obstacle_of(k)) +
+                                           " (gap below -integrator.gap_tolerance); start the "
+                                           "body on or above the obstacles");
+  }
+}
 
 SimulationResult simulate(const Scene& scene, const SimulationOptions& options,
                           SimulationObserver* observer) {

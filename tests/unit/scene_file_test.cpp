@@ -140,6 +140,10 @@ TEST(SceneFile, RefusesWhatItsFirstImpactWouldRefuse) {
   expect_refused(R"("half_length": 0.5)", R"("half_length": 1e-13)", "body", "too far apart");
   expect_refused(R"("qdot": [2, 0, 0])", R"("qdot": [2e160, 0, 0])", "initial",
                  "energy 1/2 qdot^T M qdot + m g y overflows");
+  // A start inside the ground (the lower end of the bar at y = 0.2 − 0.354): refused by the
+  // reader, as simulate() refuses it, naming the point, the obstacle and the depth.
+  expect_refused(R"("q": [0, 1, 0.7853981633974483])", R"("q": [0, 0.2, 0.7853981633974483])",
+                 "initial", "contact point 0 starts 0.153553 m inside obstacle 0");
   const auto general = [](const std::string& inertia) {
     return R"({"body": {"mass": 1, "inertia": )" + inertia +
            R"(, "points": [{"r": [1, 0]}]}, "initial": {"q": [0, 1, 0], "qdot": [0, 0, 0]},

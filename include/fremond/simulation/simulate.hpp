@@ -152,6 +152,11 @@ struct SimulationResult {
   }
 };
 
+/// Throws InvalidArgument("initial", ...) when the scene's initial state puts a contact point
+/// inside an obstacle, deeper than options.gap_tolerance: no impact would push it out. simulate()
+/// and the scene-file reader both call it.
+void validate_start(const Scene& scene, const SimulationOptions& options);
+
 /// Runs `scene` (validated on a copy; throws InvalidArgument for an invalid scene or options).
 SimulationResult simulate(const Scene& scene, const SimulationOptions& options,
                           SimulationObserver* observer = nullptr);
