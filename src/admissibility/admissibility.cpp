@@ -369,11 +369,16 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       pb.W_N.cols() == pb.contacts() &&
       (pb.W_T.cols() == 0 || (pb.W_T.rows() == pb.dofs() && pb.W_T.cols() == pb.contacts()));
   if (shapes && pb.qdot_A.size() == pb.dofs()) {
+    // The contacts solve_impact held: every one where a separating contact carries a percussion.
+    bool every = false;
+    for (int i = 0; i < pb.contacts() && i < r.P_N.size() && i < r.D_NA.size(); ++i)
+      every =
+          every || (r.D_NA(i) > 0.0 && (r.P_N(i) != 0.0 || (r.P_T.size() > i && r.P_T(i) != 0.0)));
     detail::ContactSpaceT<N, C> cs;
     detail::build_contact_space(
         pb,
         law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
-        cs);
+        cs, every ? detail::HeldContacts::every : detail::HeldContacts::approaching);
     if (cs.llt.info() == Eigen::Success) {
       rounding = detail::velocity_rounding(cs, r, &percussion);
       g_max = detail::delassus_max(cs);

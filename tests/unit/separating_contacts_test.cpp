@@ -137,5 +137,31 @@ TEST(SeparatingContacts, AnUndrivenLeavingEndChangesNothing) {
   EXPECT_NEAR(newton.D_NE(1), 0.25, 1e-14);
 }
 
+TEST(SeparatingContacts, EveryCertificateHoldsTheSameContacts) {
+  // One dof between two contacts on opposite sides, the second leaving at 4.6e3: held, it stops
+  // the body (q̇_E = 0 to rounding) with reactions of 1e12 that are not unique. The certificate of
+  // solve_impact_all's answer, and the user's check_admissibility, must allow the rounding of the
+  // rows solve_impact held, the separating one included (found by the solver fuzz target).
+  ImpactProblem pb;
+  pb.M = MatrixX::Constant(1, 1, 0.14486888932637201);
+  pb.W_N.resize(1, 2);
+  pb.W_N << -0.46078215337441919, 0.59876868651998061;
+  pb.W_T.resize(1, 2);
+  pb.W_T << -0.76494098002144584, -0.76494098002144584;
+  pb.qdot_A = VectorX::Constant(1, 7636.352270757593);
+  const ImpactLaw law =
+      ImpactLaw::fremond(PowerPotential(0.068688124335027217, 5.2249649865217105));
+  const ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_LE(std::fabs(r.qdot_E(0)), 1e-6 * pb.qdot_A(0));
+  EXPECT_GT(r.P_N(1), 0.0);
+  EXPECT_TRUE(r.admissibility.admissible) << to_string(r.admissibility.failed);
+  const auto again = check_admissibility(pb, law, r);
+  EXPECT_EQ(again.admissible, r.admissibility.admissible);
+  EXPECT_EQ(again.complementarity, r.admissibility.complementarity);
+  for (const ImpactResult& s : solve_impact_all(pb, law))
+    EXPECT_TRUE(s.admissibility.admissible) << to_string(s.admissibility.failed);
+}
+
 }  // namespace
 }  // namespace fremond
