@@ -3,6 +3,7 @@
 #include "fremond/admissibility/admissibility.hpp"
 
 #include "../solvers/detail/fremond_rows.hpp"
+#include "../solvers/detail/separating_contacts.hpp"
 #include "detail/admissibility.hpp"
 #include "fremond/core/detail/cholesky.hpp"
 
@@ -370,10 +371,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       (pb.W_T.cols() == 0 || (pb.W_T.rows() == pb.dofs() && pb.W_T.cols() == pb.contacts()));
   if (shapes && pb.qdot_A.size() == pb.dofs()) {
     // The contacts solve_impact held: every one where a separating contact carries a percussion.
-    bool every = false;
-    for (int i = 0; i < pb.contacts() && i < r.P_N.size() && i < r.D_NA.size(); ++i)
-      every =
-          every || (r.D_NA(i) > 0.0 && (r.P_N(i) != 0.0 || (r.P_T.size() > i && r.P_T(i) != 0.0)));
+    const bool every = detail::stops_a_separating_contact(r);
     detail::ContactSpaceT<N, C> cs;
     detail::build_contact_space(
         pb,

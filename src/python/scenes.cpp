@@ -1,5 +1,5 @@
 // Scenes: a planar rigid body against half-planes, the presets, the paper's bar and laws, and the
-// calibration of Frémond's k_N (docs/laws.md, §5).
+// calibration of Frémond's k_N (docs/concepts.md, the paper's Fig. 1).
 #include <string>
 #include <vector>
 

@@ -1,4 +1,5 @@
-// The driver (docs/laws.md, §4): validate → trivial → law-specific chain → admissibility.
+// The driver (docs/laws.md, docs/concepts.md): validate → trivial → law-specific chain →
+// admissibility.
 #include "fremond/solvers/solve_impact.hpp"
 
 #include <algorithm>
@@ -32,8 +33,7 @@ void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
     return;
   // A reaction that stops a separating contact works on its true mean velocity D_NA/2 > 0: total
   // (15) may then fail for the exact answer, which is the convention's finding, not a failure.
-  for (Eigen::Index i = 0; i < out.D_NA.size(); ++i)
-    if (out.D_NA(i) > 0.0 && (out.P_N(i) != 0.0 || out.P_T(i) != 0.0)) return;
+  if (detail::stops_a_separating_contact(out)) return;
   out.solver.status = SolverStatus::stalled;
   out.solver.message =
       "the answer passes the law's residual test, but its admissibility certificate refuses it "

@@ -1,4 +1,4 @@
-# `fremond impact` with Frémond's law (docs/laws.md, §3), on problems whose answer is known by hand.
+# `fremond impact` with Frémond's law (docs/laws.md), on problems whose answer is known by hand.
 source "$(dirname "$0")/impact_common.bash" "$1"
 
 # p = 2 on a point mass m: Newton's law with ε = (k − 2m)/(k + 2m) (eq. 24 in the library's scaling).

@@ -1,4 +1,4 @@
-# `fremond impact` refuses a mass matrix that is not symmetric positive definite (docs/concepts.md, §7).
+# `fremond impact` refuses a mass matrix that is not symmetric positive definite (docs/problem-file.md).
 source "$(dirname "$0")/impact_common.bash" "$1"
 
 refuse_edit "M not symmetric" "M" "must be symmetric; M[0][1] = 0.5 but M[1][0] = 0" \

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Contact kinematics of a planar rigid body against a half-plane (docs/concepts.md, §5).
+/// @file Contact kinematics of a planar rigid body against a half-plane (the paper's Fig. 1).
 ///
 /// For a point at body-frame r (radius ρ) and a half-plane with unit normal n and tangent
 /// t = (n_y, −n_x) (t = (1, 0) on the ground), the material contact point is a = R(θ) r − ρ n

@@ -17,11 +17,12 @@
 
 namespace fremond::detail {
 
-/// True when some contact has D_NA > 0.
-template <class Vec>
-bool has_separating(const Vec& D_N) {
-  for (Eigen::Index i = 0; i < D_N.size(); ++i)
-    if (D_N(i) > 0.0) return true;
+/// True when a separating contact of the answer `r` carries a percussion: the impact was solved
+/// on every contact, and the reaction that stops it works on D_NA/2 > 0 (docs/concepts.md).
+template <int N, int C>
+bool stops_a_separating_contact(const ImpactResultT<N, C>& r) {
+  for (Eigen::Index i = 0; i < r.D_NA.size() && i < r.P_N.size(); ++i)
+    if (r.D_NA(i) > 0.0 && (r.P_N(i) != 0.0 || (r.P_T.size() > i && r.P_T(i) != 0.0))) return true;
   return false;
 }
 
