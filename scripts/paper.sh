@@ -20,7 +20,7 @@ cmake --build build -j"$(nproc)" --target fremond_cli fremond_python >/dev/null
 mkdir -p "$OUT"
 
 # The data of Figs. 8 and 9, on the grids the figures use (the library's scaling for Fig. 8, the paper's
-# r = 0.4, k_T = 0.75 for Fig. 9; each file says which in its '#' lines).
+# r = 0.4, k_T = 0.75 for Fig. 9; each row names its scaling).
 build/fremond curve normal --p 1.5,2,2.5,3,4 --points 201 --max-speed 5 \
   --out "$OUT/fig08_normal_restitution.csv"
 build/fremond curve tangential --scaling paper --points 301 --max-speed 1.5 \

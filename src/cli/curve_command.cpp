@@ -2,10 +2,10 @@
 // library's curves (include/fremond/curves/curves.hpp), in the library's scaling or the paper's
 // (docs/laws.md).
 //
-// The CSV starts with '#' lines that say which figure, which parameters and which scaling; then one
-// header row and one row per impact. Exit status: 0 written; 1 a value refused (the message names
-// the option, nothing is written); 2 some impact did not converge (the rows are written anyway,
-// with their status).
+// The CSV is one header row and one row per impact, with no comment lines, so that any CSV reader
+// takes it as it is; the scaling and the parameters are columns of every row. Exit status: 0
+// written; 1 a value refused (the message names the option, nothing is written); 2 some impact did
+// not converge (the rows are written anyway, with their status).
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -129,16 +129,6 @@ void write_output(const CommonArguments& a, const std::string& text, const std::
   std::printf("wrote %s: %s\n", a.out.c_str(), what.c_str());
 }
 
-std::string scaling_note(Scaling s) {
-  return s == Scaling::spec
-             ? "scaling: spec (potentials of the mean velocity z = (D_A + D_E)/2, docs/laws.md; "
-               "the "
-               "paper's constants are k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2 r)"
-             : "scaling: paper (eqs. 23 and 25 on D_E + D_A, docs/laws.md; in the library's "
-               "scaling "
-               "k = k_paper 2^(p-1), k_T = k_T,paper 2^(q-1), r = r_paper / 2)";
-}
-
 void run_normal(const NormalArguments& a) {
   std::ostringstream csv;
   std::string summary;
@@ -151,10 +141,8 @@ void run_normal(const NormalArguments& a) {
     if (a.p.empty()) throw InvalidArgument("--p", "needs at least one exponent");
     const std::vector<double> speeds = grid(0.0, max_speed, points);
 
-    csv << "# fremond curve normal (paper Fig. 8): D_NE against |D_NA|, a point mass of "
-        << brief(a.common.mass) << " kg under Frémond's normal law phi_N alone\n";
-    csv << "# " << scaling_note(scaling) << "\n";
     std::ostringstream rows;
+    std::string constants;
     for (std::size_t i = 0; i < a.p.size(); ++i) {
       NormalCurveParameters par;
       par.mass = a.common.mass;
@@ -179,25 +167,23 @@ void run_normal(const NormalArguments& a) {
         throw;
       }
       const NormalCurveParameters s = par.in_spec_scaling(), pp = par.in_paper_scaling();
-      csv << "# p = " << brief(par.p) << ": k = " << brief(s.k) << " (spec) = " << brief(pp.k)
-          << " (paper)";
-      if (par.p == 2.0)
-        csv << "; eq. (24): D_NE = " << brief(std::fmax(equivalent_restitution(par), 0.0))
-            << " |D_NA|";
-      csv << "\n";
+      constants +=
+          "; p = " + brief(par.p) + ": k = " + brief(s.k) + " (spec) = " + brief(pp.k) + " (paper)";
       for (const CurvePoint& pt : curve) {
         all_converged = all_converged && pt.status == SolverStatus::converged;
-        rows << number(par.p) << ',' << number(par.k) << ',' << number(std::fabs(pt.D_NA)) << ','
-             << number(pt.D_NA) << ',' << number(pt.D_NE) << ',' << number(pt.P_N) << ','
-             << number(pt.P_N_reaction) << ',' << number(pt.energy_change) << ','
-             << (pt.admissible ? 1 : 0) << ',' << to_string(pt.failed) << ','
-             << to_string(pt.status) << '\n';
+        rows << to_string(scaling) << ',' << number(par.p) << ',' << number(par.k) << ','
+             << number(std::fabs(pt.D_NA)) << ',' << number(pt.D_NA) << ',' << number(pt.D_NE)
+             << ',' << number(pt.P_N) << ',' << number(pt.P_N_reaction) << ','
+             << number(pt.energy_change) << ',' << (pt.admissible ? 1 : 0) << ','
+             << to_string(pt.failed) << ',' << to_string(pt.status) << '\n';
       }
     }
-    csv << "p,k,abs_D_NA,D_NA,D_NE,P_N,P_N_reaction,energy_change,admissible,failed,status\n"
+    csv << "scaling,p,k,abs_D_NA,D_NA,D_NE,P_N,P_N_reaction,energy_change,admissible,failed,"
+           "status\n"
         << rows.str();
     summary = "Fig. 8 data, " + std::to_string(a.p.size()) + " exponent(s) x " +
-              std::to_string(points) + " speeds, " + std::string(to_string(scaling)) + " scaling";
+              std::to_string(points) + " speeds, " + std::string(to_string(scaling)) + " scaling" +
+              constants;
     write_output(a.common, csv.str(), summary);
   });
   if (!all_converged) {
@@ -237,18 +223,17 @@ void run_tangential(const TangentialArguments& a) {
     }
     const TangentialCurveParameters s = par.in_spec_scaling(), pp = par.in_paper_scaling();
     std::ostringstream csv;
-    csv << "# fremond curve tangential (paper Fig. 9): D_TE against D_TA, a point mass of "
-        << brief(par.mass) << " kg under Frémond's law with the viscous dead zone (eq. 25)\n";
-    csv << "# " << scaling_note(scaling) << "\n";
-    csv << "# tangential: k_T = " << brief(s.k_T) << ", q = " << brief(s.q)
-        << ", r = " << brief(s.r) << " (spec) = k_T " << brief(pp.k_T) << ", r " << brief(pp.r)
-        << " (paper); dead zone |D_TA| <= " << brief(s.r) << " m/s keeps D_TE = D_TA\n";
-    csv << "# normal: k = " << brief(s.k_N) << ", p = " << brief(s.p) << " (spec) = k "
-        << brief(pp.k_N) << " (paper); D_NA = " << brief(par.D_NA) << " m/s\n";
-    csv << "D_TA,D_TE,P_T,D_NA,D_NE,P_N,in_dead_zone,energy_change,admissible,failed,status\n";
+    const std::string constants = "k_T = " + brief(s.k_T) + ", q = " + brief(s.q) +
+                                  ", r = " + brief(s.r) + ", k = " + brief(s.k_N) +
+                                  " (spec) = k_T " + brief(pp.k_T) + ", r " + brief(pp.r) + ", k " +
+                                  brief(pp.k_N) + " (paper)";
+    csv << "scaling,k_T,q,r,k,p,D_TA,D_TE,P_T,D_NA,D_NE,P_N,in_dead_zone,energy_change,admissible,"
+           "failed,status\n";
     for (const CurvePoint& pt : curve) {
       all_converged = all_converged && pt.status == SolverStatus::converged;
-      csv << number(pt.D_TA) << ',' << number(pt.D_TE) << ',' << number(pt.P_T) << ','
+      csv << to_string(scaling) << ',' << number(par.k_T) << ',' << number(par.q) << ','
+          << number(par.r) << ',' << number(par.k_N) << ',' << number(par.p) << ','
+          << number(pt.D_TA) << ',' << number(pt.D_TE) << ',' << number(pt.P_T) << ','
           << number(pt.D_NA) << ',' << number(pt.D_NE) << ',' << number(pt.P_N) << ','
           << (pt.in_dead_zone ? 1 : 0) << ',' << number(pt.energy_change) << ','
           << (pt.admissible ? 1 : 0) << ',' << to_string(pt.failed) << ',' << to_string(pt.status)
@@ -256,7 +241,7 @@ void run_tangential(const TangentialArguments& a) {
     }
     write_output(a.common, csv.str(),
                  "Fig. 9 data, " + std::to_string(points) + " points, " +
-                     std::string(to_string(scaling)) + " scaling");
+                     std::string(to_string(scaling)) + " scaling; " + constants);
   });
   if (!all_converged) {
     std::fprintf(stderr,

@@ -27,24 +27,23 @@ run_curve() {
 }
 
 # check_csv NAME CODE [FILE]: runs the Python statements CODE with `rows` the CSV rows (dicts of
-# floats where a value is a number) of FILE (default: the last output), `comments` its '#' lines,
-# and near(a, b, rel=1e-12, tiny=1e-13).
+# floats where a value is a number) of FILE (default: the last output) and near(a, b, rel=1e-12,
+# tiny=1e-13). The file must be plain CSV: a header row, then rows, no comment lines.
 check_csv() {
   local name=$1 code=$2 file=${3:-$TMP/out}
   if "$PY" - "$file" "$code" 2>"$TMP/pyerr" <<'PYEOF'; then
 import csv, io, math, sys
 text = open(sys.argv[1]).read()
-comments = [l for l in text.splitlines() if l.startswith("#")]
-body = "\n".join(l for l in text.splitlines() if not l.startswith("#"))
+assert not any(l.startswith("#") for l in text.splitlines()), "a comment line in the CSV"
 def number(v):
     try:
         return float(v)
     except ValueError:
         return v
-rows = [{k: number(v) for k, v in r.items()} for r in csv.DictReader(io.StringIO(body))]
+rows = [{k: number(v) for k, v in r.items()} for r in csv.DictReader(io.StringIO(text))]
 def near(a, b, rel=1e-12, tiny=1e-13):
     assert abs(a - b) <= rel * max(abs(a), abs(b)) + tiny, f"{a!r} != {b!r}"
-exec(sys.argv[2], {"rows": rows, "comments": comments, "near": near, "math": math})
+exec(sys.argv[2], {"rows": rows, "near": near, "math": math})
 PYEOF
     pass
   else

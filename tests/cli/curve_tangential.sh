@@ -5,8 +5,7 @@ source "$(dirname "$0")/curve_common.bash" "$1"
 run_curve tangential
 expect_status "default run" 0
 check_csv "defaults: the paper's figure, dead zone |D_TA| <= 0.2" '
-assert any(c.startswith("# scaling: spec") for c in comments), comments
-assert any("k_T = 1.5, q = 2, r = 0.2 (spec) = k_T 0.75, r 0.4 (paper)" in c for c in comments), comments
+assert all((r["scaling"], r["k_T"], r["q"], r["r"], r["k"], r["p"]) == ("spec", 1.5, 2, 0.2, 4, 2) for r in rows)
 assert len(rows) == 201
 inside = [r for r in rows if r["in_dead_zone"] == 1]
 assert len(inside) > 20
@@ -22,14 +21,14 @@ for r in rows:
     if abs(v) > 0.2:
         near(r["D_TE"], (0.25 * v + 0.3 * math.copysign(1, v)) / 1.75)
         near(r["P_T"], r["D_TE"] - v)'
-grep -v '^#' "$TMP/out" >"$TMP/spec.csv"
+cut -d, -f7- "$TMP/out" >"$TMP/spec.csv"
 
-# The same law in the paper's scaling gives the same numbers, and says so.
+# The same law in the paper's scaling gives the same numbers (columns 7 on), and says so.
 run_curve tangential --scaling paper
 expect_status "paper scaling" 0
 check_csv "paper scaling named" '
-assert any(c.startswith("# scaling: paper") for c in comments), comments'
-if diff -q <(grep -v '^#' "$TMP/out") "$TMP/spec.csv" >/dev/null; then
+assert all((r["scaling"], r["k_T"], r["r"], r["k"]) == ("paper", 0.75, 0.4, 2) for r in rows)'
+if diff -q <(cut -d, -f7- "$TMP/out") "$TMP/spec.csv" >/dev/null; then
   pass
 else
   fail "paper scaling: the rows differ from the library's scaling for the same law"
@@ -39,7 +38,7 @@ fi
 run_curve tangential --scaling paper --r 0.8 --kt 2 --q 3 --mass 2 --dna -3 --points 41 --max-speed 2
 expect_status "explicit paper values" 0
 check_csv "explicit paper values" '
-assert any("k_T = 8, q = 3, r = 0.4 (spec) = k_T 2, r 0.8 (paper)" in c for c in comments), comments
+assert all((r["k_T"], r["q"], r["r"]) == (2, 3, 0.8) for r in rows)
 for r in rows:
     assert (r["in_dead_zone"] == 1) == (abs(r["D_TA"]) <= 0.4), r
     assert r["D_NA"] == -3
@@ -48,5 +47,14 @@ for r in rows:
     else:  # m(D_TE − D_TA) = −k_T (|z| − r)² sign z, z = (D_TA + D_TE)/2
         z = (r["D_TA"] + r["D_TE"]) / 2
         near(2 * (r["D_TE"] - r["D_TA"]), -8 * (abs(z) - 0.4) ** 2 * math.copysign(1, z), 1e-10)'
+
+# --out: the file, and one line naming the constants in both scalings.
+run_curve tangential --scaling paper --r 0.8 --kt 2 --q 3 --points 5 --out "$TMP/fig9.csv"
+expect_status "--out" 0
+if grep -qF "k_T = 8, q = 3, r = 0.4, k = 4 (spec) = k_T 2, r 0.8, k 2 (paper)" "$TMP/out"; then
+  pass
+else
+  fail "--out: the line does not give the constants in both scalings: $(cat "$TMP/out")"
+fi
 
 finish
