@@ -3,11 +3,13 @@ changes; Newton + Coulomb's first impact creates energy and is flagged (Fig. 5);
 line for p = 2 is eq. (24); the plotted Fig. 9 points in the dead zone keep D_TE = D_TA; and after
 the main job every figure file exists and is a valid image."""
 import json
+import math
 import sys
 import tempfile
 from pathlib import Path
 
 import matplotlib
+import matplotlib.patches
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -94,6 +96,42 @@ def test_fig9_plotted_dead_zone_points_keep_D_TE():
     x, y = dots.get_xdata(), dots.get_ydata()
     assert len(x) > 10 and np.all(np.abs(x) <= 0.2)
     assert np.array_equal(x, y)
+    plt.close(fig)
+
+
+def _inside(ax, xy):
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    xy = np.atleast_2d(xy)
+    return np.all((xy[:, 0] >= x0) & (xy[:, 0] <= x1) & (xy[:, 1] >= y0) & (xy[:, 1] <= y1))
+
+
+def test_poses_plot_frames_a_ball_on_a_slope():
+    # A ball rolling down a 20° slope through the origin ends over a metre lower than it starts: every
+    # pose, disk included, and the slope under it must lie inside the axes (they used to be fixed
+    # to y >= -0.15 and drew a ball as nothing).
+    a = math.radians(20.0)
+    ball = f.BallParameters()
+    ball.initial = f.PlanarState()
+    ball.initial.q = [0.0, 0.2, 0.0]
+    ball.initial.qdot = [2.0, 0.0, 0.0]
+    scene = f.ball_scene(ball, f.paper_law(f.PaperLaw.fremond_coulomb, 1e4))
+    plane = f.HalfPlane()
+    plane.normal, plane.offset = [math.sin(a), math.cos(a)], 0.0
+    scene.obstacles = [plane]
+    run = f.simulate(scene, f.SimulationOptions(t_end=1.5))
+    q = np.asarray(run.q)
+    assert q[-1, 1] < -1.0, q[-1]  # it went down the slope
+    fig = f.plots.poses_plot(run, scene)
+    ax = fig.axes[0]
+    rho = ball.radius
+    for qi in q[::25]:
+        ring = qi[:2] + rho * np.array([[1, 0], [-1, 0], [0, 1], [0, -1]])
+        assert _inside(ax, ring), (qi, ax.get_xlim(), ax.get_ylim())
+    circles = [p for p in ax.patches if isinstance(p, matplotlib.patches.Circle)]
+    assert len(circles) >= 5 and all(abs(c.get_radius() - rho) < 1e-15 for c in circles)
+    # The slope's edge under the first and the last pose is in view.
+    for x in (q[0, 0], q[-1, 0]):
+        assert _inside(ax, [x, -math.tan(a) * x])
     plt.close(fig)
 
 

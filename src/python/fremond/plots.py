@@ -122,6 +122,73 @@ def body_outline(scene, q):
     return np.array([[x + c * r[0] - s * r[1], y + s * r[0] + c * r[1]] for r in pts])
 
 
+def _frame(scene, q, margin: float = 0.3):
+    """The axes' limits (x_lo, x_hi, y_lo, y_hi) that hold every pose of the run, disks whole, and
+    the obstacles under them, whatever the direction of gravity's ground (slopes, walls)."""
+    if not len(q):
+        return -1.0, 1.0, -0.5, 1.5
+    step = max(1, len(q) // 2000)
+    pts = np.vstack([body_outline(scene, qi) for qi in q[::step]] + [body_outline(scene, q[-1])])
+    reach = max([float(p.radius) for p in scene.body.points] + [0.0])
+    x_lo, x_hi = pts[:, 0].min() - reach, pts[:, 0].max() + reach
+    y_lo, y_hi = pts[:, 1].min() - reach, pts[:, 1].max() + reach
+    for plane in scene.obstacles:  # the obstacle's edge across the body's span, if it is near
+        n = np.asarray(plane.normal, dtype=float)
+        if abs(n[1]) > 1e-12:
+            ys = (plane.offset - n[0] * np.array([x_lo, x_hi])) / n[1]
+            y_lo = min(y_lo, max(ys.min(), y_lo - 1.0))
+            y_hi = max(y_hi, min(ys.max(), y_hi + 1.0))
+    pad = max(margin, 0.1 * max(x_hi - x_lo, y_hi - y_lo))
+    return x_lo - pad, x_hi + pad, y_lo - pad, y_hi + pad
+
+
+def _draw_obstacles(ax, scene, frame):
+    """Each half-plane n·x ≥ offset: its edge, and its forbidden side shaded, within the frame."""
+    x_lo, x_hi, y_lo, y_hi = frame
+    corners = np.array([[x_lo, y_lo], [x_hi, y_lo], [x_hi, y_hi], [x_lo, y_hi]])
+    for plane in scene.obstacles:
+        n = np.asarray(plane.normal, dtype=float)
+        n = n / np.linalg.norm(n)
+        offset = float(plane.offset) / float(np.linalg.norm(plane.normal))
+        # The frame's rectangle clipped to n·x ≤ offset (Sutherland-Hodgman, one edge).
+        inside = corners @ n <= offset
+        poly = []
+        for i in range(4):
+            a, b = corners[i], corners[(i + 1) % 4]
+            if inside[i]:
+                poly.append(a)
+            if inside[i] != inside[(i + 1) % 4]:
+                da, db = a @ n - offset, b @ n - offset
+                poly.append(a + (b - a) * da / (da - db))
+        if len(poly) >= 3:
+            poly = np.array(poly)
+            ax.fill(poly[:, 0], poly[:, 1], color="#d9d9d9", lw=0, zorder=0)
+        t = np.array([-n[1], n[0]])
+        span = 2.0 * (x_hi - x_lo + y_hi - y_lo)
+        edge = np.array([offset * n - span * t, offset * n + span * t])
+        ax.plot(edge[:, 0], edge[:, 1], color="k", lw=1.0, zorder=1)
+
+
+def _draw_pose(ax, scene, q, **style):
+    """The body at configuration q: its outline through the contact points, and its disks."""
+    pts = body_outline(scene, q)
+    closed = np.vstack([pts, pts[:1]]) if len(pts) > 2 else pts
+    if len(pts) > 1:
+        ax.plot(closed[:, 0], closed[:, 1], solid_capstyle="round", **style)
+    for k, p in enumerate(scene.body.points):
+        if p.radius > 0:
+            ax.add_patch(_pyplot().Circle(pts[k], float(p.radius), fill=False,
+                                          color=style.get("color"), lw=style.get("lw", 1.0),
+                                          alpha=style.get("alpha", 1.0)))
+
+
+def _figure_size(frame, height: float, max_width: float):
+    """A width that keeps equal axes readable: the frame's aspect ratio at the given height."""
+    x_lo, x_hi, y_lo, y_hi = frame
+    ratio = (x_hi - x_lo) / max(y_hi - y_lo, 1e-9)
+    return min(max_width, max(4.0, 1.2 + (height - 0.8) * ratio)), height
+
+
 def _pyplot():
     import matplotlib.pyplot as plt
 
@@ -218,17 +285,14 @@ def poses_plot(run, scene, ax=None, title=None, interval: float = 0.075,
     plt = _pyplot()
     t = np.asarray(run.t)
     q = np.asarray(run.q)
-    x_extent = (q[:, 0].min() - 0.7, q[:, 0].max() + 0.7) if len(q) else (-1, 1)
-    fig, ax = _new_axes(ax, (min(16.0, max(6.5, 2.0 + 1.6 * (x_extent[1] - x_extent[0]))), 3.8))
+    frame = _frame(scene, q)
+    fig, ax = _new_axes(ax, _figure_size(frame, 3.8, 16.0))
     cmap = plt.get_cmap("viridis")
     times = np.arange(t[0], t[-1] + 1e-12, interval) if len(t) else []
     t_end = max(float(t[-1]), 1e-12) if len(t) else 1.0
     for tk in times:
         i = min(np.searchsorted(t, tk), len(t) - 1)
-        pts = body_outline(scene, q[i])
-        closed = np.vstack([pts, pts[:1]]) if len(pts) > 2 else pts
-        ax.plot(closed[:, 0], closed[:, 1], color=cmap(tk / t_end), lw=1.4, alpha=0.85,
-                solid_capstyle="round")
+        _draw_pose(ax, scene, q[i], color=cmap(tk / t_end), lw=1.4, alpha=0.85)
     ax.plot(q[:, 0], q[:, 1], color="#444444", lw=0.7, ls=":", label="centre of mass")
     if show_impacts:
         for label, wanted, color, marker in (("contact point at an impact", True, ADMISSIBLE, "o"),
@@ -243,15 +307,10 @@ def poses_plot(run, scene, ax=None, title=None, interval: float = 0.075,
                     ys.append(pts[scene.point_of(k)][1])
             if xs:
                 ax.plot(xs, ys, marker, color=color, ms=5 if wanted else 9, ls="none", label=label)
-    for plane in scene.obstacles:
-        n = np.asarray(plane.normal, dtype=float)
-        if abs(n[1]) > 0.5:  # a floor: draw it across the strip
-            xs = np.array(x_extent)
-            ax.fill_between(xs, (plane.offset - n[0] * xs) / n[1], -0.2, color="#d9d9d9", lw=0)
-            ax.plot(xs, (plane.offset - n[0] * xs) / n[1], color="k", lw=1.0)
+    _draw_obstacles(ax, scene, frame)
     ax.set_aspect("equal")
-    ax.set_xlim(*x_extent)
-    ax.set_ylim(-0.15, max(1.2, float(q[:, 1].max()) + 0.6) if len(q) else 1.5)
+    ax.set_xlim(frame[0], frame[1])
+    ax.set_ylim(frame[2], frame[3])
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, t_end))
@@ -279,16 +338,14 @@ def animate(run, scene, path, title=None, fps: int = 25, speed: float = 1.0, dpi
     q = np.asarray(run.q)
     energy = np.asarray(run.energy)
     frame_t = np.arange(t[0], t[-1] + 1e-12, speed / fps)
-    x_extent = (q[:, 0].min() - 0.7, q[:, 0].max() + 0.7)
-    width = min(12.0, max(6.5, 2.0 + 1.3 * (x_extent[1] - x_extent[0])))
-    fig, ax = plt.subplots(figsize=(width, 3.2), dpi=dpi, layout="constrained")
+    frame = _frame(scene, q)
+    fig, ax = plt.subplots(figsize=_figure_size(frame, 3.2, 12.0), dpi=dpi, layout="constrained")
+    _draw_obstacles(ax, scene, frame)
     ax.set_aspect("equal")
-    ax.set_xlim(*x_extent)
-    ax.set_ylim(-0.15, max(1.2, float(q[:, 1].max()) + 0.5))
+    ax.set_xlim(frame[0], frame[1])
+    ax.set_ylim(frame[2], frame[3])
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.axhspan(-0.2, 0.0, color="#d9d9d9", lw=0)
-    ax.axhline(0.0, color="k", lw=1.0)
     ax.grid(alpha=0.2)
     if title:
         ax.set_title(title, fontsize=9)
@@ -308,6 +365,8 @@ def animate(run, scene, path, title=None, fps: int = 25, speed: float = 1.0, dpi
     impacts = [im for im in run.impacts if im.kind != _f.ImpactKind.accumulation]
     impact_t = np.array([im.t for im in impacts])
     centre_px = pixels(q[:, :2])
+    metre_px = float(to_pixels([[1.0, 0.0]])[0][0] - to_pixels([[0.0, 0.0]])[0][0])
+    disk_px = [float(p.radius) * metre_px for p in scene.body.points]
     width_px = max(2, dpi // 33)
     frames = []
     for tk in frame_t:
@@ -318,7 +377,11 @@ def animate(run, scene, path, title=None, fps: int = 25, speed: float = 1.0, dpi
             draw.line(centre_px[: i + 1], fill="#999999", width=1)
         pts = body_outline(scene, q[i])
         closed = np.vstack([pts, pts[:1]]) if len(pts) > 2 else pts
-        draw.line(pixels(closed), fill="#2c7bb6", width=2 * width_px, joint="curve")
+        if len(pts) > 1:
+            draw.line(pixels(closed), fill="#2c7bb6", width=2 * width_px, joint="curve")
+        for (u, v), r in zip(pixels(pts), disk_px):
+            if r > 0:
+                draw.ellipse([u - r, v - r, u + r, v + r], outline="#2c7bb6", width=2 * width_px)
         recent = np.nonzero((impact_t <= tk) & (impact_t > tk - 3.0 * speed / fps))[0]
         if len(recent):
             im = impacts[recent[-1]]
