@@ -49,8 +49,10 @@ double change_within(const Around& f) {
 // unknown. z = (D_A + D_E)/2 is known to δz ≈ ε·|D| and s to δs ≈ ε·|P|: near z = 0 a potential
 // with p close to 1 (φ ≈ k|z|) turns rounding noise δz into a gap φ(δz) ≈ k·δz comparable to
 // |P|·|D_A| itself (the exact z underflows), which is not a violation of the law.
+double sampled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds);
+
 double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
-  if (!phi.capabilities().conjugate) return 0.0;
+  if (!phi.capabilities().conjugate) return sampled_gap(phi, z, s, energy, dz, ds);
   // A point outside the domain of φ or φ* (an indicator's boundary, |s| ≤ b for b|z|, s = 0 when
   // k = 0) by less than its rounding is taken on the boundary: moved toward 0 by that rounding.
   auto on_domain = [](const auto& f, double& x, double d) {
@@ -104,9 +106,51 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
   return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
 
+// Where y is one of a few points at the scale of z (0 among them), each with the error
+// φ(z) + s (y − z) − φ(y) makes, which a convex φ with s ∈ ∂φ(z) keeps ≤ 0.
+template <class F>
+void for_each_sample(double z, double dz, F&& f) {
+  const double h = std::max(std::fabs(z), 1e3 * dz);
+  for (double y : {0.0, -z, 0.5 * z, 1.5 * z, 2.0 * z, z - h, z + h}) f(y);
+}
+
+// Without a conjugate, φ*(s) ≥ s y − φ(y) for every y bounds the gap from below by
+// φ(z) − φ(y) − s (z − y): sampled at a few points, a potential that is not convex (its slope at
+// z is then no subgradient) or not zero at 0 is caught at the answer. Scaled as scaled_gap; what
+// the rounding of z (dz) and s (ds) can make of each sample is not counted.
+double sampled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
+  const double fz = phi.value(z);
+  if (!std::isfinite(fz) || !std::isfinite(s)) return 0.0;  // the other checks speak for those
+  const double moved = change_within(around([&](double x) { return phi.value(x); }, z, fz, dz));
+  double worst = 0.0;
+  for_each_sample(z, dz, [&](double y) {
+    const double fy = phi.value(y);
+    if (!std::isfinite(fy)) return;
+    const double excess = fz + s * (y - z) - fy;
+    const double terms = std::fabs(fz) + std::fabs(fy) + std::fabs(s * (y - z));
+    const double noise = moved + dz * std::fabs(s) + ds * std::fabs(y - z) + 1e-12 * terms;
+    worst = std::max(worst, std::max(0.0, excess - noise) / (terms + energy + 1e-300));
+  });
+  return worst;
+}
+
 }  // namespace
 
 namespace detail {
+
+bool not_a_pseudo_potential(const Potential& phi, double z) {
+  const double f0 = phi.value(0.0), fz = phi.value(z);
+  if (!std::isfinite(fz)) return false;  // outside the domain: the certificate's finding
+  if (!(std::fabs(f0) <= 1e-12 * std::fabs(fz)) || fz < 0.0) return true;
+  // Midpoint convexity on the points 0, ±z/2, ±z, 3z/2, 2z, each pair to its rounding.
+  auto above_chord = [&](double a, double b) {
+    const double fa = phi.value(a), fb = phi.value(b), fm = phi.value(0.5 * (a + b));
+    return std::isfinite(fa) && std::isfinite(fb) &&
+           fm - 0.5 * (fa + fb) > 1e-9 * (std::fabs(fa) + std::fabs(fb)) + 1e-300;
+  };
+  return above_chord(0.0, z) || above_chord(0.0, 2.0 * z) || above_chord(0.5 * z, 1.5 * z) ||
+         above_chord(-z, z) || above_chord(z, 2.0 * z);
+}
 
 template <int N, int C>
 VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, C>& r,

@@ -144,10 +144,15 @@ void TangentialCurveParameters::validate() const {
 }
 
 ImpactProblem point_mass_problem(double mass, double D_NA) {
+  detail::require_finite_above("mass", mass, 0.0);
+  detail::require_finite("D_NA", D_NA);
   return to_dynamic(small_point_mass(mass, D_NA));
 }
 
 ImpactProblem point_mass_problem(double mass, double D_NA, double D_TA) {
+  detail::require_finite_above("mass", mass, 0.0);
+  detail::require_finite("D_NA", D_NA);
+  detail::require_finite("D_TA", D_TA);
   return to_dynamic(small_point_mass(mass, D_NA, D_TA));
 }
 

@@ -1,5 +1,6 @@
 #include "fremond/laws/impact_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fremond/core/error.hpp"
@@ -7,45 +8,56 @@
 
 namespace fremond {
 
-ImpactLaw ImpactLaw::newton(PerContact e) {
+namespace {
+// A law is refused where it is made: its values (e in [0, 1], μ ≥ 0, potentials present) for
+// as many contacts as its longest list; the count against a problem waits for validate(contacts).
+ImpactLaw checked(ImpactLaw l) {
+  const std::size_t n = std::max({l.e.values.size(), l.mu.values.size(), l.normal.potentials.size(),
+                                  l.tangential_potential.potentials.size(), std::size_t{1}});
+  l.validate(static_cast<int>(n));
+  return l;
+}
+
+ImpactLaw classical(LawType type, PerContact e, PerContact mu) {
   ImpactLaw l;
-  l.type = LawType::newton;
+  l.type = type;
   l.e = std::move(e);
-  return l;
-}
-ImpactLaw ImpactLaw::poisson(PerContact e) {
-  ImpactLaw l = newton(std::move(e));
-  l.type = LawType::poisson;
-  return l;
-}
-ImpactLaw ImpactLaw::newton_coulomb(PerContact e, PerContact mu) {
-  ImpactLaw l = newton(std::move(e));
-  l.type = LawType::newton_coulomb;
   l.mu = std::move(mu);
-  return l;
+  return checked(std::move(l));
 }
-ImpactLaw ImpactLaw::poisson_coulomb(PerContact e, PerContact mu) {
-  ImpactLaw l = newton_coulomb(std::move(e), std::move(mu));
-  l.type = LawType::poisson_coulomb;
-  return l;
-}
-ImpactLaw ImpactLaw::fremond(PerContactPotential normal) {
+
+ImpactLaw fremond_with(TangentialLaw tangential, PerContactPotential normal,
+                       PerContactPotential tangential_potential, PerContact mu) {
   ImpactLaw l;
   l.type = LawType::fremond;
+  l.tangential = tangential;
   l.normal = std::move(normal);
-  return l;
+  l.tangential_potential = std::move(tangential_potential);
+  l.mu = std::move(mu);
+  return checked(std::move(l));
+}
+}  // namespace
+
+ImpactLaw ImpactLaw::newton(PerContact e) {
+  return classical(LawType::newton, std::move(e), {});
+}
+ImpactLaw ImpactLaw::poisson(PerContact e) {
+  return classical(LawType::poisson, std::move(e), {});
+}
+ImpactLaw ImpactLaw::newton_coulomb(PerContact e, PerContact mu) {
+  return classical(LawType::newton_coulomb, std::move(e), std::move(mu));
+}
+ImpactLaw ImpactLaw::poisson_coulomb(PerContact e, PerContact mu) {
+  return classical(LawType::poisson_coulomb, std::move(e), std::move(mu));
+}
+ImpactLaw ImpactLaw::fremond(PerContactPotential normal) {
+  return fremond_with(TangentialLaw::none, std::move(normal), {}, {});
 }
 ImpactLaw ImpactLaw::fremond(PerContactPotential normal, PerContactPotential tangential) {
-  ImpactLaw l = fremond(std::move(normal));
-  l.tangential = TangentialLaw::potential;
-  l.tangential_potential = std::move(tangential);
-  return l;
+  return fremond_with(TangentialLaw::potential, std::move(normal), std::move(tangential), {});
 }
 ImpactLaw ImpactLaw::fremond_coulomb(PerContactPotential normal, PerContact mu) {
-  ImpactLaw l = fremond(std::move(normal));
-  l.tangential = TangentialLaw::coulomb;
-  l.mu = std::move(mu);
-  return l;
+  return fremond_with(TangentialLaw::coulomb, std::move(normal), {}, std::move(mu));
 }
 
 bool ImpactLaw::has_friction() const {

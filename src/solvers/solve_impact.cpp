@@ -34,12 +34,31 @@ void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
   // A reaction that stops a separating contact works on its true mean velocity D_NA/2 > 0: total
   // (15) may then fail for the exact answer, which is the convention's finding, not a failure.
   if (detail::stops_a_separating_contact(out)) return;
+  out.unique = false;
+  // The law dissipates only with pseudo-potentials: a potential that is not one, seen from the
+  // answer, is what the certificate found, and no solver can do better.
+  for (Eigen::Index i = 0; i < out.D_NA.size(); ++i) {
+    if (out.D_NA(i) > 0.0) continue;
+    const int k = static_cast<int>(i);
+    const bool defect =
+        detail::not_a_pseudo_potential(law.normal[k], 0.5 * (out.D_NA(i) + out.D_NE(i))) ||
+        (law.tangential == TangentialLaw::potential &&
+         detail::not_a_pseudo_potential(law.tangential_potential[k],
+                                        0.5 * (out.D_TA(i) + out.D_TE(i))));
+    if (!defect) continue;
+    out.solver.status = SolverStatus::unsupported;
+    out.solver.message =
+        "a potential of the contact admissibility.failed_contact names is not a pseudo-potential "
+        "at the answer (not convex, negative, or not zero at 0): Frémond's law is defined for "
+        "pseudo-potentials only (check_potential tests one)";
+    out.admissibility.failed_contact = k;
+    return;
+  }
   out.solver.status = SolverStatus::stalled;
   out.solver.message =
       "the answer passes the law's residual test, but its admissibility certificate refuses it "
       "(see admissibility.failed); Frémond's law dissipates by construction, so the answer is not "
       "resolved in double precision";
-  out.unique = false;
 }
 }  // namespace
 

@@ -199,6 +199,70 @@ def test_python_potentials_inside_solve_impact():
     near(r.D_NE, [2.0 * 36 / 40])
 
 
+class PyBump(f.Potential):
+    """k z²/(1 + z²): zero at 0 and non-negative, but concave for |z| > 1/√3."""
+
+    def __init__(self, k):
+        f.Potential.__init__(self)
+        self.k = k
+
+    def do_value(self, z):
+        return self.k * z * z / (1 + z * z)
+
+    def do_subgradient(self, z):
+        return 2 * self.k * z / (1 + z * z) ** 2
+
+
+class PyNegative(f.Potential):
+    """−k z²/2: concave and negative."""
+
+    def __init__(self, k):
+        f.Potential.__init__(self)
+        self.k = k
+
+    def do_value(self, z):
+        return -0.5 * self.k * z * z
+
+    def do_subgradient(self, z):
+        return -self.k * z
+
+
+def test_a_potential_that_is_no_pseudo_potential_is_not_an_answer():
+    # Both used to come back converged and admissible (the bump, a stationary point of a non-convex
+    # function) or stalled with a message about double precision (the negative one).
+    for phi in (PyBump(4.0), PyNegative(1.0)):
+        assert not f.check_potential(phi).ok
+        r = f.solve_impact(f.point_mass_problem(1.0, -3.0), f.ImpactLaw.fremond(phi))
+        assert r.solver.status == f.SolverStatus.unsupported, (r.solver.status, r.solver.message)
+        assert "not a pseudo-potential" in r.solver.message
+        assert not r.ok() and not r.admissibility.admissible
+        assert r.admissibility.failed_contact == 0
+    # The bump's answer: D_NE = 0 with P = 3, of which the slope φ'(−3/2) = −48/42.25 is the
+    # potential's part: a stationary point, with φ(0) = 0 below its tangent there.
+    r = f.solve_impact(f.point_mass_problem(1.0, -3.0), f.ImpactLaw.fremond(PyBump(4.0)))
+    assert r.admissibility.failed == f.Inequality.fenchel_young
+    # A convex potential written the same way (value and subgradient only) is still an answer.
+    r = f.solve_impact(f.point_mass_problem(1.0, -2.0), f.ImpactLaw.fremond(PyPower(38.0, 2.0)))
+    assert r.ok() and r.admissibility.admissible, r.solver.message
+    near(r.D_NE, [2.0 * 36 / 40], rel=1e-6)
+
+
+def test_laws_and_point_masses_refuse_bad_values_where_they_are_made():
+    for make, name in ((lambda: f.ImpactLaw.newton_coulomb(0.5, -1.0), "law.mu"),
+                       (lambda: f.ImpactLaw.fremond_coulomb(f.PowerPotential(4, 2), -0.1),
+                        "law.mu"),
+                       (lambda: f.ImpactLaw.newton(1.5), "law.e"),
+                       (lambda: f.ImpactLaw.poisson([0.5, -0.5]), "law.e[1]"),
+                       (lambda: f.point_mass_problem(-1.0, -3.0), "mass"),
+                       (lambda: f.point_mass_problem(1.0, float("nan")), "D_NA")):
+        try:
+            make()
+        except ValueError as e:
+            assert str(e).startswith(name + ":"), str(e)
+        else:
+            raise AssertionError(f"accepted: {name}")
+
+
 def test_python_potential_interface_and_conformance():
     p = PyPowerExact(2.0, 3.0)
     assert p.name == "py_power" and p.describe() == "py_power(k=2.0, p=3.0)"

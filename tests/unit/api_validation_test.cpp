@@ -221,13 +221,18 @@ TEST(ApiValidation, NoContactsIsTrivialOrRefused) {
 // ---------------------------------------------------------------------------------------------
 // solve_impact: the law
 
+// A law's values are refused where it is made; its count against the problem where it is solved.
 TEST(ApiValidation, RestitutionRangeAndNumbers) {
   const ImpactProblem pb = base_problem();
   for (double bad : {kNaN, kInf, -kInf, -1e-300, 1.0 + 1e-15, 2.0})
-    EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(bad)), "law.e") << bad;
-  EXPECT_EQ(solve_refusal(pb, ImpactLaw::poisson(PerContact({0.5, kNaN}))), "law.e[1]");
+    EXPECT_EQ(refusal([&] { (void)ImpactLaw::newton(bad); }), "law.e") << bad;
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw::poisson(PerContact({0.5, kNaN})); }), "law.e[1]");
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw::newton(PerContact(std::vector<double>{})); }), "law.e");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(PerContact({0.5, 0.5, 0.5}))), "law.e");
-  EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(PerContact(std::vector<double>{}))), "law.e");
+  // A law changed after it was made is still checked where it is solved.
+  ImpactLaw law = ImpactLaw::newton(0.5);
+  law.e = PerContact(-0.5);
+  EXPECT_EQ(solve_refusal(pb, law), "law.e");
   // The edges are valid.
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(0.0)), "<none>");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(1.0)), "<none>");
@@ -236,14 +241,25 @@ TEST(ApiValidation, RestitutionRangeAndNumbers) {
 TEST(ApiValidation, FrictionRangeAndNumbers) {
   const ImpactProblem pb = base_problem();
   for (double bad : {kNaN, kInf, -kInf, -1e-300}) {
-    EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, bad)), "law.mu") << bad;
-    EXPECT_EQ(solve_refusal(pb, ImpactLaw::fremond_coulomb(PowerPotential(6, 2), bad)), "law.mu")
+    EXPECT_EQ(refusal([&] { (void)ImpactLaw::newton_coulomb(0.5, bad); }), "law.mu") << bad;
+    EXPECT_EQ(refusal([&] { (void)ImpactLaw::fremond_coulomb(PowerPotential(6, 2), bad); }),
+              "law.mu")
         << bad;
   }
-  EXPECT_EQ(solve_refusal(pb, ImpactLaw::poisson_coulomb(0.5, PerContact({0.1, -1.0}))),
+  EXPECT_EQ(refusal([&] {
+              (void)ImpactLaw::poisson_coulomb(0.5, PerContact({0.1, -1.0}));
+            }),
             "law.mu[1]");
+  // Lists of different lengths cannot fit one problem.
+  EXPECT_EQ(refusal([&] {
+              (void)ImpactLaw::newton_coulomb(PerContact({0.5, 0.5}), PerContact({0.1, 0.1, 0.1}));
+            }),
+            "law.e");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, PerContact({0.1, 0.1, 0.1}))),
             "law.mu");
+  ImpactLaw law = ImpactLaw::newton_coulomb(0.5, 0.1);
+  law.mu = PerContact(-1.0);
+  EXPECT_EQ(solve_refusal(pb, law), "law.mu");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.0)), "<none>");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 1e300)), "<none>");
 }

@@ -97,7 +97,8 @@ struct CurvePoint {
 };
 
 /// The one-contact problem of a point mass of mass m on fixed ground, normal direction only:
-/// q = (y), M = (m), W_N = (1), q̇_A = (D_NA).
+/// q = (y), M = (m), W_N = (1), q̇_A = (D_NA). Throws InvalidArgument naming `mass` unless m > 0
+/// and finite, or a velocity that is not finite.
 ImpactProblem point_mass_problem(double mass, double D_NA);
 /// The same with the tangential direction: q = (x, y), M = m I, W_N = (0, 1), W_T = (1, 0),
 /// q̇_A = (D_TA, D_NA).

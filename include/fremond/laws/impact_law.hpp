@@ -67,6 +67,9 @@ struct ImpactLaw {
   TangentialLaw tangential = TangentialLaw::none;  ///< Frémond's tangential law.
   PerContactPotential tangential_potential;        ///< Frémond with TangentialLaw::potential.
 
+  /// Each factory refuses its values where the law is made (InvalidArgument naming law.e, law.mu,
+  /// law.normal or law.tangential): e in [0, 1], μ ≥ 0 and finite, potentials present, lists of
+  /// one value or of one common length. The count against a problem's contacts is validate()'s.
   static ImpactLaw newton(PerContact e);
   static ImpactLaw poisson(PerContact e);
   static ImpactLaw newton_coulomb(PerContact e, PerContact mu);

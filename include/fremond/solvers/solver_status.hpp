@@ -14,7 +14,9 @@ enum class SolverStatus {
                    ///< the residual is above tolerance.
   no_solution,     ///< the law has no solution for these data (e.g. Painlevé-type Coulomb cases).
   failed,          ///< numerical breakdown (non-finite values); the answer is not usable.
-  unsupported,     ///< the chosen method cannot solve this law with these potentials.
+  unsupported,     ///< the chosen method cannot solve this law with these potentials, or a
+                   ///< potential is not a pseudo-potential (not convex, negative, or φ(0) ≠ 0),
+                   ///< as the certificate finds it at the answer.
 };
 
 /// Which method produced the answer.

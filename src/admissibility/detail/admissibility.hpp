@@ -10,6 +10,12 @@
 
 namespace fremond::detail {
 
+/// True where φ is seen not to be a pseudo-potential (convex, ≥ 0, φ(0) = 0: docs/laws.md) near
+/// an answer's mean velocity z: φ(0) ≠ 0, φ(z) < 0, or φ above a chord between two of the points
+/// 0, ±z, z/2, 3z/2, 2z at its midpoint (beyond rounding). Independent of how well the answer is
+/// solved: built on φ's values alone.
+bool not_a_pseudo_potential(const Potential& phi, double z);
+
 /// Per contact of the problem, how well its velocities D_E (hence z = (D_A + D_E)/2) are known
 /// from rounding alone: 16ε (|D_A,j| + κ(M) Σ_k |G_jk||P_k|) over its rows (G is formed by a
 /// solve with M, accurate to ε κ(M)). With an ill-conditioned G
