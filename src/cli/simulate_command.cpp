@@ -6,7 +6,8 @@
 // names the key or option; nothing written); 2 the run stopped early because an impact or a
 // persistent contact could not be solved, or a free flight's events could not be resolved within
 // the event search's budget (the files are written up to there, and the summary says why); 3 the
-// output could not be written.
+// output could not be written; 128 + the signal (130 for Ctrl-C, 143 for SIGTERM) when interrupted:
+// the run stops where it is and the files hold it up to there.
 //
 // Output files are complete or absent: each is written to a temporary file in DIR and renamed.
 #include <sys/stat.h>
@@ -15,6 +16,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +33,7 @@
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "fremond/simulation/unresisted_slide.hpp"
 #include "output.hpp"
 
 namespace fremond::cli {
@@ -54,8 +57,17 @@ struct SimulateArguments {
   double sample_interval = std::nan("");
   long max_impacts = -1;
   long max_gap_evaluations = -1;
+  long max_rows = 1000000;
   bool no_progress = false;
 };
+
+// The signal that asked the run to stop (SIGINT, SIGTERM), 0 while none did. A second one ends
+// the process at once: the handler restores the default.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void stop_the_run(int sig) {
+  g_stop_signal = sig;
+  std::signal(sig, SIG_DFL);
+}
 
 [[noreturn]] void exit_with(int code) {
   throw CLI::RuntimeError(code);
@@ -72,6 +84,7 @@ struct Setup {
   Scene scene;
   SimulationOptions options;
   std::string name;  // for the summary
+  std::string note;  // said on standard error before the run, when not empty
 };
 
 Setup preset_scene(const std::string& preset, const std::string& law_name) {
@@ -113,7 +126,6 @@ Setup load(const SimulateArguments& a) {
     throw InvalidArgument("--preset", "give a scene file or a preset, not both");
   if (a.scene_file.empty() && a.preset.empty())
     throw InvalidArgument("SCENE", "give a scene file, or --preset paper-bar --law LAW");
-  if (a.out.empty()) throw InvalidArgument("--out", "required: the directory to write into");
   if (!a.preset.empty()) {
     s = preset_scene(a.preset, a.law);
   } else {
@@ -162,6 +174,23 @@ Setup load(const SimulateArguments& a) {
       throw InvalidArgument("--sample-interval", reason);
     throw InvalidArgument(key, reason);
   }
+  if (a.max_rows < 0)
+    throw InvalidArgument("--max-rows",
+                          "must be >= 0 (0: no limit), got " + std::to_string(a.max_rows));
+  // A grid the user did not choose on the command line is made coarser rather than filling the
+  // disk (3,000 s at 1 ms: 3 million rows, 358 MB).
+  if (std::isnan(a.sample_interval) && a.max_rows > 0 &&
+      o.t_end / o.sample_interval > static_cast<double>(a.max_rows)) {
+    const double coarser = o.t_end / static_cast<double>(a.max_rows);
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "rows every %.6g s, not %.6g s, to keep trajectory.csv to %ld rows; "
+                  "--sample-interval or --max-rows 0 keeps the finer grid",
+                  coarser, o.sample_interval, a.max_rows);
+    s.note = buf;
+    o.sample_interval = coarser;
+  }
+  if (a.out.empty()) throw InvalidArgument("--out", "required: the directory to write into");
   return s;
 }
 
@@ -239,6 +268,7 @@ class Recorder final : public SimulationObserver {
     j["why"] = std::string(why);
     phases_.push_back(j);
   }
+  bool stop_requested() override { return g_stop_signal != 0; }
   void on_progress(double t, double t_end) override {
     if (!progress_) return;
     const auto now = std::chrono::steady_clock::now();
@@ -299,6 +329,15 @@ ojson summary_json(const Setup& s, const SimulationResult& r) {
   j["first_accumulation_time"] = number(r.first_accumulation_time);
   j["moreau_jean_steps"] = r.steps;
   j["phase_switches"] = r.phase_switches;
+  const auto slide = unresisted_slide(s.scene, s.options, r);
+  if (slide) {
+    ojson sl;
+    sl["contact"] = slide->contact;
+    sl["D_T"] = number(slide->speed);
+    j["unresisted_slide"] = sl;
+  } else {
+    j["unresisted_slide"] = nullptr;
+  }
   return j;
 }
 
@@ -332,6 +371,12 @@ void print_summary(const Setup& s, const SimulationResult& r, const std::filesys
               r.energy_initial, r.energy_final, r.max_energy_rise);
   std::printf("final state:  q = (%.9g, %.9g, %.9g), qdot = (%.9g, %.9g, %.9g)\n", q.x(), q.y(),
               q.z(), v.x(), v.y(), v.z());
+  if (const auto slide = unresisted_slide(s.scene, s.options, r))
+    std::printf(
+        "sliding:      contact %d slides at D_T = %.6g m/s at the end, and the law puts no "
+        "tangential percussion on that slide (a viscous dead zone |D_T| <= r, or no friction): "
+        "nothing in the model stops it (docs/laws.md)\n",
+        slide->contact, slide->speed);
   std::printf("wrote:        %s (%ld rows), %s (%zu impacts), %s\n",
               (dir / "trajectory.csv").c_str(), rec.rows(), (dir / "impacts.json").c_str(),
               rec.impacts().size(), (dir / "summary.json").c_str());
@@ -352,7 +397,10 @@ void run(const SimulateArguments& args) {
     refuse(e.what());
   }
 
+  if (!setup.note.empty()) std::fprintf(stderr, "fremond simulate: note: %s\n", setup.note.c_str());
   Recorder rec(!args.no_progress);
+  std::signal(SIGINT, stop_the_run);
+  std::signal(SIGTERM, stop_the_run);
   SimulationResult result;
   try {
     result = simulate(setup.scene, setup.options, &rec);
@@ -378,6 +426,13 @@ void run(const SimulateArguments& args) {
     exit_with(kExitWriteFailed);
   }
   print_summary(setup, result, dir, rec);
+  if (result.status == SimulationStatus::interrupted) {
+    std::fprintf(stderr,
+                 "fremond simulate: interrupted at t = %.9g s; the files hold the run up to "
+                 "there\n",
+                 result.t);
+    exit_with(128 + static_cast<int>(g_stop_signal));
+  }
   if (!result.ok()) {
     std::fprintf(stderr, "fremond simulate: the run stopped at t = %.9g s: %s (%s)\n", result.t,
                  std::string(to_string(result.status)).c_str(),
@@ -411,12 +466,16 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--step", args->step, "Moreau-Jean step (s)");
   cmd->add_option("--sample-interval", args->sample_interval,
                   "Interval of the trajectory rows (s); impacts add rows just before and after");
+  cmd->add_option("--max-rows", args->max_rows,
+                  "Without --sample-interval, make the rows coarser than the scene's interval "
+                  "where t_end would need more than this many (0: no limit)")
+      ->capture_default_str();
   cmd->add_flag("--no-progress", args->no_progress, "No progress bar on standard error");
   cmd->footer(
       "Exit status: 0 the run reached its end time (or --max-impacts); 1 input refused (message "
       "on stderr naming the key or option, nothing written); 2 the run stopped early (files "
-      "written up to there, reason on stderr); 3 the output could not be written. Files are "
-      "complete or absent.");
+      "written up to there, reason on stderr); 3 the output could not be written; 130 (Ctrl-C) or "
+      "143 (SIGTERM) interrupted, the files written up to there. Files are complete or absent.");
   cmd->callback([args] { run(*args); });
 }
 

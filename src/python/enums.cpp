@@ -53,7 +53,7 @@ void bind_enums(py::module_& m) {
   using R = SimulationStatus;
   bind_enum<R>(m, "SimulationStatus", doc::kSimulationStatus,
                {R::not_run, R::completed, R::max_impacts, R::impact_failed, R::contact_failed,
-                R::event_search_failed},
+                R::event_search_failed, R::interrupted},
                &simulation_status_from_string);
   using K = ImpactKind;
   bind_enum<K>(m, "ImpactKind", doc::kImpactKind, {K::event, K::time_step, K::accumulation},

@@ -8,6 +8,7 @@
 #include "docstrings.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulation_options.hpp"
+#include "fremond/simulation/unresisted_slide.hpp"
 
 namespace fremond::python {
 
@@ -173,6 +174,26 @@ void bind_simulation(py::module_& m) {
       },
       py::arg("scene"), py::arg("options") = SimulationOptions{},
       py::call_guard<py::gil_scoped_release>(), doc::kSimulate);
+
+  py::class_<UnresistedSlide>(m, "UnresistedSlide",
+                              "A contact sliding at the end of a run where the law puts no "
+                              "tangential percussion on that slide.")
+      .def_readonly("contact", &UnresistedSlide::contact)
+      .def_readonly("speed", &UnresistedSlide::speed)
+      .def("__repr__", [](const UnresistedSlide& u) {
+        return "UnresistedSlide(contact=" + std::to_string(u.contact) +
+               ", speed=" + std::to_string(u.speed) + ")";
+      });
+  m.def(
+      "unresisted_slide",
+      [](const Scene& scene, const SimulationOptions& options, const SimulationResult& result) {
+        return unresisted_slide(scene, options, result);
+      },
+      py::arg("scene"), py::arg("options"), py::arg("result"),
+      "The slide the law does not resist at the end of a run (None if there is none): a contact "
+      "touching, at rest along the normal and sliding where 0 is in the subdifferential of the "
+      "tangential potential at D_T (the viscous dead zone |D_T| <= r), or mu = 0, or no "
+      "friction.");
 }
 
 }  // namespace fremond::python

@@ -153,11 +153,16 @@ class Run {
     }
   }
 
-  void progress() {
-    if (obs_ && t_ >= next_progress_) {
+  // Progress for the observer, and its chance to stop the run; false when it asked to.
+  bool progress() {
+    if (!obs_) return true;
+    if (t_ >= next_progress_) {
       obs_->on_progress(t_, opt_.t_end);
       while (next_progress_ <= t_) next_progress_ += 0.01 * opt_.t_end;
     }
+    if (!obs_->stop_requested()) return true;
+    finish(SimulationStatus::interrupted, "the observer asked the run to stop");
+    return false;
   }
 
   void switch_phase(Phase to, std::string_view why) {
@@ -295,7 +300,7 @@ class Run {
   void event_driven_phase() {
     const double tau = opt_.simultaneity_tolerance;
     while (!stop_ && t_ < opt_.t_end) {
-      progress();
+      if (!progress()) break;
       const FreeFlight flight{t_, st_, sc_.gravity};
       std::array<GapFunction, kMaxC> gap;
       std::array<bool, kMaxC> touching{};
@@ -538,7 +543,7 @@ class Run {
     double cth = std::cos(st_.q.z()), sth = std::sin(st_.q.z());
     std::array<int, kMaxC> active, idx;
     while (!stop_ && t_ < opt_.t_end) {
-      progress();
+      if (!progress()) break;
       // Full steps all use h itself (not a difference of rounded times), so that a step is one
       // fixed map of (q, v); only the last step is shortened to end at t_end.
       double t_next = t0 + static_cast<double>(k + 1) * h;

@@ -16,13 +16,14 @@ constexpr EnumNames<Integrator, 2> kIntegrators{
     {{Integrator::event_driven, "event_driven"}, {Integrator::moreau_jean, "moreau_jean"}}};
 constexpr EnumNames<Phase, 2> kPhases{
     {{Phase::event_driven, "event_driven"}, {Phase::moreau_jean, "moreau_jean"}}};
-constexpr EnumNames<SimulationStatus, 6> kStatus{
+constexpr EnumNames<SimulationStatus, 7> kStatus{
     {{SimulationStatus::not_run, "not_run"},
      {SimulationStatus::completed, "completed"},
      {SimulationStatus::max_impacts, "max_impacts"},
      {SimulationStatus::impact_failed, "impact_failed"},
      {SimulationStatus::contact_failed, "contact_failed"},
-     {SimulationStatus::event_search_failed, "event_search_failed"}}};
+     {SimulationStatus::event_search_failed, "event_search_failed"},
+     {SimulationStatus::interrupted, "interrupted"}}};
 constexpr EnumNames<ImpactKind, 3> kKinds{{{ImpactKind::event, "event"},
                                            {ImpactKind::time_step, "time_step"},
                                            {ImpactKind::accumulation, "accumulation"}}};

@@ -47,6 +47,8 @@ refused "both" "--preset" "not both" "$SCENES/ball_newton.json" --preset paper-b
 refused "unknown preset" "--preset" "unknown preset 'rod'" --preset rod --law newton --out "$TMP/out"
 refused "no law" "--law" "required with --preset" --preset paper-bar --out "$TMP/out"
 refused "unknown law" "--law" "unknown value 'hertz'" --preset paper-bar --law hertz --out "$TMP/out"
+refused "a bad law before a missing --out" "--law" "unknown value 'hertz'" --preset paper-bar --law hertz
+refused "negative --max-rows" "--max-rows" ">= 0" --preset paper-bar --law newton --max-rows -1 --out "$TMP/out"
 refused "law with a file" "--law" "only with --preset" "$SCENES/ball_newton.json" --law newton --out "$TMP/out"
 refused "negative t_end" "--t-end" "> 0" --preset paper-bar --law newton --t-end -1 --out "$TMP/out"
 refused "zero step" "--step" "(0, t_end]" --preset paper-bar --law newton --step 0 --out "$TMP/out"

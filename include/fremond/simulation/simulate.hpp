@@ -66,6 +66,8 @@ enum class SimulationStatus {
   event_search_failed,  ///< a free flight's event search spent options.max_gap_evaluations
                         ///< without deciding where the next event is (the body turns too fast);
                         ///< the run stops at the start of that flight.
+  interrupted,          ///< the observer asked the run to stop (stop_requested()); the state and
+                        ///< everything observed are those of the time it stopped at.
 };
 std::string_view to_string(SimulationStatus s);
 SimulationStatus simulation_status_from_string(std::string_view s);
@@ -123,6 +125,9 @@ class SimulationObserver {
   /// Called at most about a hundred times per run as time advances, and once at the end, for a
   /// progress bar.
   virtual void on_progress(double /*t*/, double /*t_end*/) {}
+  /// Asked before every flight and every Moreau–Jean step: true stops the run there, with status
+  /// interrupted (a user's Ctrl-C, a deadline).
+  virtual bool stop_requested() { return false; }
 };
 
 /// The summary of a run.
