@@ -4,8 +4,10 @@
 // Exit status: 0 solved; 1 input refused (the message names the key; nothing on stdout); 2 the
 // solver did not converge (the result is printed anyway, so the status can be seen); 3 the law has
 // no solution for these data (docs/laws.md; the result is printed, with a message on stderr); 4 the
-// result could not be written to standard output (message on stderr).
+// result could not be written to standard output (message on stderr); 5 with --require-admissible,
+// an inadmissible answer; 6 no answer within --time-limit (nothing on stdout).
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
@@ -21,6 +24,7 @@
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "output.hpp"
+#include "watchdog.hpp"
 
 namespace fremond::cli {
 
@@ -31,6 +35,7 @@ constexpr int kExitNotConverged = 2;
 constexpr int kExitNoSolution = 3;
 constexpr int kExitWriteFailed = 4;
 constexpr int kExitInadmissible = 5;
+constexpr int kExitTimeLimit = 6;
 
 struct ImpactArguments {
   std::string file;
@@ -39,6 +44,7 @@ struct ImpactArguments {
   double tolerance = SolverOptions{}.tolerance;
   bool pretty = false;
   bool require_admissible = false;
+  double time_limit = 0.0;  // seconds; 0: none
 };
 
 // The input's name in messages.
@@ -68,6 +74,10 @@ SolverOptions solver_options(const ImpactArguments& args) {
     throw InvalidArgument("--method", std::string(e.what()).substr(e.name().size() + 2));
   }
   options.tolerance = args.tolerance;
+  if (!(args.time_limit >= 0.0) || !std::isfinite(args.time_limit))
+    throw InvalidArgument("--time-limit",
+                          "must be a finite number of seconds >= 0 (0: none), got " +
+                              std::to_string(args.time_limit));
   std::string why;
   if (!options.is_valid(&why))
     throw InvalidArgument("--" + why.substr(0, why.find(':')), why.substr(why.find(':') + 2));
@@ -121,9 +131,14 @@ void run(const ImpactArguments& args) {
     exit_with(kExitRefused);
   }
   const int indent = args.pretty ? 2 : -1;
+  const std::string size = std::to_string(file.problem.contacts()) + " contacts, " +
+                           std::to_string(file.problem.dofs()) + " dofs, " + file.law.describe();
+  std::optional<Watchdog> watchdog;
+  watchdog.emplace("fremond impact", size, args.time_limit, kExitTimeLimit);
 
   if (args.all_solutions) {
     const auto all = solve_impact_all(file.problem, file.law, options);
+    watchdog.reset();
     print(io::solutions_to_json(all, indent));
     if (all.empty()) {
       std::fprintf(stderr, "fremond impact: the law has no solution for these data (%s)\n",
@@ -142,6 +157,7 @@ void run(const ImpactArguments& args) {
   }
 
   const auto result = solve_impact(file.problem, file.law, options);
+  watchdog.reset();
   print(io::result_to_json(result, indent));
   if (result.solver.status == SolverStatus::no_solution) {
     std::fprintf(stderr, "fremond impact: the law has no solution for these data (%s)\n",
@@ -175,6 +191,10 @@ void add_impact_command(CLI::App& app) {
                   "Relative tolerance on the law's residual, in [1e-16, 1e-2]")
       ->capture_default_str();
   cmd->add_flag("--pretty", args->pretty, "Indent the JSON output");
+  cmd->add_option("--time-limit", args->time_limit,
+                  "Seconds the solve may take (0: no limit); past it, exit status 6 and nothing "
+                  "on stdout. A note on stderr says the solve is still running after 1, 2, 4, "
+                  "... s");
   cmd->add_flag("--require-admissible", args->require_admissible,
                 "Exit with status 5 when the answer fails its admissibility certificate "
                 "(inequalities 15-19; the result is printed anyway)");
@@ -184,7 +204,8 @@ void add_impact_command(CLI::App& app) {
       "3 the law has no solution for these data (the result is printed, message on stderr); "
       "4 the result could not be written; 5 with --require-admissible, the answer is not "
       "admissible "
-      "(a note on stderr says which inequality fails, with or without the flag).");
+      "(a note on stderr says which inequality fails, with or without the flag); 6 no answer "
+      "within --time-limit (nothing on stdout).");
   cmd->callback([args] { run(*args); });
 }
 

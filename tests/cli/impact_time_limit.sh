@@ -1,0 +1,60 @@
+# `fremond impact --time-limit`: a solve that runs long says so on stderr (after 1 s, then 2, 4, ...)
+# and, past its limit, stops with exit status 6 and nothing on stdout. A bad limit is refused.
+set -u
+FREMOND=${1:?usage: bash impact_time_limit.sh path/to/fremond}
+PY=/usr/bin/python3
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+checks=0
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+pass() { checks=$((checks + 1)); }
+
+# 400 contacts on 800 dofs, dense random directions, Newton + Coulomb: Lemke runs about 6 s on this
+# machine (and fails, which does not matter here).
+"$PY" - "$TMP/big.json" <<'PYEOF'
+import json, random, sys
+random.seed(1)
+c, n = 400, 800
+W_N = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
+W_T = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
+M = [[1.0 if i == j else 0.0 for j in range(n)] for i in range(n)]
+q = [random.gauss(0, 1) for _ in range(n)]
+json.dump({"M": M, "W_N": W_N, "W_T": W_T, "qdot_A": q,
+           "law": {"type": "newton_coulomb", "e": 0.5, "mu": 0.5}}, open(sys.argv[1], "w"))
+PYEOF
+
+"$FREMOND" impact "$TMP/big.json" --time-limit 1.5 >"$TMP/out" 2>"$TMP/err"
+rc=$?
+[ "$rc" -eq 6 ] && pass || fail "exit status $rc, expected 6: $(cat "$TMP/err")"
+[ ! -s "$TMP/out" ] && pass || fail "printed on stdout: $(head -c 200 "$TMP/out")"
+grep -qF "still solving after 1 s (400 contacts, 800 dofs, newton_coulomb" "$TMP/err" && pass ||
+  fail "no note after 1 s: $(cat "$TMP/err")"
+grep -qF "error: no answer within --time-limit 1.5 s" "$TMP/err" && pass ||
+  fail "no message at the limit: $(cat "$TMP/err")"
+
+for bad in -1 nan inf; do
+  "$FREMOND" impact "$TMP/big.json" --time-limit "$bad" >"$TMP/out" 2>"$TMP/err"
+  rc=$?
+  if [ "$rc" -eq 1 ] && grep -qF -- "--time-limit: " "$TMP/err" && [ ! -s "$TMP/out" ]; then
+    pass
+  else
+    fail "--time-limit $bad: exit status $rc, stderr: $(cat "$TMP/err")"
+  fi
+done
+
+# A quick solve with a limit is untouched: exit 0, no note.
+echo '{"M": [[1]], "W_N": [[1]], "qdot_A": [-1], "law": {"type": "newton", "e": 0.5}}' >"$TMP/small.json"
+"$FREMOND" impact "$TMP/small.json" --time-limit 60 >"$TMP/out" 2>"$TMP/err"
+rc=$?
+if [ "$rc" -eq 0 ] && [ ! -s "$TMP/err" ] && grep -qF '"qdot_E":[0.5]' "$TMP/out"; then
+  pass
+else
+  fail "small problem: exit status $rc, stderr: $(cat "$TMP/err"), stdout: $(head -c 200 "$TMP/out")"
+fi
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures check(s) failed, $checks passed" >&2
+  exit 1
+fi
+echo "all $checks checks passed"
