@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The performance report from the files scripts/perf-report.sh leaves in its output directory.
 
-    /usr/bin/python3 bench/plot_report.py out/perf [--readme README.md]
+    /usr/bin/python3 bench/plot_report.py out/perf [--docs docs/performance.md]
 
 Reads the Google Benchmark JSON files (*_bench.json), the work-precision CSVs (work_precision.csv,
 simulation_work_precision.csv) and machine.txt, and writes into the same directory:
@@ -20,8 +20,8 @@ simulation_work_precision.csv) and machine.txt, and writes into the same directo
     the work-precision summary with the reason wherever a method stops short of 1e-14, scaling,
     throughput, simulation).
 
-With --readme, the "## Performance" section of the README is replaced by the report's summary and
-the plots (copied to docs/perf/ next to the README). Uses the standard library and matplotlib.
+With --docs, the performance page (docs/performance.md) is rewritten from the report's summary, with
+the plots copied to docs/perf/. Uses the standard library and matplotlib.
 """
 import argparse
 import csv
@@ -759,20 +759,10 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
     return text
 
 
-def update_readme(readme, outdir, report):
-    """Replaces the README's "## Performance" section by the report's machine, targets, Siconos and
-    work-precision summary, with the plots copied to docs/perf/."""
-    with open(readme, encoding="utf-8") as f:
-        text = f.read()
-    # The heading's own line only: `\s*$` would also swallow the blank lines after it, and each
-    # rewrite would then add one.
-    m = re.search(r"^## Performance[ \t]*$", text, flags=re.M)
-    if not m:
-        print(f"{readme}: no '## Performance' section; left unchanged", file=sys.stderr)
-        return
-    nxt = re.search(r"^## ", text[m.end():], flags=re.M)
-    end = m.end() + nxt.start() if nxt else len(text)
-    docs = os.path.join(os.path.dirname(os.path.abspath(readme)), "docs", "perf")
+def update_docs(page, outdir, report):
+    """Rewrites the performance page (docs/performance.md) from the report's machine, targets,
+    Siconos and work-precision sections, with the plots copied to perf/ beside the page."""
+    docs = os.path.join(os.path.dirname(os.path.abspath(page)), "perf")
     os.makedirs(docs, exist_ok=True)
     for png in ("work_precision_summary.png", "scaling.png", "simulation_work_precision.png"):
         if os.path.exists(os.path.join(outdir, png)):
@@ -780,21 +770,22 @@ def update_readme(readme, outdir, report):
     keep = []
     for sec in re.split(r"(?=^## )", report, flags=re.M):
         if sec.startswith(("## Machine", "## Targets", "## Against Siconos", "## Work-precision")):
-            keep.append(sec.replace("](work_precision_summary.png)", "](docs/perf/work_precision_summary.png)")
+            keep.append(sec.replace("](work_precision_summary.png)", "](perf/work_precision_summary.png)")
                         .replace("![work-precision, every case](work_precision.png)\n", ""))
-    body = ("\n`bash scripts/perf-report.sh` regenerates everything below (and more: scaling, "
-            "throughput, the simulation's work-precision, every CSV) into `out/perf/`; "
-            "`--readme` rewrites this section from it.\n\n" +
-            "\n".join(s.replace("## ", "### ", 1) for s in keep) +
-            "![scaling](docs/perf/scaling.png)\n\n![simulation](docs/perf/simulation_work_precision.png)\n\n")
-    with open(readme, "w", encoding="utf-8") as f:
-        f.write(text[:m.end()] + "\n" + body + text[end:])
+    text = ("# Performance\n\nThe figures below were measured on the machine described under "
+            "\"Machine\". `bash\nscripts/perf-report.sh` regenerates all of them (and more: "
+            "scaling, throughput, the simulation's\nwork-precision, every CSV, the plots) into "
+            "`out/perf/`; `--quick` runs a shorter version,\n`--docs` rewrites this page.\n\n" +
+            "\n".join(keep) +
+            "![scaling](perf/scaling.png)\n\n![simulation](perf/simulation_work_precision.png)\n")
+    with open(page, "w", encoding="utf-8") as f:
+        f.write(text)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("outdir")
-    ap.add_argument("--readme", help="README.md whose Performance section to rewrite")
+    ap.add_argument("--docs", help="the performance page (docs/performance.md) to rewrite")
     args = ap.parse_args(argv)
     runs, contexts = load_benchmarks(args.outdir)
     wp = read_csv(os.path.join(args.outdir, "work_precision.csv"))
@@ -806,8 +797,8 @@ def main(argv=None):
     plot_scaling(args.outdir, runs)
     plot_simulation(args.outdir, sim)
     report = write_report(args.outdir, runs, contexts, wp, sim, pairs, cases)
-    if args.readme:
-        update_readme(args.readme, args.outdir, report)
+    if args.docs:
+        update_docs(args.docs, args.outdir, report)
     print(f"wrote {args.outdir}/report.md")
     return 0
 

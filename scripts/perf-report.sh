@@ -9,10 +9,9 @@
 #   simulation_work_precision.csv  Moreau-Jean against the step, vs the event-driven run (and Siconos)
 #   *.png, report.md             the plots and the Markdown report, with the machine (machine.txt)
 #
-# Usage: bash scripts/perf-report.sh [--quick] [--readme] [--out DIR] [--build DIR] [--jobs N]
+# Usage: bash scripts/perf-report.sh [--quick] [--docs] [--out DIR] [--build DIR] [--jobs N]
 #   --quick   short timings and a reduced sweep (minutes less; figures not for publication)
-#   --readme  also rewrite README.md's "## Performance" section from the report (plots copied
-#             to docs/perf/)
+#   --docs    also rewrite docs/performance.md from the report (plots copied to docs/perf/)
 # Run it on a quiet machine: every figure is a time, and the report records the load average
 # before and after.
 set -euo pipefail
@@ -22,11 +21,11 @@ out=out/perf
 build=build-perf
 jobs=2
 quick=0
-readme=0
+docs=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
-    --readme) readme=1 ;;
+    --docs) docs=1 ;;
     --out) out="$2"; shift ;;
     --build) build="$2"; shift ;;
     --jobs) jobs="$2"; shift ;;
@@ -78,8 +77,8 @@ echo "load avg:  $(load) after the runs" >> "$out/machine.txt"
 echo "== report"
 /usr/bin/python3 bench/compare.py "$out"/*_bench.json > "$out/siconos_compare.txt" || true
 /usr/bin/python3 tests/perf/check_report.py "$out"
-if [ $readme = 1 ]; then
-  /usr/bin/python3 bench/plot_report.py "$out" --readme README.md
+if [ $docs = 1 ]; then
+  /usr/bin/python3 bench/plot_report.py "$out" --docs docs/performance.md
 else
   /usr/bin/python3 bench/plot_report.py "$out"
 fi
