@@ -198,7 +198,7 @@ def main(argv=None):
     save(f.plots.tangential_plot(
         tcurve, title="Fig. 9: viscous dead zone on a point mass (m = 1 kg), D_TE against D_TA\n"
                       "paper's r = 0.4, k_T = 0.75, q = 2 (the library's r = 0.2, k_T = 1.5)\n"
-                      f"normal law fixed: k = {fig9.in_spec_scaling().k_N:g}, p = {fig9.p:g}, "
+                      f"normal law fixed: k = {fig9.in_library_scaling().k_N:g}, p = {fig9.p:g}, "
                       f"D_NA = {fig9.D_NA:g} m/s"),
         "fig09_tangential_dead_zone.png")
 

@@ -32,7 +32,7 @@ constexpr int kExitNotConverged = 2;
 
 // What both curves share on the command line.
 struct CommonArguments {
-  std::string scaling = "spec";
+  std::string scaling = "library";
   double mass = 1.0;
   int points = 0;  // 0: the curve's default
   std::optional<double> max_speed;
@@ -155,7 +155,7 @@ void run_normal(const NormalArguments& a) {
       } else {
         NormalCurveParameters spec;
         spec.p = par.p;
-        par.k = scaling == Scaling::spec ? spec.k : spec.in_paper_scaling().k;
+        par.k = scaling == Scaling::library ? spec.k : spec.in_paper_scaling().k;
       }
       std::vector<CurvePoint> curve;
       try {
@@ -166,9 +166,9 @@ void run_normal(const NormalArguments& a) {
         if (e.name() == "p") throw as_option(e, "--p");
         throw;
       }
-      const NormalCurveParameters s = par.in_spec_scaling(), pp = par.in_paper_scaling();
-      constants +=
-          "; p = " + brief(par.p) + ": k = " + brief(s.k) + " (spec) = " + brief(pp.k) + " (paper)";
+      const NormalCurveParameters s = par.in_library_scaling(), pp = par.in_paper_scaling();
+      constants += "; p = " + brief(par.p) + ": k = " + brief(s.k) + " (library) = " + brief(pp.k) +
+                   " (paper)";
       for (const CurvePoint& pt : curve) {
         all_converged = all_converged && pt.status == SolverStatus::converged;
         rows << to_string(scaling) << ',' << number(par.p) << ',' << number(par.k) << ','
@@ -201,11 +201,11 @@ void run_tangential(const TangentialArguments& a) {
     check_common(a.common, 201, 1.0, points, max_speed);
     // Defaults: the paper's Fig. 9 (with the exponents given), written in the chosen scaling, so
     // that leaving a stiffness out means the same law in either scaling.
-    TangentialCurveParameters spec = TangentialCurveParameters::paper_figure(Scaling::spec);
+    TangentialCurveParameters spec = TangentialCurveParameters::paper_figure(Scaling::library);
     spec.mass = a.common.mass;
     if (a.p) spec.p = *a.p;
     if (a.q) spec.q = *a.q;
-    TangentialCurveParameters par = scaling == Scaling::spec ? spec : spec.in_paper_scaling();
+    TangentialCurveParameters par = scaling == Scaling::library ? spec : spec.in_paper_scaling();
     if (a.k_N) par.k_N = *a.k_N;
     if (a.D_NA) par.D_NA = *a.D_NA;
     if (a.k_T) par.k_T = *a.k_T;
@@ -221,12 +221,12 @@ void run_tangential(const TangentialArguments& a) {
         if (e.name() == name) throw as_option(e, option);
       throw;
     }
-    const TangentialCurveParameters s = par.in_spec_scaling(), pp = par.in_paper_scaling();
+    const TangentialCurveParameters s = par.in_library_scaling(), pp = par.in_paper_scaling();
     std::ostringstream csv;
     const std::string constants = "k_T = " + brief(s.k_T) + ", q = " + brief(s.q) +
                                   ", r = " + brief(s.r) + ", k = " + brief(s.k_N) +
-                                  " (spec) = k_T " + brief(pp.k_T) + ", r " + brief(pp.r) + ", k " +
-                                  brief(pp.k_N) + " (paper)";
+                                  " (library) = k_T " + brief(pp.k_T) + ", r " + brief(pp.r) +
+                                  ", k " + brief(pp.k_N) + " (paper)";
     csv << "scaling,k_T,q,r,k,p,D_TA,D_TE,P_T,D_NA,D_NE,P_N,in_dead_zone,energy_change,admissible,"
            "failed,status\n";
     for (const CurvePoint& pt : curve) {
@@ -253,7 +253,7 @@ void run_tangential(const TangentialArguments& a) {
 void add_common(CLI::App* cmd, CommonArguments& a, const char* points_help,
                 const char* max_speed_help) {
   cmd->add_option("--scaling", a.scaling,
-                  "Scaling of k, k_T, r: spec (potentials of the mean velocity) or paper "
+                  "Scaling of k, k_T, r: library (potentials of the mean velocity) or paper "
                   "(k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2 r; docs/laws.md)")
       ->capture_default_str();
   cmd->add_option("--mass", a.mass, "Mass of the point (kg), > 0")->capture_default_str();

@@ -16,7 +16,7 @@ namespace fremond {
 namespace {
 
 constexpr detail::EnumNames<Scaling, 2> kScalings{
-    {{Scaling::spec, "spec"}, {Scaling::paper, "paper"}}};
+    {{Scaling::library, "library"}, {Scaling::paper, "paper"}}};
 
 // docs/laws.md: the paper applies its potentials to D_E + D_A = 2z, so a paper constant c of a term
 // |2z|^p equals ours times 2^(1−p) once the 1/p of the library's φ is matched by the paper's
@@ -25,7 +25,7 @@ constexpr detail::EnumNames<Scaling, 2> kScalings{
 double to_paper_stiffness(double k, double exponent) {
   return k * std::exp2(1.0 - exponent);
 }
-double to_spec_stiffness(double k_paper, double exponent) {
+double to_library_stiffness(double k_paper, double exponent) {
   return k_paper * std::exp2(exponent - 1.0);
 }
 
@@ -83,16 +83,16 @@ Scaling scaling_from_string(std::string_view s) {
   return detail::enum_from_string(kScalings, s, "scaling");
 }
 
-NormalCurveParameters NormalCurveParameters::in_spec_scaling() const {
+NormalCurveParameters NormalCurveParameters::in_library_scaling() const {
   NormalCurveParameters out = *this;
-  if (scaling == Scaling::paper) out.k = to_spec_stiffness(k, p);
-  out.scaling = Scaling::spec;
+  if (scaling == Scaling::paper) out.k = to_library_stiffness(k, p);
+  out.scaling = Scaling::library;
   return out;
 }
 
 NormalCurveParameters NormalCurveParameters::in_paper_scaling() const {
   NormalCurveParameters out = *this;
-  if (scaling == Scaling::spec) out.k = to_paper_stiffness(k, p);
+  if (scaling == Scaling::library) out.k = to_paper_stiffness(k, p);
   out.scaling = Scaling::paper;
   return out;
 }
@@ -105,23 +105,23 @@ void NormalCurveParameters::validate() const {
 
 TangentialCurveParameters TangentialCurveParameters::paper_figure(Scaling scaling) {
   TangentialCurveParameters spec;  // the defaults are the paper's figure in the library's scaling
-  return scaling == Scaling::spec ? spec : spec.in_paper_scaling();
+  return scaling == Scaling::library ? spec : spec.in_paper_scaling();
 }
 
-TangentialCurveParameters TangentialCurveParameters::in_spec_scaling() const {
+TangentialCurveParameters TangentialCurveParameters::in_library_scaling() const {
   TangentialCurveParameters out = *this;
   if (scaling == Scaling::paper) {
-    out.k_N = to_spec_stiffness(k_N, p);
-    out.k_T = to_spec_stiffness(k_T, q);
+    out.k_N = to_library_stiffness(k_N, p);
+    out.k_T = to_library_stiffness(k_T, q);
     out.r = 0.5 * r;
   }
-  out.scaling = Scaling::spec;
+  out.scaling = Scaling::library;
   return out;
 }
 
 TangentialCurveParameters TangentialCurveParameters::in_paper_scaling() const {
   TangentialCurveParameters out = *this;
-  if (scaling == Scaling::spec) {
+  if (scaling == Scaling::library) {
     out.k_N = to_paper_stiffness(k_N, p);
     out.k_T = to_paper_stiffness(k_T, q);
     out.r = 2.0 * r;
@@ -158,13 +158,13 @@ ImpactProblem point_mass_problem(double mass, double D_NA, double D_TA) {
 
 ImpactLaw normal_curve_law(const NormalCurveParameters& parameters) {
   parameters.validate();
-  const NormalCurveParameters s = parameters.in_spec_scaling();
+  const NormalCurveParameters s = parameters.in_library_scaling();
   return ImpactLaw::fremond(PowerPotential(s.k, s.p));
 }
 
 ImpactLaw tangential_curve_law(const TangentialCurveParameters& parameters) {
   parameters.validate();
-  const TangentialCurveParameters s = parameters.in_spec_scaling();
+  const TangentialCurveParameters s = parameters.in_library_scaling();
   return ImpactLaw::fremond(PowerPotential(s.k_N, s.p), DeadZonePowerPotential(s.k_T, s.q, s.r));
 }
 
@@ -191,7 +191,7 @@ std::vector<CurvePoint> tangential_curve(const TangentialCurveParameters& parame
   options.validate();
   for (std::size_t i = 0; i < D_TA.size(); ++i)
     detail::require_finite("D_TA[" + std::to_string(i) + "]", D_TA[i]);
-  const double r = parameters.in_spec_scaling().r;
+  const double r = parameters.in_library_scaling().r;
   std::vector<CurvePoint> out;
   out.reserve(D_TA.size());
   for (double v : D_TA) {
@@ -211,7 +211,7 @@ double equivalent_restitution(const NormalCurveParameters& parameters) {
     throw InvalidArgument(
         "p", "eq. (24) holds for p = 2 only, got " + detail::format_number(parameters.p));
   // m(D_E − D_A) = −k (D_A + D_E)/2 gives D_E = −(k − 2m)/(k + 2m) D_A.
-  const double k = parameters.in_spec_scaling().k;
+  const double k = parameters.in_library_scaling().k;
   return (k - 2.0 * parameters.mass) / (k + 2.0 * parameters.mass);
 }
 

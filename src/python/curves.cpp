@@ -34,7 +34,7 @@ void bind_curves(py::module_& m) {
       .def_readwrite("k", &NormalCurveParameters::k)
       .def_readwrite("p", &NormalCurveParameters::p)
       .def_readwrite("scaling", &NormalCurveParameters::scaling)
-      .def("in_spec_scaling", &NormalCurveParameters::in_spec_scaling)
+      .def("in_library_scaling", &NormalCurveParameters::in_library_scaling)
       .def("in_paper_scaling", &NormalCurveParameters::in_paper_scaling)
       .def("validate", &NormalCurveParameters::validate)
       .def("__repr__", [](const NormalCurveParameters& p) {
@@ -53,7 +53,7 @@ void bind_curves(py::module_& m) {
       .def_readwrite("r", &TP::r)
       .def_readwrite("scaling", &TP::scaling)
       .def_static("paper_figure", &TP::paper_figure, py::arg("scaling"))
-      .def("in_spec_scaling", &TP::in_spec_scaling)
+      .def("in_library_scaling", &TP::in_library_scaling)
       .def("in_paper_scaling", &TP::in_paper_scaling)
       .def("validate", &TP::validate)
       .def("__repr__", [](const TP& p) {

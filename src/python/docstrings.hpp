@@ -38,7 +38,8 @@ inline constexpr const char* kInequality =
     "The first admissibility inequality that failed (none, total_15, per_contact_15, reaction_17, "
     "dissipation_19, complementarity_16, fenchel_young, non_penetration).";
 inline constexpr const char* kScaling =
-    "Which constants a curve's parameters are written in: spec (potentials of the mean velocity) "
+    "Which constants a curve's parameters are written in: library (potentials of the mean "
+    "velocity) "
     "or paper (k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2r; docs/laws.md).";
 inline constexpr const char* kPaperLaw =
     "The five laws the paper compares on the bar (the paper's Fig. 1).";
@@ -218,7 +219,7 @@ inline constexpr const char* kContactFrame =
 
 // ---- curves
 inline constexpr const char* kNormalCurveParameters =
-    "Fig. 8: NormalCurveParameters(mass=1, k=4, p=2, scaling=Scaling.spec).";
+    "Fig. 8: NormalCurveParameters(mass=1, k=4, p=2, scaling=Scaling.library).";
 inline constexpr const char* kTangentialCurveParameters =
     "Fig. 9: TangentialCurveParameters(mass, k_N, p, D_NA, k_T, q, r, scaling); the defaults are "
     "the paper's Fig. 9 in the library's scaling (k_T 1.5, q 2, r 0.2; paper k_T 0.75, r 0.4).";

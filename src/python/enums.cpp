@@ -38,7 +38,7 @@ void bind_enums(py::module_& m) {
                {I::none, I::total_15, I::per_contact_15, I::reaction_17, I::dissipation_19,
                 I::complementarity_16, I::fenchel_young, I::non_penetration},
                &inequality_from_string);
-  bind_enum<Scaling>(m, "Scaling", doc::kScaling, {Scaling::spec, Scaling::paper},
+  bind_enum<Scaling>(m, "Scaling", doc::kScaling, {Scaling::library, Scaling::paper},
                      &scaling_from_string);
   using P = PaperLaw;
   bind_enum<P>(

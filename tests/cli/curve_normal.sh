@@ -5,7 +5,7 @@ source "$(dirname "$0")/curve_common.bash" "$1"
 run_curve normal
 expect_status "default run" 0
 check_csv "default: scaling named, four p, 101 speeds each" '
-assert all(r["scaling"] == "spec" for r in rows)
+assert all(r["scaling"] == "library" for r in rows)
 assert sorted({r["p"] for r in rows}) == [1.5, 2.0, 3.0, 4.0]
 assert len(rows) == 4 * 101
 assert all(r["status"] == "converged" and r["admissible"] == 1 for r in rows)
@@ -45,7 +45,7 @@ for r in rows:
 # --out writes the file and says so on stdout, with the scaling.
 run_curve normal --p 2 --points 3 --out "$TMP/fig8.csv"
 expect_status "--out" 0
-if grep -qF "wrote $TMP/fig8.csv: Fig. 8 data" "$TMP/out" && grep -qF "spec scaling; p = 2: k = 4 (spec) = 2 (paper)" "$TMP/out"; then
+if grep -qF "wrote $TMP/fig8.csv: Fig. 8 data" "$TMP/out" && grep -qF "library scaling; p = 2: k = 4 (library) = 2 (paper)" "$TMP/out"; then
   pass
 else
   fail "--out: no message naming the file and scaling: $(cat "$TMP/out")"

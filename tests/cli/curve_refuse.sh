@@ -5,7 +5,7 @@ expect_refusal "p = 1" "--p" "must be > 1, got 1" normal --p 2,1
 expect_refusal "negative k" "--k" "must be >= 0, got -1" normal --k -1
 expect_refusal "zero mass" "--mass" "must be > 0, got 0" normal --mass 0
 expect_refusal "NaN mass" "--mass" "must be a finite number" tangential --mass nan
-expect_refusal "unknown scaling" "--scaling" "unknown value 'metric' (one of: spec, paper)" \
+expect_refusal "unknown scaling" "--scaling" "unknown value 'metric' (one of: library, paper)" \
   normal --scaling metric
 expect_refusal "one point" "--points" "must lie in [2, 1000000], got 1" normal --points 1
 expect_refusal "zero max speed" "--max-speed" "must be a finite number > 0, got 0" \

@@ -5,7 +5,7 @@ source "$(dirname "$0")/curve_common.bash" "$1"
 run_curve tangential
 expect_status "default run" 0
 check_csv "defaults: the paper's figure, dead zone |D_TA| <= 0.2" '
-assert all((r["scaling"], r["k_T"], r["q"], r["r"], r["k"], r["p"]) == ("spec", 1.5, 2, 0.2, 4, 2) for r in rows)
+assert all((r["scaling"], r["k_T"], r["q"], r["r"], r["k"], r["p"]) == ("library", 1.5, 2, 0.2, 4, 2) for r in rows)
 assert len(rows) == 201
 inside = [r for r in rows if r["in_dead_zone"] == 1]
 assert len(inside) > 20
@@ -51,7 +51,7 @@ for r in rows:
 # --out: the file, and one line naming the constants in both scalings.
 run_curve tangential --scaling paper --r 0.8 --kt 2 --q 3 --points 5 --out "$TMP/fig9.csv"
 expect_status "--out" 0
-if grep -qF "k_T = 8, q = 3, r = 0.4, k = 4 (spec) = k_T 2, r 0.8, k 2 (paper)" "$TMP/out"; then
+if grep -qF "k_T = 8, q = 3, r = 0.4, k = 4 (library) = k_T 2, r 0.8, k 2 (paper)" "$TMP/out"; then
   pass
 else
   fail "--out: the line does not give the constants in both scalings: $(cat "$TMP/out")"

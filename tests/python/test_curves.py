@@ -32,7 +32,7 @@ def test_fig8_p2_in_the_papers_scaling():
     par = f.NormalCurveParameters(mass=m, k=k_paper, p=2.0, scaling=f.Scaling.paper)
     c = f.normal_restitution_curve(par, SPEEDS)
     near(c.D_NE, (k_paper - m) / (k_paper + m) * SPEEDS, tiny=1e-13)
-    near([par.in_spec_scaling().k], [2 * k_paper])
+    near([par.in_library_scaling().k], [2 * k_paper])
 
 
 def test_fig8_p2_soft_law_stops_the_mass():
@@ -119,7 +119,7 @@ def test_scalings_describe_the_same_law():
     near(a.D_TE, b.D_TE)
     near(a.D_NE, b.D_NE)
     n = f.NormalCurveParameters(k=21.34, p=3.0, scaling=f.Scaling.paper)
-    near([n.in_spec_scaling().k], [85.36])
+    near([n.in_library_scaling().k], [85.36])
 
 
 def test_bad_parameters_are_refused_by_name():
@@ -154,7 +154,7 @@ def test_cli_curves_are_the_bindings_curves():
     out = subprocess.run([exe, "curve", "normal", "--p", "2,3", "--points", "11"],
                          capture_output=True, text=True, check=True).stdout
     rows = read_cli_csv(out)
-    assert {r["scaling"] for r in rows} == {"spec"}
+    assert {r["scaling"] for r in rows} == {"library"}
     assert len(rows) == 22
     for p in (2.0, 3.0):
         mine = [r for r in rows if float(r["p"]) == p]

@@ -31,7 +31,8 @@ namespace fremond {
 
 /// Which constants a curve's parameters are written in (docs/laws.md).
 enum class Scaling {
-  spec,  ///< the library's: φ_N = k|z|^p/p, φ_T = (k_T/q) max(0, |z| − r)^q of the mean velocity z.
+  library,  ///< the library's: φ_N = k|z|^p/p, φ_T = (k_T/q) max(0, |z| − r)^q of the mean velocity
+            ///< z.
   paper,  ///< the paper's: k_paper = k·2^(1−p), k_T,paper = k_T·2^(1−q), r_paper = 2r.
 };
 std::string_view to_string(Scaling s);
@@ -47,10 +48,10 @@ struct NormalCurveParameters {
   /// m/k)^(1/(p−2)) (1 m/s for p = 3); for p < 2 the restitution falls with the speed.
   double k = 4.0;
   double p = 2.0;  ///< exponent > 1.
-  Scaling scaling = Scaling::spec;
+  Scaling scaling = Scaling::library;
 
   /// The same law with k in the library's scaling (k = k_paper·2^(p−1)).
-  NormalCurveParameters in_spec_scaling() const;
+  NormalCurveParameters in_library_scaling() const;
   /// The same law with k in the paper's scaling (k_paper = k·2^(1−p)).
   NormalCurveParameters in_paper_scaling() const;
   /// Throws InvalidArgument naming `mass`, `k` or `p`.
@@ -69,12 +70,12 @@ struct TangentialCurveParameters {
   double k_T = 1.5;    ///< tangential stiffness ≥ 0 in `scaling` (paper: 0.75).
   double q = 2.0;      ///< tangential exponent > 1.
   double r = 0.2;      ///< dead-zone half-width ≥ 0 in `scaling` (m/s; paper: 0.4).
-  Scaling scaling = Scaling::spec;
+  Scaling scaling = Scaling::library;
 
   /// The paper's Fig. 9 (r_paper = 0.4, k_T,paper = 0.75, q = 2; normal law k = 4, p = 2 in the
   /// library's scaling), written in `scaling`.
   static TangentialCurveParameters paper_figure(Scaling scaling);
-  TangentialCurveParameters in_spec_scaling() const;
+  TangentialCurveParameters in_library_scaling() const;
   TangentialCurveParameters in_paper_scaling() const;
   /// Throws InvalidArgument naming `mass`, `k_N`, `p`, `D_NA`, `k_T`, `q` or `r`.
   void validate() const;

@@ -411,7 +411,7 @@ def restitution_plot(curves, ax=None, title=None):
         par = c.parameters
         speed = -np.asarray(c.D_NA)
         vmax = max(vmax, float(speed.max()))
-        spec = par.in_spec_scaling()
+        spec = par.in_library_scaling()
         ax.plot(speed, c.D_NE, lw=1.8,
                 label=f"p = {_g(par.p)} (k = {_g(spec.k)}; paper's {_g(par.in_paper_scaling().k)})")
         if par.p == 2.0:
@@ -439,7 +439,7 @@ def tangential_plot(curve, ax=None, title=None):
     D_TE = D_TA."""
     fig, ax = _new_axes(ax, (7, 5))
     par = curve.parameters
-    spec, paper = par.in_spec_scaling(), par.in_paper_scaling()
+    spec, paper = par.in_library_scaling(), par.in_paper_scaling()
     d_ta = np.asarray(curve.D_TA)
     d_te = np.asarray(curve.D_TE)
     ax.axvspan(-spec.r, spec.r, color="#abd9e9", alpha=0.5, lw=0,
