@@ -3,6 +3,7 @@
 
 #include "fremond/admissibility/admissibility_report.hpp"
 #include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_status.hpp"
 
 namespace fremond {
@@ -17,6 +18,15 @@ constexpr EnumNames<LawType, 5> kLawTypes{{{LawType::newton, "newton"},
 constexpr EnumNames<TangentialLaw, 3> kTangential{{{TangentialLaw::none, "none"},
                                                    {TangentialLaw::potential, "potential"},
                                                    {TangentialLaw::coulomb, "coulomb"}}};
+constexpr EnumNames<AttemptStart, 8> kStarts{
+    {{AttemptStart::none, "none"},
+     {AttemptStart::decoupled_guess, "decoupled_guess"},
+     {AttemptStart::zero, "zero"},
+     {AttemptStart::newton_end, "newton_end"},
+     {AttemptStart::splitting_end, "splitting_end"},
+     {AttemptStart::nlopt_end, "nlopt_end"},
+     {AttemptStart::velocity_newton_end, "velocity_newton_end"},
+     {AttemptStart::normal_rows, "normal_rows"}}};
 constexpr EnumNames<SolverStatus, 7> kStatus{{{SolverStatus::not_run, "not_run"},
                                               {SolverStatus::converged, "converged"},
                                               {SolverStatus::max_iterations, "max_iterations"},
@@ -81,6 +91,12 @@ std::string_view to_string(StopCriterion c) {
 }
 StopCriterion stop_criterion_from_string(std::string_view s) {
   return detail::enum_from_string(kCriteria, s, "stop criterion");
+}
+std::string_view to_string(AttemptStart a) {
+  return detail::enum_to_string(kStarts, a);
+}
+AttemptStart attempt_start_from_string(std::string_view s) {
+  return detail::enum_from_string(kStarts, s, "attempt start");
 }
 std::string_view to_string(Inequality i) {
   return detail::enum_to_string(kInequalities, i);

@@ -1,6 +1,8 @@
 // The impact-problem file of docs/problem-file.md: reader and result writer.
 #include "fremond/io/problem_file.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <istream>
 #include <iterator>
@@ -136,6 +138,18 @@ ojson solver_json(const SolverReport& s) {
   j["message"] = std::string(s.message);
   j["native_code"] = s.native_code;
   j["fallbacks"] = s.fallbacks;
+  ojson attempts = ojson::array();
+  for (int i = 0; i < std::min(s.attempt_count, SolverReport::kMaxAttempts); ++i) {
+    const Attempt& a = s.attempts[static_cast<std::size_t>(i)];
+    ojson one;
+    one["method"] = std::string(to_string(a.method));
+    one["start"] = std::string(to_string(a.start));
+    one["status"] = std::string(to_string(a.status));
+    one["residual"] = number(a.residual);
+    attempts.push_back(one);
+  }
+  j["attempts"] = attempts;
+  j["attempt_count"] = s.attempt_count;
   return j;
 }
 

@@ -29,6 +29,11 @@ void bind_enums(py::module_& m) {
                {M::automatic, M::trivial, M::closed_form, M::scalar_newton, M::mode_enumeration,
                 M::lemke, M::semismooth_newton, M::proximal, M::nlopt},
                &solver_method_from_string);
+  using A = AttemptStart;
+  bind_enum<A>(m, "AttemptStart", "Where a method of the chain started from.",
+               {A::none, A::decoupled_guess, A::zero, A::newton_end, A::splitting_end, A::nlopt_end,
+                A::velocity_newton_end, A::normal_rows},
+               &attempt_start_from_string);
   using C = StopCriterion;
   bind_enum<C>(m, "StopCriterion", doc::kStopCriterion,
                {C::none, C::exact, C::residual, C::step, C::iterations, C::nlopt, C::rounding},

@@ -1,5 +1,6 @@
 // One impact: the law, the problem (NumPy arrays in), the solver's options, the result with its
 // admissibility certificate (NumPy arrays out), and the problem file.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <variant>
@@ -141,6 +142,15 @@ void bind_impacts(py::module_& m) {
                         "admissibility_tolerance", "check_uniqueness"});
       });
 
+  py::class_<Attempt>(m, "Attempt", "One method the chain ran: method, start, status, residual.")
+      .def_readonly("method", &Attempt::method)
+      .def_readonly("start", &Attempt::start)
+      .def_readonly("status", &Attempt::status)
+      .def_readonly("residual", &Attempt::residual)
+      .def("__repr__", [](const Attempt& a) {
+        return repr_of(a, "Attempt", {"method", "start", "status", "residual"});
+      });
+
   py::class_<SolverReport>(m, "SolverReport", doc::kSolverReport)
       .def_readonly("method", &SolverReport::method)
       .def_readonly("status", &SolverReport::status)
@@ -151,6 +161,13 @@ void bind_impacts(py::module_& m) {
       .def_readonly("residual", &SolverReport::residual)
       .def_readonly("native_code", &SolverReport::native_code)
       .def_readonly("fallbacks", &SolverReport::fallbacks)
+      .def_property_readonly("attempts",
+                             [](const SolverReport& r) {
+                               const int n = std::min(r.attempt_count, SolverReport::kMaxAttempts);
+                               return std::vector<Attempt>(r.attempts.begin(),
+                                                           r.attempts.begin() + n);
+                             })
+      .def_readonly("attempt_count", &SolverReport::attempt_count)
       .def("__repr__", [](const SolverReport& r) {
         return repr_of(r, "SolverReport", {"method", "status", "iterations", "residual"});
       });

@@ -1028,16 +1028,504 @@ bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
   return lo.solutions.size == 0 && lo.exhaustive && !lo.beyond_precision && !lo.unsupported;
 }
 
+/// Frémond's chain (docs/solvers.md): the stages of run()'s table, in order; the first that
+/// answers ends it. A stage applies to some laws, problems and requested methods; it runs one or
+/// more methods, each recorded in the result's attempt log, and answers or hands on what it
+/// learned (its end point, as the next stages' start).
 template <int N, int C>
-void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+struct FremondChain {
+  FremondChain(const ImpactProblemT<N, C>& pb_, const ContactSpaceT<N, C>& cs_,
+               const ImpactLaw& law_, const SolverOptions& opt_, ImpactResultT<N, C>& out_)
+      : pb(pb_),
+        cs(cs_),
+        law(law_),
+        opt(opt_),
+        out(out_),
+        want(opt_.method),
+        automatic(opt_.method == SolverMethod::automatic) {
+    rows.init(cs, law);
+    P = Rows<N, C>::Zero(cs.rows());
+    has_prox = rows.all_prox;  // else only NLopt applies
+    velocity_space = has_prox && !rows.coulomb;
+  }
+
+  struct Stage {
+    const char* what;
+    bool (FremondChain::*applies)() const;
+    bool (FremondChain::*run)();  ///< true: the answer is written
+  };
+
+  void run() {
+    using F = FremondChain;
+    static constexpr Stage kStages[] = {
+        // Exact stages.
+        {"no contact takes part: no percussion", &F::no_contact, &F::trivial},
+        {"a forced method other than NLopt without a prox", &F::forced_without_prox,
+         &F::unsupported_without_prox},
+        {"decoupled rows: one prox each", &F::decoupled_rows, &F::solve_decoupled_rows},
+        {"one contact with Coulomb: every mode", &F::one_contact_coulomb, &F::one_contact_modes},
+        {"one contact inside the tangential dead zone: one prox", &F::one_contact_dead_zone,
+         &F::dead_zone_prox},
+        {"Coulomb on 2-4 contacts, modes asked for by name", &F::forced_coulomb_modes,
+         &F::coulomb_modes_by_name},
+        {"a forced exact method that does not apply", &F::forced_exact_inapplicable,
+         &F::unsupported_exact},
+        {"a forced method of another law", &F::forced_other_law, &F::unsupported_other_law},
+        // Iterative stages: Newton, the splitting, NLopt, and restarts from each one's end.
+        {"velocity-space Newton first (more than twice as many rows as dofs)", &F::newton_allowed,
+         &F::velocity_newton_first},
+        {"contact-space semismooth Newton from the decoupled guess", &F::newton_allowed,
+         &F::contact_newton},
+        {"Coulomb: Newton from zero", &F::coulomb_newton_from_zero, &F::newton_from_zero},
+        {"Coulomb on 2-4 contacts: Newton per tangential mode", &F::coulomb_modes_after_newton,
+         &F::coulomb_modes},
+        {"proximal splitting, from Newton's end or the guess, then from zero",
+         &F::splitting_allowed, &F::splitting},
+        {"Newton from the splitting's end", &F::after_failed_splitting, &F::newton_from_splitting},
+        {"NLopt on the velocity-space problem", &F::always, &F::nlopt},
+        {"Newton from NLopt's end", &F::after_nlopt_with_prox, &F::newton_from_nlopt},
+        {"velocity-space Newton, late", &F::late_velocity_newton_applies, &F::late_velocity_newton},
+        {"Newton from velocity-space Newton's end", &F::after_velocity_newton,
+         &F::newton_from_velocity_newton},
+        {"the normal rows alone (G_NT = 0), then Newton from their answer", &F::normal_rows_apart,
+         &F::normal_rows_first},
+        {"every method failed: the splitting's end where nearer than NLopt's",
+         &F::splitting_and_nlopt_failed, &F::nearest_failure},
+        {"NLopt's answer", &F::always, &F::nlopt_answer},
+    };
+    for (const Stage& s : kStages)
+      if ((this->*s.applies)() && (this->*s.run)()) return;
+  }
+
+  // ---- shared state --------------------------------------------------------------------------
+
+  const ImpactProblemT<N, C>& pb;
+  const ContactSpaceT<N, C>& cs;
+  const ImpactLaw& law;
+  const SolverOptions& opt;
+  ImpactResultT<N, C>& out;
+  const SolverMethod want;
+  const bool automatic;
   FremondRowsT<N, C> rows;
-  rows.init(cs, law);
-  Rows<N, C> P = Rows<N, C>::Zero(cs.rows());
-  const SolverMethod want = opt.method;
-  Rows<N, C> z;  // the mean velocity of the answer, shared by the split and the uniqueness test
-  // `o` by reference and not copied (see check_exact); the residual it reports is passed beside it.
-  auto finish = [&](const MethodOutcome& o, SolverMethod m) {
+  bool has_prox = false, velocity_space = false;
+  Rows<N, C> P;   // the percussions the stages work on
+  Rows<N, C> z;   // the mean velocity of the answer, shared by the split and the uniqueness test
+  Rows<N, C> P0;  // the decoupled guess, once Newton's stages made it
+  Rows<N, C> PV;  // where velocity-space Newton stopped
+  Rows<N, C> P_split;  // where NLopt started: the splitting's end, if it ran
+  AttemptStart split_start = AttemptStart::zero;
+  MethodOutcome split_end, nlopt_end;
+  bool have_split_end = false, velocity_ran = false, have_velocity_end = false;
+
+  void record(SolverMethod m, AttemptStart from, const MethodOutcome& o) {
+    out.solver.record(m, from, o.status, o.residual / cs.v_scale);
+  }
+
+  // ---- when each stage applies ----------------------------------------------------------------
+
+  bool always() const { return true; }
+  bool no_contact() const { return cs.active == 0; }
+  bool forced_without_prox() const {
+    return !has_prox && !automatic && want != SolverMethod::nlopt;
+  }
+  bool decoupled_rows() const {
+    return has_prox && decoupled(cs) &&
+           (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton);
+  }
+  bool one_contact_coulomb() const {
+    return has_prox && cs.active == 1 && rows.coulomb &&
+           (automatic || want == SolverMethod::mode_enumeration);
+  }
+  bool one_contact_dead_zone() const {
+    return has_prox && cs.active == 1 && cs.tangential &&
+           law.tangential == TangentialLaw::potential &&
+           (automatic || want == SolverMethod::scalar_newton ||
+            want == SolverMethod::closed_form) &&
+           cs.G(0, 0) > 0.0;
+  }
+  bool forced_coulomb_modes() const {
+    return want == SolverMethod::mode_enumeration && has_prox && rows.coulomb && cs.active >= 2 &&
+           cs.active <= 4;
+  }
+  bool forced_exact_inapplicable() const {
+    return !automatic &&
+           (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
+            want == SolverMethod::mode_enumeration);
+  }
+  bool forced_other_law() const {
+    return !automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial);
+  }
+  bool newton_allowed() const {
+    return has_prox && (automatic || want == SolverMethod::semismooth_newton);
+  }
+  bool coulomb_newton_from_zero() const {
+    return automatic && newton_allowed() && law.tangential == TangentialLaw::coulomb &&
+           !P0.isZero(0.0);
+  }
+  bool coulomb_modes_after_newton() const { return automatic && newton_allowed() && rows.coulomb; }
+  bool splitting_allowed() const {
+    return has_prox && (automatic || want == SolverMethod::proximal);
+  }
+  bool after_failed_splitting() const { return automatic && have_split_end; }
+  bool after_nlopt_with_prox() const { return automatic && has_prox && P.allFinite(); }
+  bool nlopt_failed_in_velocity_space() const {
+    return automatic && velocity_space && nlopt_end.status != SolverStatus::converged &&
+           P0.size() == cs.rows();
+  }
+  bool late_velocity_newton_applies() const {
+    return nlopt_failed_in_velocity_space() && !velocity_ran;
+  }
+  bool after_velocity_newton() const {
+    return nlopt_failed_in_velocity_space() && have_velocity_end;
+  }
+  bool normal_rows_apart() const {
+    return nlopt_failed_in_velocity_space() && cs.tangential && normal_rows_decoupled(cs);
+  }
+  bool splitting_and_nlopt_failed() const {
+    return have_split_end && nlopt_end.status != SolverStatus::converged;
+  }
+
+  // ---- the stages ---------------------------------------------------------------------------
+
+  bool trivial() {
+    MethodOutcome o;
+    o.status = SolverStatus::converged;
+    o.criterion = StopCriterion::exact;
+    o.message = "no contact takes part (every D_NA > 0): no percussion";
+    record(SolverMethod::trivial, AttemptStart::none, o);
+    finish(o, SolverMethod::trivial);
+    return true;
+  }
+
+  bool unsupported(const char* why) {
+    MethodOutcome o;
+    o.status = SolverStatus::unsupported;
+    o.message = why;
+    finish(o, want);
+    return true;
+  }
+  bool unsupported_without_prox() {
+    return unsupported("a potential of the law has no prox: only the NLopt method applies");
+  }
+  bool unsupported_exact() {
+    return unsupported("the requested exact method does not apply to this problem");
+  }
+  bool unsupported_other_law() {
+    return unsupported("the requested method is not one of Frémond's law");
+  }
+
+  bool solve_decoupled_rows() {
+    MethodOutcome o = solve_decoupled(rows, P);
+    check_exact(rows, P, opt, o);
+    const SolverMethod m =
+        rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton;
+    record(m, AttemptStart::none, o);
+    finish(o, m);
+    return true;
+  }
+
+  bool one_contact_modes() {
+    std::array<ContactSolution, 16> sols;
+    bool exhaustive = true;
+    const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,
+                                &exhaustive);
+    if (n == 0 && !exhaustive) return false;
+    MethodOutcome o;
+    o.criterion = StopCriterion::exact;
+    if (n == 0) {
+      // Every mode was tried in double precision, but a mode's scalar normal root can lie below
+      // the smallest double (p within 0.01 of 1: |z| ~ (a D/k)^(1/(p-1)) = 1e-1000) and be
+      // missed, while z = 0 to rounding is an answer double precision can hold: semismooth Newton
+      // and then the splitting get one try each before "no solution" is said.
+      o.status = SolverStatus::no_solution;
+      record(SolverMethod::mode_enumeration, AttemptStart::none, o);
+      if (automatic) {
+        auto take = [&](const Rows<N, C>& found, MethodOutcome o_found, SolverMethod m,
+                        const char* message) {
+          P = found;
+          o_found.message = message;
+          finish(o_found, m);
+          out.unique = false;
+          return true;
+        };
+        Rows<N, C> PN = decoupled_guess(rows, P);
+        auto newton = semismooth_newton(rows, PN, opt);
+        if (newton.status == SolverStatus::converged)
+          final_row_sweep(rows, PN, opt.tolerance * cs.v_scale, newton);
+        record(SolverMethod::semismooth_newton, AttemptStart::decoupled_guess, newton);
+        if (newton.status == SolverStatus::converged)
+          return take(PN, newton, SolverMethod::semismooth_newton,
+                      "one contact with Coulomb: no mode resolved in double precision (a root "
+                      "below its range), semismooth Newton converged");
+        Rows<N, C> PS = Rows<N, C>::Zero(cs.rows());
+        const auto split = proximal_iterations(rows, PS, opt);
+        record(SolverMethod::proximal, AttemptStart::zero, split);
+        if (split.status == SolverStatus::converged)
+          return take(PS, split, SolverMethod::proximal,
+                      "one contact with Coulomb: no mode resolved in double precision (a root "
+                      "below its range), the proximal splitting converged");
+      }
+      o.message = "Frémond + Coulomb has no solution for these data (mu|G_NT| > G_NN)";
+      finish(o, SolverMethod::mode_enumeration);
+      out.unique = false;
+      return true;
+    }
+    // Several solutions: the one that dissipates most (the least T_E). T_E − T_A = P·z (eq. 9) is
+    // known only to |P| times the rounding of z = D_A + GP/2, so energies that overlap within
+    // their rounding are a tie, and a tie goes to the better resolved answer.
+    int best = 0;
+    double best_e = std::numeric_limits<double>::infinity(), best_u = 0.0;
+    for (int s = 0; s < n; ++s) {
+      const double PN = sols[s].PN, PT = sols[s].PT;
+      const double zN = cs.D_A(0) + 0.5 * (cs.G(0, 0) * PN + cs.G(0, 1) * PT);
+      const double zT = cs.D_A(1) + 0.5 * (cs.G(1, 0) * PN + cs.G(1, 1) * PT);
+      const double e = PN * zN + PT * zT;  // T_E − T_A, eq. 9
+      const double dz = std::fabs(cs.D_A(0)) + std::fabs(cs.D_A(1)) +
+                        0.5 * (std::fabs(cs.G(0, 0) * PN) +
+                               2 * std::fabs(cs.G(0, 1)) * (std::fabs(PN) + std::fabs(PT)) +
+                               std::fabs(cs.G(1, 1) * PT));
+      const double u = 8 * kEps * (std::fabs(PN) + std::fabs(PT)) * dz;
+      const bool clearly_better = e + u < best_e - best_u;
+      const bool tie = !clearly_better && !(e - u > best_e + best_u);
+      if (s == 0 || clearly_better || (tie && u < best_u)) {
+        best_e = e;
+        best_u = u;
+        best = s;
+      }
+    }
+    P(0) = sols[best].PN;
+    P(1) = sols[best].PT;
+    Rows<N, C> zb, R;
+    o.residual = rows.residual(P, zb, R);
+    o.status = SolverStatus::converged;
+    o.message = n == 1 ? "one contact with Coulomb: every mode tried, one solution"
+                       : "one contact with Coulomb: several solutions; the most dissipative one";
+    out.solutions_found = n;
+    out.unique = (n == 1) && exhaustive;
+    check_exact(rows, P, opt, o);
+    record(SolverMethod::mode_enumeration, AttemptStart::none, o);
+    finish(o, SolverMethod::mode_enumeration);
+    if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, z, out);
+    return true;
+  }
+
+  // With P_T = 0 the normal row alone is one prox; it is the answer when 0 ∈ ∂φ_T(z_T).
+  bool dead_zone_prox() {
+    const double zN = rows.prox(0, cs.D_A(0), 0.0);
+    const double PN = 2.0 * (zN - cs.D_A(0)) / cs.G(0, 0);
+    const double zT = cs.D_A(1) + 0.5 * cs.G(1, 0) * PN;
+    if (!law.tangential_potential[rows.contact(1)].subdifferential(zT).contains(0.0)) return false;
+    P(0) = PN;
+    P(1) = 0.0;
+    MethodOutcome o;
+    o.status = SolverStatus::converged;
+    o.criterion = StopCriterion::exact;
+    o.message = "one contact inside the tangential dead zone: one exact prox";
+    check_exact(rows, P, opt, o);
+    const SolverMethod m =
+        rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton;
+    record(m, AttemptStart::none, o);
+    finish(o, m);
+    return true;
+  }
+
+  bool coulomb_modes_by_name() {
+    const Rows<N, C> start = decoupled_guess(rows, P);
+    MethodOutcome om;
+    if (enumerate_coulomb_modes(rows, start, P, opt, om)) {
+      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, om);
+    } else {
+      P = start;
+      om.status = SolverStatus::stalled;
+      om.criterion = StopCriterion::step;
+      om.message =
+          "Coulomb's tangential modes enumerated: no mode's answer satisfies the law (the "
+          "decoupled guess is returned)";
+    }
+    record(SolverMethod::mode_enumeration, AttemptStart::decoupled_guess, om);
+    finish(om, SolverMethod::mode_enumeration);
+    return true;
+  }
+
+  // Newton from `start`: true, with the answer written, when it converges.
+  bool newton_answers(Rows<N, C> start, AttemptStart from, const char* message = nullptr) {
+    auto on = semismooth_newton(rows, start, opt);
+    if (on.status == SolverStatus::converged) {
+      P = start;
+      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, on);
+    }
+    record(SolverMethod::semismooth_newton, from, on);
+    if (on.status != SolverStatus::converged) return false;
+    finish(on, SolverMethod::semismooth_newton);
+    if (message) out.solver.message = message;
+    return true;
+  }
+
+  // Newton in velocity space (fremond_velocity_newton.cpp) from the decoupled guess; its end,
+  // where it ran and failed, is kept as a start for contact space's Newton.
+  bool velocity_newton() {
+    PV = P0;
+    velocity_ran = true;
+    auto ov = velocity_space_newton(pb, rows, PV, opt);
+    if (ov.status == SolverStatus::converged)
+      final_row_sweep(rows, PV, opt.tolerance * cs.v_scale, ov);
+    record(SolverMethod::semismooth_newton, AttemptStart::decoupled_guess, ov);
+    if (ov.status == SolverStatus::converged) {
+      P = PV;
+      finish(ov, SolverMethod::semismooth_newton);
+      return true;
+    }
+    have_velocity_end = PV.allFinite();
+    return false;
+  }
+
+  // More than twice as many rows as degrees of freedom (and no Coulomb): velocity space's
+  // Hessian stays positive definite where contact space's J is singular up to a small diagonal
+  // (the plate flat on 16 and 32 contacts under p = 3: 68 µs and 5.1 ms → 12 µs and 21 µs). With
+  // fewer rows contact space's Newton is the faster. It also makes the decoupled guess.
+  bool velocity_newton_first() {
+    P0 = decoupled_guess(rows, P);  // each row as if alone
+    return velocity_space && cs.rows() > 2 * cs.dofs && velocity_newton();
+  }
+
+  bool contact_newton() {
+    P = P0;
+    auto o = semismooth_newton(rows, P, opt);
+    if (o.status == SolverStatus::converged)
+      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, o);
+    record(SolverMethod::semismooth_newton, AttemptStart::decoupled_guess, o);
+    if (o.status != SolverStatus::converged && automatic) return false;
+    finish(o, SolverMethod::semismooth_newton);
+    return true;
+  }
+
+  // The law is quasi-variational with Coulomb: ‖R‖² has stationary points that are no solution,
+  // which Newton from the decoupled guess can end at while Newton from zero converges.
+  bool newton_from_zero() {
+    return newton_answers(Rows<N, C>::Zero(cs.rows()), AttemptStart::zero);
+  }
+
+  bool coulomb_modes() {
+    MethodOutcome om;
+    const bool found = enumerate_coulomb_modes(rows, P0, P, opt, om);
+    if (found) final_row_sweep(rows, P, opt.tolerance * cs.v_scale, om);
+    if (om.status != SolverStatus::not_run)
+      record(SolverMethod::mode_enumeration, AttemptStart::decoupled_guess, om);
+    if (!found) return false;
+    finish(om, SolverMethod::mode_enumeration);
+    return true;
+  }
+
+  bool splitting() {
+    // After Newton's stages, the splitting goes on from Newton's last iterate where its weighted
+    // residual is below the guess's: every order of magnitude Newton gained is sweeps saved.
+    if (P0.size() == cs.rows()) {
+      Rows<N, C> zn, R;
+      const double from_newton = rows.residual(P, zn, R);
+      const bool newton_nearer =
+          std::isfinite(from_newton) && from_newton < rows.residual(P0, zn, R);
+      if (!newton_nearer) P = P0;
+      split_start = newton_nearer ? AttemptStart::newton_end : AttemptStart::decoupled_guess;
+    }
+    const bool from_zero = P.isZero(0.0);
+    if (from_zero) split_start = AttemptStart::zero;
+    auto o = proximal_iterations(rows, P, opt);
+    record(SolverMethod::proximal, split_start, o);
+    // Where the splitting ends depends on where it starts (with Coulomb the law is
+    // quasi-variational; without, it can stop on stagnation): once more from zero, on failure.
+    if (automatic && o.status != SolverStatus::converged && !from_zero) {
+      const Rows<N, C> first_end = P;
+      P.setZero();
+      const auto again = proximal_iterations(rows, P, opt);
+      record(SolverMethod::proximal, AttemptStart::zero, again);
+      if (again.status == SolverStatus::converged)
+        o = again;
+      else
+        P = first_end;
+    }
+    if (o.status == SolverStatus::converged || !automatic) {
+      finish(o, SolverMethod::proximal);
+      return true;
+    }
+    split_end = o;
+    have_split_end = true;
+    return false;
+  }
+
+  // The splitting stops on stagnation near answers that Newton from the guess or from zero does
+  // not reach; Newton from there converges in a few steps.
+  bool newton_from_splitting() { return newton_answers(P, AttemptStart::splitting_end); }
+
+  bool nlopt() {
+    P_split = P;
+    const AttemptStart from = have_split_end ? AttemptStart::splitting_end : AttemptStart::zero;
+    nlopt_end = nlopt_velocity_space(pb, rows, P, opt);
+    record(SolverMethod::nlopt, from, nlopt_end);
+    return false;
+  }
+
+  // NLopt stops at its own tolerance (nlopt_tolerance), far above the law's; Newton from its end
+  // polishes it.
+  bool newton_from_nlopt() {
+    return newton_answers(P, AttemptStart::nlopt_end,
+                          "semismooth Newton converged from NLopt's answer");
+  }
+
+  // Without Coulomb the velocity-space problem is strongly convex, and its Newton reaches the
+  // minimiser where contact space's methods stall on a badly scaled G; only where every other
+  // method failed, since answers accepted at the law's rounding floor are not all equally near
+  // the exact one.
+  bool late_velocity_newton() { return velocity_newton(); }
+
+  bool newton_from_velocity_newton() {
+    return newton_answers(PV, AttemptStart::velocity_newton_end,
+                          "semismooth Newton converged from velocity-space Newton's answer");
+  }
+
+  // Normal rows that the tangential ones do not move (G_NT = 0) are a problem of their own, and
+  // ‖R‖² over both mixes their scales: solved alone by the whole chain, then Newton on all rows
+  // from their answer with the tangential rows' decoupled guess.
+  bool normal_rows_first() {
+    ContactSpaceT<N, C> normal_space;
+    build_contact_space(pb, false, normal_space, held_by(cs));
+    ImpactResultT<N, C> normal_answer;
+    FremondChain<N, C>(pb, normal_space, law, opt, normal_answer).run();
+    out.solver.record(normal_answer.solver.method, AttemptStart::none, normal_answer.solver.status,
+                      normal_answer.solver.residual);
+    if (normal_answer.solver.status != SolverStatus::converged) return false;
+    Rows<N, C> start = P0;
+    for (int k = 0; k < cs.active; ++k) start(k) = normal_answer.P_N(cs.index(k));
+    return newton_answers(start, AttemptStart::normal_rows,
+                          "semismooth Newton converged from the normal rows' own answer (G_NT = "
+                          "0: the tangential rows do not move them)");
+  }
+
+  // Every method failed: the answer is the nearest to the law, not the last (NLopt, stopped by
+  // its budget, can end far from where the splitting left off).
+  bool nearest_failure() {
+    const double r_nlopt = P.allFinite() ? rows.plain_residual(P) : 0.0;
+    const double r_split = rows.plain_residual(P_split);
+    if (r_nlopt <= r_split || !std::isfinite(r_split)) return false;
+    P = P_split;
+    split_end.message =
+        "every method failed; the proximal splitting's end is returned, nearer to the law than "
+        "NLopt's";
+    finish(split_end, SolverMethod::proximal);
+    return true;
+  }
+
+  bool nlopt_answer() {
+    finish(nlopt_end, SolverMethod::nlopt);
+    return true;
+  }
+
+  // ---- writing the answer ---------------------------------------------------------------------
+
+  // The outcome `o` of method `m` into the result: the report (the law's residual), the
+  // velocities, the reaction, uniqueness, and the repairs an answer with Coulomb on several
+  // contacts may need. `o` by reference and not copied (see check_exact).
+  void finish(const MethodOutcome& o, SolverMethod m) {
+    out.solver.fallbacks = std::max(0, out.solver.attempt_count - 1);
     write_outcome(
         o, cs.rows() && P.allFinite() && !o.residual_is_plain ? rows.plain_residual(P) : o.residual,
         m, cs.v_scale, opt, out);  // the law's residual
@@ -1149,369 +1637,13 @@ void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
                 "contact sliding at rounding speed, to rounding, and no contact mode solved with "
                 "their exact conditions gave an answer; the answer passes the law's test but may "
                 "be far from the exact one");
-  };
+  }
+};
 
-  if (cs.active == 0) {
-    MethodOutcome o;
-    o.status = SolverStatus::converged;
-    o.criterion = StopCriterion::exact;
-    o.message = "no contact takes part (every D_NA > 0): no percussion";
-    finish(o, SolverMethod::trivial);
-    return;
-  }
-  const bool has_prox = rows.all_prox;  // else only NLopt applies
-  const bool automatic = want == SolverMethod::automatic;
-  auto unsupported = [&](const char* why) {
-    MethodOutcome o;
-    o.status = SolverStatus::unsupported;
-    o.message = why;
-    finish(o, want);
-  };
-  if (!has_prox && !automatic && want != SolverMethod::nlopt)
-    return unsupported("a potential of the law has no prox: only the NLopt method applies");
-
-  // 1. Exact methods: decoupled rows, or one contact with Coulomb by mode enumeration.
-  const bool is_decoupled = decoupled(cs);
-  if (has_prox && is_decoupled &&
-      (automatic || want == SolverMethod::closed_form || want == SolverMethod::scalar_newton)) {
-    MethodOutcome o = solve_decoupled(rows, P);
-    check_exact(rows, P, opt, o);
-    finish(o, rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
-    return;
-  }
-  if (has_prox && cs.active == 1 && rows.coulomb &&
-      (automatic || want == SolverMethod::mode_enumeration)) {
-    std::array<ContactSolution, 16> sols;
-    bool exhaustive = true;
-    const int n = keep_resolved(rows, sols, one_contact_coulomb_modes(rows, sols, &exhaustive), opt,
-                                &exhaustive);
-    if (n > 0 || exhaustive) {
-      MethodOutcome o;
-      o.criterion = StopCriterion::exact;
-      if (n == 0) {
-        // Every mode was tried in double precision, but a mode's scalar normal root can lie
-        // below the smallest double (p within 0.01 of 1: |z| ~ (a D/k)^(1/(p-1)) = 1e-1000) and
-        // be missed, while z = 0 to rounding is an answer double precision can hold. Before
-        // "no solution" is said, semismooth Newton and then the splitting get one try each:
-        // whatever they converge to passes the law's residual test. (fremond_coulomb #60 of stress
-        // seed 7: the quad reference finds two solutions; the enumeration none.)
-        if (automatic) {
-          auto take = [&](const Rows<N, C>& found, MethodOutcome o_found, SolverMethod m,
-                          const char* message, int fallbacks) {
-            P = found;
-            o_found.message = message;
-            finish(o_found, m);
-            out.solver.fallbacks = fallbacks;
-            out.unique = false;
-          };
-          Rows<N, C> PN = decoupled_guess(rows, P);
-          auto newton = semismooth_newton(rows, PN, opt);
-          if (newton.status == SolverStatus::converged) {
-            final_row_sweep(rows, PN, opt.tolerance * cs.v_scale, newton);
-            return take(PN, newton, SolverMethod::semismooth_newton,
-                        "one contact with Coulomb: no mode resolved in double precision (a root "
-                        "below its range), semismooth Newton converged",
-                        1);
-          }
-          // Then the splitting from P = 0, which reaches such a solution where Newton stalls
-          // (fremond_coulomb #88780 of seed 1: p = 1 + 7.9e-6, μ = 56; two solutions).
-          Rows<N, C> PS = Rows<N, C>::Zero(cs.rows());
-          const auto split = proximal_iterations(rows, PS, opt);
-          if (split.status == SolverStatus::converged)
-            return take(PS, split, SolverMethod::proximal,
-                        "one contact with Coulomb: no mode resolved in double precision (a root "
-                        "below its range), the proximal splitting converged",
-                        2);
-        }
-        o.status = SolverStatus::no_solution;
-        o.message = "Frémond + Coulomb has no solution for these data (mu|G_NT| > G_NN)";
-        finish(o, SolverMethod::mode_enumeration);
-        out.unique = false;
-        return;
-      }
-      // Several solutions: return the one that dissipates most (the least T_E). T_E − T_A = P·z
-      // (eq. 9) is known only to |P| times the rounding of z = D_A + GP/2: a degenerate mode
-      // (G of rank one, g ≈ 0) yields percussions 1e10 times the natural scale that cancel, and
-      // its P·z is rounding noise of either sign. Energies that overlap within their rounding are
-      // a tie, and a tie goes to the better resolved answer (the smaller rounding).
-      int best = 0;
-      double best_e = std::numeric_limits<double>::infinity(), best_u = 0.0;
-      for (int s = 0; s < n; ++s) {
-        const double PN = sols[s].PN, PT = sols[s].PT;
-        const double zN = cs.D_A(0) + 0.5 * (cs.G(0, 0) * PN + cs.G(0, 1) * PT);
-        const double zT = cs.D_A(1) + 0.5 * (cs.G(1, 0) * PN + cs.G(1, 1) * PT);
-        const double e = PN * zN + PT * zT;  // T_E − T_A, eq. 9
-        const double dz = std::fabs(cs.D_A(0)) + std::fabs(cs.D_A(1)) +
-                          0.5 * (std::fabs(cs.G(0, 0) * PN) +
-                                 2 * std::fabs(cs.G(0, 1)) * (std::fabs(PN) + std::fabs(PT)) +
-                                 std::fabs(cs.G(1, 1) * PT));
-        const double u = 8 * kEps * (std::fabs(PN) + std::fabs(PT)) * dz;
-        const bool clearly_better = e + u < best_e - best_u;
-        const bool tie = !clearly_better && !(e - u > best_e + best_u);
-        if (s == 0 || clearly_better || (tie && u < best_u)) {
-          best_e = e;
-          best_u = u;
-          best = s;
-        }
-      }
-      P(0) = sols[best].PN;
-      P(1) = sols[best].PT;
-      Rows<N, C> zb, R;
-      o.residual = rows.residual(P, zb, R);
-      o.status = SolverStatus::converged;
-      o.message = n == 1 ? "one contact with Coulomb: every mode tried, one solution"
-                         : "one contact with Coulomb: several solutions; the most dissipative one";
-      out.solutions_found = n;
-      out.unique = (n == 1) && exhaustive;
-      check_exact(rows, P, opt, o);
-      finish(o, SolverMethod::mode_enumeration);
-      if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, z, out);
-      return;
-    }
-  }
-  // One contact with a tangential potential whose dead zone holds the answer (the paper's viscous
-  // bar): with P_T = 0 the normal row alone is one prox; it is the solution when 0 ∈ ∂φ_T(z_T).
-  if (has_prox && cs.active == 1 && cs.tangential && law.tangential == TangentialLaw::potential &&
-      (automatic || want == SolverMethod::scalar_newton || want == SolverMethod::closed_form) &&
-      cs.G(0, 0) > 0.0) {
-    const double zN = rows.prox(0, cs.D_A(0), 0.0);
-    const double PN = 2.0 * (zN - cs.D_A(0)) / cs.G(0, 0);
-    const double zT = cs.D_A(1) + 0.5 * cs.G(1, 0) * PN;
-    if (law.tangential_potential[rows.contact(1)].subdifferential(zT).contains(0.0)) {
-      P(0) = PN;
-      P(1) = 0.0;
-      MethodOutcome o;
-      o.status = SolverStatus::converged;
-      o.criterion = StopCriterion::exact;
-      o.message = "one contact inside the tangential dead zone: one exact prox";
-      check_exact(rows, P, opt, o);
-      finish(o, rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton);
-      return;
-    }
-  }
-  // Coulomb's modes on two to four contacts, when asked for by name (automatic reaches them only
-  // where Newton on the law fails, below).
-  if (want == SolverMethod::mode_enumeration && has_prox && rows.coulomb && cs.active >= 2 &&
-      cs.active <= 4) {
-    const Rows<N, C> P0 = decoupled_guess(rows, P);
-    MethodOutcome om;
-    if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
-      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, om);
-    } else {
-      P = P0;
-      om.status = SolverStatus::stalled;
-      om.criterion = StopCriterion::step;
-      om.message =
-          "Coulomb's tangential modes enumerated: no mode's answer satisfies the law (the "
-          "decoupled guess is returned)";
-    }
-    finish(om, SolverMethod::mode_enumeration);
-    return;
-  }
-  if (!automatic && (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
-                     want == SolverMethod::mode_enumeration))
-    return unsupported("the requested exact method does not apply to this problem");
-  if (!automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial))
-    return unsupported("the requested method is not one of Frémond's law");
-
-  // 2. Semismooth Newton from the decoupled guess, 3. proximal iterations, 4. NLopt.
-  int tried = 0;
-  // Newton once more from `start` (a fallback's restart): true, with the result written, when it
-  // converges.
-  auto newton_answers = [&](Rows<N, C> start) {
-    auto on = semismooth_newton(rows, start, opt);
-    if (on.status != SolverStatus::converged) return false;
-    P = start;
-    final_row_sweep(rows, P, opt.tolerance * cs.v_scale, on);
-    finish(on, SolverMethod::semismooth_newton);
-    out.solver.fallbacks = tried;
-    return true;
-  };
-  MethodOutcome split_end;  // the splitting's outcome, when it ran and failed
-  bool have_split_end = false;
-  // Newton in velocity space (fremond_velocity_newton.cpp), from the decoupled guess P0. Its end,
-  // where it ran and failed, is kept as a start for contact space's Newton.
-  const bool velocity_space = has_prox && !rows.coulomb;
-  Rows<N, C> P0, PV;
-  bool velocity_ran = false, have_velocity_end = false;
-  auto velocity_answers = [&]() {
-    PV = P0;
-    velocity_ran = true;
-    auto ov = velocity_space_newton(pb, rows, PV, opt);
-    if (ov.status == SolverStatus::converged) {
-      P = PV;
-      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, ov);
-      finish(ov, SolverMethod::semismooth_newton);
-      out.solver.fallbacks = tried;
-      return true;
-    }
-    have_velocity_end = PV.allFinite();
-    return false;
-  };
-  if (has_prox && (automatic || want == SolverMethod::semismooth_newton)) {
-    P0 = decoupled_guess(rows, P);  // each row as if alone
-    // More than twice as many rows as degrees of freedom (and no Coulomb): Newton in velocity
-    // space first, whose Hessian stays positive definite where contact space's J is singular
-    // up to a small diagonal (fremond_velocity_newton.cpp). The plate lying flat on 16 and 32
-    // contacts under p = 3: 68 µs and 5.1 ms (Newton stalled, the splitting) → 12 µs and 21 µs.
-    // With fewer rows contact space's Newton, from the decoupled guess, is the faster (the flat
-    // bar with its viscous rows, 4 rows on 3 dofs: 1.9 µs against 3.2 µs). An answer that needs
-    // a reaction is left to contact space.
-    if (velocity_space && cs.rows() > 2 * cs.dofs && velocity_answers()) return;
-    P = P0;
-    auto o = semismooth_newton(rows, P, opt);
-    if (o.status == SolverStatus::converged)
-      final_row_sweep(rows, P, opt.tolerance * cs.v_scale, o);
-    if (o.status == SolverStatus::converged || !automatic) {
-      finish(o, SolverMethod::semismooth_newton);
-      out.solver.fallbacks = tried;
-      return;
-    }
-    ++tried;
-    // With Coulomb, Newton again from P = 0 before the splitting: the law is quasi-variational
-    // and ‖R‖² has stationary points that are no solution, which Newton from the decoupled guess
-    // can end at while Newton from zero converges (the bar upright on both ends with μ = 0.16:
-    // stress fremond_coulomb #25729 of seed 23; 1,905 of those 100,000 problems, all to
-    // converged, 1,590 of them from stalled).
-    if (automatic && law.tangential == TangentialLaw::coulomb && !P0.isZero(0.0) &&
-        newton_answers(Rows<N, C>::Zero(cs.rows())))
-      return;
-    // Coulomb on two to four contacts: its modes enumerated, each smooth for Newton.
-    if (automatic && rows.coulomb) {
-      MethodOutcome om;
-      if (enumerate_coulomb_modes(rows, P0, P, opt, om)) {
-        ++tried;
-        final_row_sweep(rows, P, opt.tolerance * cs.v_scale, om);
-        finish(om, SolverMethod::mode_enumeration);
-        out.solver.fallbacks = tried;
-        return;
-      }
-    }
-    // The splitting goes on from Newton's last iterate where its weighted residual is below the
-    // guess's: the splitting converges linearly from anywhere, so every order of magnitude Newton
-    // gained is sweeps saved (a singular G with every reaction active, 3 contacts on 2 degrees of
-    // freedom: 12,000 sweeps instead of 40,000).
-    Rows<N, C> zn, R;
-    const double from_newton = rows.residual(P, zn, R);
-    if (!(std::isfinite(from_newton) && from_newton < rows.residual(P0, zn, R))) P = P0;
-  }
-  if (has_prox && (automatic || want == SolverMethod::proximal)) {
-    const bool from_zero = P.isZero(0.0);
-    auto o = proximal_iterations(rows, P, opt);
-    // Where the splitting ends depends on where it starts: with Coulomb the law is
-    // quasi-variational, and Newton's last iterate or the decoupled guess can lead it nowhere
-    // where P = 0, the start of the method when forced, reaches a solution (the bar upright on
-    // both ends with μ = 0.105: stress fremond_coulomb #62070 of seed 23). Without Coulomb the
-    // answer is unique, but the splitting from Newton's last iterate can stop on stagnation where
-    // from zero it converges (four contacts, p = 1.38, q = 1.10: 2,726 sweeps). Only on this
-    // failure path; else NLopt goes on from the first run's end, as before.
-    if (automatic && o.status != SolverStatus::converged && !from_zero) {
-      const Rows<N, C> first_end = P;
-      P.setZero();
-      const auto again = proximal_iterations(rows, P, opt);
-      if (again.status == SolverStatus::converged) {
-        o = again;
-        ++tried;
-      } else {
-        P = first_end;
-      }
-    }
-    if (o.status == SolverStatus::converged || !automatic) {
-      finish(o, SolverMethod::proximal);
-      out.solver.fallbacks = tried;
-      return;
-    }
-    ++tried;
-    split_end = o;
-    have_split_end = true;
-    // Newton once more from where the splitting stopped: it stops on stagnation (no progress in
-    // 1,000 sweeps) near answers that Newton from the decoupled guess or from zero does not reach
-    // (Frémond + Coulomb on four contacts of random bodies with μ up to 2: 5.6 % were left
-    // stalled, 2.6 % after this; with the viscous dead zone, p = 1.23 and q = 2.9, the splitting
-    // stalled at 6e-8 and Newton from there converges in a few steps).
-    if (automatic && newton_answers(P)) return;
-  }
-  const Rows<N, C> P_split = P;  // where NLopt starts: the splitting's end, if it ran
-  const auto o = nlopt_velocity_space(pb, rows, P, opt);
-  // NLopt stops at its own tolerance (nlopt_tolerance, 1e-9), far above the law's; where the law
-  // has a prox, Newton from NLopt's end polishes it (two nearly equal normal rows, one with its
-  // reaction active and one soft: Newton from the decoupled guess and the splitting stall at
-  // 3e-9 and 7e-9 on the wrong split of the percussions, NLopt ends 8e-10 from the quad reference
-  // and Newton from there converges in a few steps).
-  if (automatic && has_prox && P.allFinite() && newton_answers(P)) {
-    out.solver.fallbacks = tried + 1;  // NLopt, then Newton from its end
-    out.solver.message = "semismooth Newton converged from NLopt's answer";
-    return;
-  }
-  // Without Coulomb the velocity-space problem is strongly convex, and its Newton reaches the
-  // minimiser where contact space's methods stall on a badly scaled G (the flat bar on a rotor of
-  // inertia 1e-6 under the dead zone with k = 1e6: G's normal rows 3e6, its tangential ones 1,
-  // both singular). Its percussions −φ'(z) carry φ''·ulp(z) (3e-11 on those rows, beyond the
-  // law's test), so contact space's Newton goes on from its end, where it converges in a few
-  // steps. Only where every other method failed, NLopt and Newton from its end included: tried
-  // earlier, it replaced answers they find, and those accepted at the law's rounding floor are
-  // not all equally near the exact one (on that bar's tangents with q = 1.01 at r = 0, G's
-  // tangential rows singular, Newton from its end converged onto percussions that cancel along
-  // G's null direction, 3.6e-8 of the velocities off the quad reference, where Newton from the
-  // splitting's end is 1.6e-14 from it; p = 1.0001 on four contacts of two dofs, 5e-9 off
-  // q̇_E = −q̇_A where Newton from NLopt's end is 9e-10 off).
-  if (automatic && velocity_space && o.status != SolverStatus::converged &&
-      P0.size() == cs.rows()) {
-    if (!velocity_ran && velocity_answers()) {
-      out.solver.fallbacks = tried + 2;  // after NLopt and Newton from its end
-      return;
-    }
-    if (have_velocity_end && newton_answers(PV)) {
-      out.solver.fallbacks = tried + 3;
-      out.solver.message = "semismooth Newton converged from velocity-space Newton's answer";
-      return;
-    }
-  }
-  // Normal rows that the tangential ones do not move (G_NT = 0: a body lying flat, its tangents
-  // M⁻¹-orthogonal to its normals) are a problem of their own. Solved alone, they converge where
-  // every method on all rows failed: on the flat bar with a rotor of inertia 1e-6, k = 1e6 and
-  // the dead zone, G's normal rows are 3e6 and its singular tangential ones 1, and ‖R‖² over both
-  // mixes the scales (11 of 1,728 such bars: 1.5 ≤ p ≤ 50 at velocities of 1e6, p = 1.01 at
-  // 1e-10, left max_iterations and penetrating). Newton on all rows from their answer, with the
-  // tangential rows' decoupled guess, then converges in 6 steps, and the answers lie 3e-14 to
-  // 4.4e-12 from the quad reference. Only here: the normal rows are solved once more, by the
-  // whole chain.
-  if (automatic && velocity_space && cs.tangential && o.status != SolverStatus::converged &&
-      P0.size() == cs.rows() && normal_rows_decoupled(cs)) {
-    ContactSpaceT<N, C> normal_space;
-    build_contact_space(pb, false, normal_space, held_by(cs));
-    ImpactResultT<N, C> normal_answer;
-    solve_fremond_chain(pb, normal_space, law, opt, normal_answer);
-    if (normal_answer.solver.status == SolverStatus::converged) {
-      Rows<N, C> start = P0;
-      for (int k = 0; k < cs.active; ++k) start(k) = normal_answer.P_N(cs.index(k));
-      if (newton_answers(start)) {
-        out.solver.fallbacks = tried + 4;
-        out.solver.message =
-            "semismooth Newton converged from the normal rows' own answer (G_NT = 0: the "
-            "tangential rows do not move them)";
-        return;
-      }
-    }
-  }
-  // Every method failed: the answer is the nearest to the law, not the last. NLopt, stopped by
-  // its budget, can end far from where the splitting left off (a singular G of rank 3 with 8 rows
-  // and cond(M) = 1e10: 9e12 of the velocities against the splitting's 1e-6).
-  if (have_split_end && o.status != SolverStatus::converged) {
-    const double r_nlopt = P.allFinite() ? rows.plain_residual(P) : 0.0;
-    const double r_split = rows.plain_residual(P_split);
-    if (!(r_nlopt <= r_split) && std::isfinite(r_split)) {
-      P = P_split;
-      split_end.message =
-          "every method failed; the proximal splitting's end is returned, nearer to the law than "
-          "NLopt's";
-      finish(split_end, SolverMethod::proximal);
-      out.solver.fallbacks = tried + 1;
-      return;
-    }
-  }
-  finish(o, SolverMethod::nlopt);
-  out.solver.fallbacks = tried;
+template <int N, int C>
+void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                         const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+  FremondChain<N, C>(pb, cs, law, opt, out).run();
 }
 
 }  // namespace
@@ -1533,7 +1665,6 @@ void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
   Rows<N, C> P, z(cs.rows()), R;
   double u = 0.0;
   if (!solve_one_dof(pb, rows, P, u)) return;
-  const int fallbacks = out.solver.fallbacks + 1;
   out.qdot_E.resize(1);
   out.qdot_E(0) = pb.qdot_A(0) + 2.0 * u;
   scatter_at_velocities(pb, cs, P, out);
@@ -1553,7 +1684,8 @@ void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
                "by bisection on its subdifferential), but its percussions, far above the "
                "velocities, do not reproduce it in double precision within the law's test";
   write_outcome(o, SolverMethod::scalar_newton, cs.v_scale, opt, out);
-  out.solver.fallbacks = fallbacks;
+  out.solver.record(SolverMethod::scalar_newton, AttemptStart::none, o.status, out.solver.residual);
+  out.solver.fallbacks = out.solver.attempt_count - 1;
   out.solutions_found = 0;
   out.unique = passes && percussion_unique(rows, P, z, out);
 }
@@ -1583,8 +1715,10 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
   out.solver.status = SolverStatus::no_solution;
   out.solver.method = SolverMethod::lemke;  // what decided it
   out.solver.criterion = StopCriterion::exact;
-  out.solver.fallbacks += 1;
   out.solver.residual = fremond_residual(pb, law, out);  // of the state returned
+  out.solver.record(SolverMethod::lemke, AttemptStart::none, SolverStatus::no_solution,
+                    out.solver.residual);
+  out.solver.fallbacks = out.solver.attempt_count - 1;
   out.solver.message =
       "no solution: no velocity after the impact keeps every contact that takes part from "
       "penetrating (D_NE >= 0 on all of them is infeasible: their obstacles close in on the "

@@ -26,6 +26,14 @@ namespace {
 /// (fremond_coulomb #3655 of stress seed 7). The classical laws are not held to it: Newton's and
 /// Poisson's with Coulomb create energy, which is the certificate's finding, not the solver's
 /// failure.
+/// A chain that logs no attempt of its own (the classical laws') gets its answer's method as one.
+template <int N, int C>
+void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
+  if (out.solver.attempt_count == 0 && out.solver.status != SolverStatus::not_run)
+    out.solver.record(out.solver.method, AttemptStart::none, out.solver.status,
+                      out.solver.residual);
+}
+
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
   if (law.type != LawType::fremond || out.solver.status != SolverStatus::converged ||
@@ -86,6 +94,7 @@ ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, 
     out = ImpactResultT<N, C>{};
     detail::solve_law_stage(pb, cs, every, options, out);
   }
+  log_answer_if_unlogged(out);
   VecT<C> percussion;
   const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
   out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
@@ -139,6 +148,7 @@ std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, co
               : detail::solve_classical_all(pb, every, options, detail::HeldContacts::every);
   }
   for (auto& r : all) {
+    log_answer_if_unlogged(r);
     r.admissibility = check_admissibility(pb, law, r, options);
     refuse_inadmissible(law, r);
   }

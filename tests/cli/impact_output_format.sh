@@ -27,7 +27,7 @@ assert a["failed"] in ["none", "total_15", "per_contact_15", "reaction_17", "dis
 assert isinstance(a["failed_contact"], int)
 s = d["solver"]
 assert sorted(s) == sorted(["method", "status", "criterion", "iterations", "residual", "message",
-    "native_code", "fallbacks"]), sorted(s)
+    "native_code", "fallbacks", "attempts", "attempt_count"]), sorted(s)
 assert s["method"] in ["automatic", "trivial", "closed_form", "scalar_newton", "mode_enumeration",
     "lemke", "semismooth_newton", "proximal", "nlopt"], s["method"]
 assert s["status"] in ["not_run", "converged", "max_iterations", "stalled", "no_solution",
@@ -36,6 +36,12 @@ assert s["criterion"] in ["none", "exact", "residual", "step", "iterations", "nl
 assert isinstance(s["iterations"], int) and isinstance(s["native_code"], int)
 assert isinstance(s["message"], str)
 assert s["residual"] is None or isinstance(s["residual"], float)
+# The attempt log: every method the chain ran, in order; the answer method is among them.
+assert s["attempt_count"] == len(s["attempts"]) >= 1
+assert all(sorted(t) == ["method", "residual", "start", "status"] for t in s["attempts"])
+assert all(t["start"] in ["none", "decoupled_guess", "zero", "newton_end", "splitting_end",
+    "nlopt_end", "velocity_newton_end", "normal_rows"] for t in s["attempts"])
+assert s["method"] in [t["method"] for t in s["attempts"]]
 '
 
 for problem in newton_bar.json poisson_bar.json spec_example.json newton_coulomb_point.json \

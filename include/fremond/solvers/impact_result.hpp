@@ -1,6 +1,8 @@
 #pragma once
 /// @file The result of one impact: velocities, percussions, the admissibility certificate, and how
 /// the solver got there.
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <string_view>
 
@@ -9,8 +11,33 @@
 
 namespace fremond {
 
+/// Where a method of the chain started from (docs/solvers.md).
+enum class AttemptStart : std::uint8_t {
+  none,                 ///< an exact method: no starting point.
+  decoupled_guess,      ///< each row's percussion as if its contact were alone.
+  zero,                 ///< no percussion.
+  newton_end,           ///< where semismooth Newton stopped.
+  splitting_end,        ///< where the proximal splitting stopped.
+  nlopt_end,            ///< where NLopt stopped.
+  velocity_newton_end,  ///< where Newton in velocity space stopped.
+  normal_rows,          ///< the normal rows' own answer, solved alone (G_NT = 0).
+};
+std::string_view to_string(AttemptStart s);
+AttemptStart attempt_start_from_string(std::string_view s);
+
+/// One method the chain ran, in the order run: what it ran, from where, and how it ended (its own
+/// status and scaled residual, before any later stage). No allocation: a fixed-size record.
+struct Attempt {
+  SolverMethod method = SolverMethod::automatic;
+  AttemptStart start = AttemptStart::none;
+  SolverStatus status = SolverStatus::not_run;
+  double residual = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// How the solver ended, separate from the answer.
 struct SolverReport {
+  static constexpr int kMaxAttempts = 16;
+
   SolverMethod method = SolverMethod::automatic;  ///< the method that produced the answer.
   SolverStatus status = SolverStatus::not_run;
   StopCriterion criterion = StopCriterion::none;
@@ -19,6 +46,16 @@ struct SolverReport {
   double residual = std::numeric_limits<double>::quiet_NaN();  ///< the law's scaled residual.
   int native_code = 0;  ///< the fallback's own return code (NLopt's nlopt_result), else 0.
   int fallbacks = 0;    ///< how many methods were tried before this one.
+  /// Frémond's chain: every method it ran, the first kMaxAttempts of them, in order; the answer's
+  /// is the last that converged, or the one the chain kept. attempt_count counts them all.
+  std::array<Attempt, kMaxAttempts> attempts{};
+  int attempt_count = 0;
+
+  /// Appends an attempt (counted always, kept while there is room).
+  void record(SolverMethod m, AttemptStart from, SolverStatus s, double scaled_residual) {
+    if (attempt_count < kMaxAttempts) attempts[attempt_count] = {m, from, s, scaled_residual};
+    ++attempt_count;
+  }
 };
 
 template <int MaxDofs, int MaxContacts>
