@@ -49,7 +49,9 @@ double change_within(const Around& f) {
 // unknown. z = (D_A + D_E)/2 is known to δz ≈ ε·|D| and s to δs ≈ ε·|P|: near z = 0 a potential
 // with p close to 1 (φ ≈ k|z|) turns rounding noise δz into a gap φ(δz) ≈ k·δz comparable to
 // |P|·|D_A| itself (the exact z underflows), which is not a violation of the law.
-double sampled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds);
+// Out of line and cold: only a user's potential without a conjugate takes it.
+[[gnu::cold, gnu::noinline]] double sampled_gap(const Potential& phi, double z, double s,
+                                                double energy, double dz, double ds);
 
 double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
   if (!phi.capabilities().conjugate) return sampled_gap(phi, z, s, energy, dz, ds);
@@ -118,7 +120,8 @@ void for_each_sample(double z, double dz, F&& f) {
 // φ(z) − φ(y) − s (z − y): sampled at a few points, a potential that is not convex (its slope at
 // z is then no subgradient) or not zero at 0 is caught at the answer. Scaled as scaled_gap; what
 // the rounding of z (dz) and s (ds) can make of each sample is not counted.
-double sampled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
+[[gnu::cold, gnu::noinline]] double sampled_gap(const Potential& phi, double z, double s,
+                                                double energy, double dz, double ds) {
   const double fz = phi.value(z);
   if (!std::isfinite(fz) || !std::isfinite(s)) return 0.0;  // the other checks speak for those
   const double moved = change_within(around([&](double x) { return phi.value(x); }, z, fz, dz));

@@ -1028,6 +1028,22 @@ bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
   return lo.solutions.size == 0 && lo.exhaustive && !lo.beyond_precision && !lo.unsupported;
 }
 
+/// One row of a chain's table: where it applies, and what it runs (true: the answer is written).
+/// A compile-time row, so that trying a stage costs the test itself.
+template <auto Applies, auto Run>
+struct Stage {
+  template <class Chain>
+  static bool answers(Chain& chain) {
+    return (chain.*Applies)() && (chain.*Run)();
+  }
+};
+
+/// Tries the stages in order; the first that answers ends the chain.
+template <class... Stages, class Chain>
+void run_stages(Chain& chain) {
+  (void)(Stages::answers(chain) || ...);
+}
+
 /// Frémond's chain (docs/solvers.md): the stages of run()'s table, in order; the first that
 /// answers ends it. A stage applies to some laws, problems and requested methods; it runs one or
 /// more methods, each recorded in the result's attempt log, and answers or hands on what it
@@ -1049,52 +1065,31 @@ struct FremondChain {
     velocity_space = has_prox && !rows.coulomb;
   }
 
-  struct Stage {
-    const char* what;
-    bool (FremondChain::*applies)() const;
-    bool (FremondChain::*run)();  ///< true: the answer is written
-  };
-
   void run() {
     using F = FremondChain;
-    static constexpr Stage kStages[] = {
+    run_stages<
         // Exact stages.
-        {"no contact takes part: no percussion", &F::no_contact, &F::trivial},
-        {"a forced method other than NLopt without a prox", &F::forced_without_prox,
-         &F::unsupported_without_prox},
-        {"decoupled rows: one prox each", &F::decoupled_rows, &F::solve_decoupled_rows},
-        {"one contact with Coulomb: every mode", &F::one_contact_coulomb, &F::one_contact_modes},
-        {"one contact inside the tangential dead zone: one prox", &F::one_contact_dead_zone,
-         &F::dead_zone_prox},
-        {"Coulomb on 2-4 contacts, modes asked for by name", &F::forced_coulomb_modes,
-         &F::coulomb_modes_by_name},
-        {"a forced exact method that does not apply", &F::forced_exact_inapplicable,
-         &F::unsupported_exact},
-        {"a forced method of another law", &F::forced_other_law, &F::unsupported_other_law},
+        Stage<&F::no_contact, &F::trivial>,  // no contact takes part: no percussion
+        Stage<&F::forced_without_prox, &F::unsupported_without_prox>,  // forced, no prox
+        Stage<&F::decoupled_rows, &F::solve_decoupled_rows>,           // one prox per row
+        Stage<&F::one_contact_coulomb, &F::one_contact_modes>,         // every mode
+        Stage<&F::one_contact_dead_zone, &F::dead_zone_prox>,          // one prox, P_T = 0
+        Stage<&F::forced_coulomb_modes, &F::coulomb_modes_by_name>,    // 2-4 contacts, by name
+        Stage<&F::forced_exact_inapplicable, &F::unsupported_exact>,
+        Stage<&F::forced_other_law, &F::unsupported_other_law>,
         // Iterative stages: Newton, the splitting, NLopt, and restarts from each one's end.
-        {"velocity-space Newton first (more than twice as many rows as dofs)", &F::newton_allowed,
-         &F::velocity_newton_first},
-        {"contact-space semismooth Newton from the decoupled guess", &F::newton_allowed,
-         &F::contact_newton},
-        {"Coulomb: Newton from zero", &F::coulomb_newton_from_zero, &F::newton_from_zero},
-        {"Coulomb on 2-4 contacts: Newton per tangential mode", &F::coulomb_modes_after_newton,
-         &F::coulomb_modes},
-        {"proximal splitting, from Newton's end or the guess, then from zero",
-         &F::splitting_allowed, &F::splitting},
-        {"Newton from the splitting's end", &F::after_failed_splitting, &F::newton_from_splitting},
-        {"NLopt on the velocity-space problem", &F::always, &F::nlopt},
-        {"Newton from NLopt's end", &F::after_nlopt_with_prox, &F::newton_from_nlopt},
-        {"velocity-space Newton, late", &F::late_velocity_newton_applies, &F::late_velocity_newton},
-        {"Newton from velocity-space Newton's end", &F::after_velocity_newton,
-         &F::newton_from_velocity_newton},
-        {"the normal rows alone (G_NT = 0), then Newton from their answer", &F::normal_rows_apart,
-         &F::normal_rows_first},
-        {"every method failed: the splitting's end where nearer than NLopt's",
-         &F::splitting_and_nlopt_failed, &F::nearest_failure},
-        {"NLopt's answer", &F::always, &F::nlopt_answer},
-    };
-    for (const Stage& s : kStages)
-      if ((this->*s.applies)() && (this->*s.run)()) return;
+        Stage<&F::newton_allowed, &F::velocity_newton_first>,  // rows > 2 dofs, no Coulomb
+        Stage<&F::newton_allowed, &F::contact_newton>,         // from the decoupled guess
+        Stage<&F::coulomb_newton_from_zero, &F::newton_from_zero>,
+        Stage<&F::coulomb_modes_after_newton, &F::coulomb_modes>,  // Newton per mode, 2-4
+        Stage<&F::splitting_allowed, &F::splitting>,  // from Newton's end or the guess, then 0
+        Stage<&F::after_failed_splitting, &F::newton_from_splitting>, Stage<&F::always, &F::nlopt>,
+        Stage<&F::after_nlopt_with_prox, &F::newton_from_nlopt>,
+        Stage<&F::late_velocity_newton_applies, &F::late_velocity_newton>,
+        Stage<&F::after_velocity_newton, &F::newton_from_velocity_newton>,
+        Stage<&F::normal_rows_apart, &F::normal_rows_first>,         // G_NT = 0: normal rows alone
+        Stage<&F::splitting_and_nlopt_failed, &F::nearest_failure>,  // the nearest failure
+        Stage<&F::always, &F::nlopt_answer>>(*this);
   }
 
   // ---- shared state --------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 /// @file The result of one impact: velocities, percussions, the admissibility certificate, and how
 /// the solver got there.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -26,12 +27,13 @@ std::string_view to_string(AttemptStart s);
 AttemptStart attempt_start_from_string(std::string_view s);
 
 /// One method the chain ran, in the order run: what it ran, from where, and how it ended (its own
-/// status and scaled residual, before any later stage). No allocation: a fixed-size record.
+/// status and scaled residual, before any later stage). Eight bytes, no allocation: the residual
+/// is a log's figure, kept in single precision.
 struct Attempt {
   SolverMethod method = SolverMethod::automatic;
   AttemptStart start = AttemptStart::none;
   SolverStatus status = SolverStatus::not_run;
-  double residual = std::numeric_limits<double>::quiet_NaN();
+  float residual = 0.0f;
 };
 
 /// How the solver ended, separate from the answer.
@@ -53,7 +55,14 @@ struct SolverReport {
 
   /// Appends an attempt (counted always, kept while there is room).
   void record(SolverMethod m, AttemptStart from, SolverStatus s, double scaled_residual) {
-    if (attempt_count < kMaxAttempts) attempts[attempt_count] = {m, from, s, scaled_residual};
+    if (attempt_count < kMaxAttempts) {
+      // Beyond float's range a residual is infinite (a conversion out of range is undefined).
+      const float r = !(std::fabs(scaled_residual) <= std::numeric_limits<float>::max())
+                          ? (std::isnan(scaled_residual) ? std::numeric_limits<float>::quiet_NaN()
+                                                         : std::numeric_limits<float>::infinity())
+                          : static_cast<float>(scaled_residual);
+      attempts[static_cast<std::size_t>(attempt_count)] = {m, from, s, r};
+    }
     ++attempt_count;
   }
 };

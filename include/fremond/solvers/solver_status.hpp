@@ -1,11 +1,12 @@
 #pragma once
 /// @file Enumerations of the solver report, each with to_string / from_string (CLI, bindings).
+#include <cstdint>
 #include <string_view>
 
 namespace fremond {
 
 /// How a solve ended. Every value is documented by the test that sets it.
-enum class SolverStatus {
+enum class SolverStatus : std::uint8_t {
   not_run,         ///< the default: nothing was solved.
   converged,       ///< the law's residual (laws/residual.hpp) ≤ tolerance × velocity scale, or
                    ///< (criterion `rounding`) each row above it is at its own rounding floor.
@@ -20,7 +21,7 @@ enum class SolverStatus {
 };
 
 /// Which method produced the answer.
-enum class SolverMethod {
+enum class SolverMethod : std::uint8_t {
   automatic,  ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
   trivial,    ///< no contact takes part (all D_NA > 0): no percussion.
   closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
