@@ -1211,6 +1211,12 @@ struct FremondChain {
 
   bool solve_decoupled_rows() {
     MethodOutcome o = solve_decoupled(rows, P);
+    return exact_prox_answers(o);
+  }
+
+  // An answer of exact proxes: checked, recorded and written (closed_form when every potential is
+  // piecewise quadratic).
+  bool exact_prox_answers(MethodOutcome& o) {
     check_exact(rows, P, opt, o);
     const SolverMethod m =
         rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton;
@@ -1316,12 +1322,7 @@ struct FremondChain {
     o.status = SolverStatus::converged;
     o.criterion = StopCriterion::exact;
     o.message = "one contact inside the tangential dead zone: one exact prox";
-    check_exact(rows, P, opt, o);
-    const SolverMethod m =
-        rows.all_quadratic ? SolverMethod::closed_form : SolverMethod::scalar_newton;
-    record(m, AttemptStart::none, o);
-    finish(o, m);
-    return true;
+    return exact_prox_answers(o);
   }
 
   bool coulomb_modes_by_name() {

@@ -1,14 +1,6 @@
 # `fremond impact --time-limit`: a solve that runs long says so on stderr (after 1 s, then 2, 4, ...)
 # and, past its limit, stops with exit status 6 and nothing on stdout. A bad limit is refused.
-set -u
-FREMOND=${1:?usage: bash impact_time_limit.sh path/to/fremond}
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/check_common.bash" "$1"
 
 # 400 contacts on 800 dofs, dense random directions, Newton + Coulomb: Lemke runs about 6 s on this
 # machine (and fails, which does not matter here).
@@ -53,8 +45,4 @@ else
   fail "small problem: exit status $rc, stderr: $(cat "$TMP/err"), stdout: $(head -c 200 "$TMP/out")"
 fi
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

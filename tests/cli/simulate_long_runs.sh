@@ -1,15 +1,7 @@
 # `fremond simulate` on long runs: a grid the user did not choose is made coarser rather than
 # writing millions of rows; an interrupted run writes what it computed; a slide the law does not
 # resist is named.
-set -u
-FREMOND=${1:?usage: bash simulate_long_runs.sh path/to/fremond}
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/check_common.bash" "$1"
 
 # check NAME DIR 'python statements on s (summary.json) and rows (trajectory.csv, floats)'
 check() {
@@ -77,8 +69,4 @@ assert 0 < s["t"] < 1e7 and rows[-1][0] == s["t"], (s["t"], rows[-1][0])
 assert rows[0][0] == 0 and len(rows) > 10'
 done
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

@@ -1,15 +1,7 @@
 # `fremond simulate --preset paper-bar --law LAW --out DIR` for each law of the paper (the paper's Fig. 1):
 # the files are complete and consistent, the energy never rises except at flagged impacts, and a
 # rerun writes the same bytes.
-set -u
-FREMOND=${1:?usage: bash simulate_paper_bar.sh path/to/fremond}
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/check_common.bash" "$1"
 
 for law in newton newton_coulomb poisson_coulomb fremond_coulomb fremond_viscous; do
   out="$TMP/$law"
@@ -82,8 +74,4 @@ grep -q "accumulation: 1" "$TMP/stdout" && pass || fail "30 s: no accumulation: 
 "$PY" -c "import json,sys; d=json.load(open('$TMP/three/impacts.json')); assert len(d)==3, len(d)" &&
   pass || fail "--max-impacts 3 did not log 3 impacts"
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

@@ -1,16 +1,6 @@
 # `fremond simulate` refuses what it cannot run: exit status 1, a message naming the key or the
 # option, and nothing written.
-set -u
-FREMOND=${1:?usage: bash simulate_refusals.sh path/to/fremond}
-HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-SCENES="$HERE/../data/scenes"
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/check_common.bash" "$1"
 
 # refused NAME KEY REASON ARGS...: exit status 1, KEY and REASON in the message, no output file.
 refused() {
@@ -73,8 +63,4 @@ edited "small gap budget" "integrator.max_gap_evaluations" ">= 100" 'd["integrat
 edited "fractional gap budget" "integrator.max_gap_evaluations" "whole number" 'd["integrator"]["max_gap_evaluations"] = 1000.5'
 edited "bad sample interval" "output.sample_interval" "> 0" 'd["output"]["sample_interval"] = -1'
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

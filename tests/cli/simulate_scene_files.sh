@@ -1,17 +1,7 @@
 # `fremond simulate SCENE.json --out DIR` on the scene files of tests/data/scenes: a ball against
 # its closed form, a block between a floor and a wall, the integrator and options from the command
 # line, and outputs that are complete or absent.
-set -u
-FREMOND=${1:?usage: bash simulate_scene_files.sh path/to/fremond}
-HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-SCENES="$HERE/../data/scenes"
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
-pass() { checks=$((checks + 1)); }
+source "$(dirname "$0")/check_common.bash" "$1"
 # check NAME 'python on s (summary), imp (impacts), rows (trajectory floats)' DIR
 check() {
   if "$PY" - "$3" "$2" 2>"$TMP/pyerr" <<'PYEOF'; then pass; else fail "$1: $(tail -n 3 "$TMP/pyerr")"; fi
@@ -109,8 +99,4 @@ check "spin3" '
 assert s["status"] == "completed" and s["t"] == 1 and imp == [], s
 ' "$TMP/spin3"
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures check(s) failed, $checks passed" >&2
-  exit 1
-fi
-echo "all $checks checks passed"
+finish

@@ -113,4 +113,39 @@ inline ImpactProblem detach_separating(const ImpactProblem& pb) {
   return out;
 }
 
+/// Four contacts on three dofs, cond(M) = 1e10, speeds 1e-9, p from 1.003 to 31 with the viscous
+/// dead zone (fremond_viscous #63 of stress seed 23): a case where every method of Frémond's chain
+/// fails or nearly, NLopt's end 9e12 of the velocities from the law.
+struct HardFremondCase {
+  ImpactProblem problem;
+  ImpactLaw law;
+};
+inline HardFremondCase every_method_failing_case() {
+  HardFremondCase c;
+  ImpactProblem& pb = c.problem;
+  pb.M.resize(3, 3);
+  pb.M << 7951828.996842298, -16449933.183492143, 9020740.580749638, -16449933.183492143,
+      34029946.10497301, -18661189.926689938, 9020740.580749638, -18661189.926689938,
+      10233340.4170277;
+  pb.W_N.resize(3, 4);
+  pb.W_N << 0.9253293531650559, -0.5210114094630116, -0.8952477121556833, 0.9253293531650559,
+      0.7692881614889511, 0.9739469124269164, 0.6066104889029429, 0.7692881614889511,
+      0.9365482111065937, 0.1497906745901345, -0.7662332784780111, 0.9365482111065937;
+  pb.W_T.resize(3, 4);
+  pb.W_T << 0.2652742867339486, 0.6506144198035824, -0.028944442760205358, -0.015426005738093607,
+      0.7485155773358516, 0.7430756335658784, -0.46716201977964655, 0.1842153471431538,
+      -0.7941066387828781, -0.2129325428485339, -0.6341555452713468, -0.5201974050901444;
+  pb.qdot_A =
+      Eigen::Vector3d(3.643957871526755e-09, -3.3323752925316983e-09, -3.5348621602472427e-09);
+  const double k[4] = {6.359817502633181, 66113.18883090747, 3005.291157828727, 3579.2234395360924};
+  const double p[4] = {5.914055754085484, 31.137382733915185, 1.003390763568152, 2.403721887609679};
+  PerContactPotential normal;
+  for (int i = 0; i < 4; ++i)
+    normal.potentials.emplace_back(std::make_unique<PowerPotential>(k[i], p[i]));
+  c.law = ImpactLaw::fremond(
+      std::move(normal),
+      DeadZonePowerPotential(106.18344232384078, 4.973125386008597, 3.0569394144157536e-09));
+  return c;
+}
+
 }  // namespace fremond::testing
