@@ -38,9 +38,21 @@ class Recorder final : public SimulationObserver {
   void on_phase(double t, Phase from, Phase to, std::string_view why) override {
     run_.phase_changes.emplace_back(t, from, to, std::string(why));
   }
+  // Ctrl-C reaches a run that released the GIL: Python's signal handlers are run every 1,024
+  // flights or steps (the GIL taken for that only), and a raised KeyboardInterrupt stops the run.
+  bool stop_requested() override {
+    if (interrupted_) return true;
+    if (++calls_ % 1024 != 0) return false;
+    py::gil_scoped_acquire gil;
+    interrupted_ = PyErr_CheckSignals() != 0;
+    return interrupted_;
+  }
+  bool interrupted() const { return interrupted_; }
 
  private:
   Simulation& run_;
+  long calls_ = 0;
+  bool interrupted_ = false;
 };
 
 py::array_t<double> rows3(const std::vector<Eigen::Vector3d>& v) {
@@ -169,11 +181,14 @@ void bind_simulation(py::module_& m) {
       [](const Scene& scene, const SimulationOptions& options) {
         Simulation run;
         Recorder recorder(run);
-        run.result = simulate(scene, options, &recorder);
+        {
+          py::gil_scoped_release free;
+          run.result = simulate(scene, options, &recorder);
+        }
+        if (recorder.interrupted()) throw py::error_already_set();  // the KeyboardInterrupt
         return run;
       },
-      py::arg("scene"), py::arg("options") = SimulationOptions{},
-      py::call_guard<py::gil_scoped_release>(), doc::kSimulate);
+      py::arg("scene"), py::arg("options") = SimulationOptions{}, doc::kSimulate);
 
   py::class_<UnresistedSlide>(m, "UnresistedSlide",
                               "A contact sliding at the end of a run where the law puts no "

@@ -4,6 +4,9 @@ GIL and their lifetime), the registry and the problem file, enums and option str
 import gc
 import json
 import math
+import os
+import subprocess
+import sys
 import threading
 
 import numpy as np
@@ -349,6 +352,27 @@ def test_all_solutions_and_residual():
         assert f.law_residual(pb, law, s) < 1e-12
         rep = f.check_admissibility(pb, law, s)
         assert rep.failed == f.Inequality.total_15
+
+
+def test_ctrl_c_stops_a_long_run():
+    # simulate() releases the GIL; Ctrl-C (SIGINT) must still stop it with KeyboardInterrupt. In a
+    # child process: 1e5 s of the viscous bar take about 15 s, the signal comes after 0.3 s.
+    code = """
+import os, signal, threading, time
+import fremond as f
+scene = f.paper_bar_scene(f.PaperLaw.fremond_viscous)
+threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t0 = time.time()
+try:
+    f.simulate(scene, f.SimulationOptions(t_end=1e5, sample_interval=10.0))
+    print("finished", time.time() - t0)
+except KeyboardInterrupt:
+    print("interrupted", time.time() - t0)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, env=dict(os.environ)).stdout.split()
+    assert out and out[0] == "interrupted", out
+    assert float(out[1]) < 5.0, out
 
 
 def test_a_flight_too_fast_to_resolve_stops_the_run():
