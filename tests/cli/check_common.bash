@@ -1,4 +1,5 @@
-# Shared by the simulate and impact scripts of tests/cli; not a test itself (ctest runs *.sh only).
+# Shared by every script of tests/cli (directly, or through curve_common.bash and
+# impact_common.bash); not a test itself (ctest runs *.sh only).
 #
 #   source "$(dirname "$0")/check_common.bash" "$1"   # $1: the fremond binary
 #   ...checks, each calling pass or fail...

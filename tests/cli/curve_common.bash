@@ -5,20 +5,7 @@
 #   finish
 #
 # Every check counts; `finish` exits non-zero when one failed, after all have run.
-set -u
-
-FREMOND=${1:?usage: bash script.sh path/to/fremond}
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-pass() { checks=$((checks + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/check_common.bash" "$1"
 
 # run_curve ARGS...: runs `fremond curve ARGS`; sets RC, leaves the output in $TMP/out, $TMP/err.
 run_curve() {
@@ -84,13 +71,4 @@ expect_refusal() {
     ok=0
   fi
   [ "$ok" -eq 1 ] && pass
-}
-
-finish() {
-  if [ "$failures" -ne 0 ]; then
-    echo "$failures check(s) failed, $checks passed" >&2
-    exit 1
-  fi
-  echo "all $checks checks passed"
-  exit 0
 }

@@ -6,22 +6,8 @@
 #
 # Every check counts; `finish` exits non-zero when one failed, after all have run, so one run
 # lists every broken refusal at once.
-set -u
-
-FREMOND=${1:?usage: bash script.sh path/to/fremond}
-HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source "$(dirname "${BASH_SOURCE[0]}")/check_common.bash" "$1"
 DATA="$HERE/../data/problems"
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-checks=0
-
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-pass() { checks=$((checks + 1)); }
 
 # run_impact ARGS...: runs `fremond impact ARGS` with the caller's standard input; sets RC, leaves
 # the output in $TMP/out and $TMP/err.
@@ -118,13 +104,4 @@ expect_status() {
   else
     fail "$1: exit status $RC, expected $2; stderr: $(cat "$TMP/err")"
   fi
-}
-
-finish() {
-  if [ "$failures" -ne 0 ]; then
-    echo "$failures check(s) failed, $checks passed" >&2
-    exit 1
-  fi
-  echo "all $checks checks passed"
-  exit 0
 }
