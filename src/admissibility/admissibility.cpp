@@ -108,14 +108,6 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
   return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
 
-// Where y is one of a few points at the scale of z (0 among them), each with the error
-// φ(z) + s (y − z) − φ(y) makes, which a convex φ with s ∈ ∂φ(z) keeps ≤ 0.
-template <class F>
-void for_each_sample(double z, double dz, F&& f) {
-  const double h = std::max(std::fabs(z), 1e3 * dz);
-  for (double y : {0.0, -z, 0.5 * z, 1.5 * z, 2.0 * z, z - h, z + h}) f(y);
-}
-
 // Without a conjugate, φ*(s) ≥ s y − φ(y) for every y bounds the gap from below by
 // φ(z) − φ(y) − s (z − y): sampled at a few points, a potential that is not convex (its slope at
 // z is then no subgradient) or not zero at 0 is caught at the answer. Scaled as scaled_gap; what
@@ -126,14 +118,15 @@ void for_each_sample(double z, double dz, F&& f) {
   if (!std::isfinite(fz) || !std::isfinite(s)) return 0.0;  // the other checks speak for those
   const double moved = change_within(around([&](double x) { return phi.value(x); }, z, fz, dz));
   double worst = 0.0;
-  for_each_sample(z, dz, [&](double y) {
+  const double h = std::max(std::fabs(z), 1e3 * dz);  // a step at the scale of z, never 0
+  for (double y : {0.0, -z, 0.5 * z, 1.5 * z, 2.0 * z, z - h, z + h}) {
     const double fy = phi.value(y);
-    if (!std::isfinite(fy)) return;
+    if (!std::isfinite(fy)) continue;
     const double excess = fz + s * (y - z) - fy;
     const double terms = std::fabs(fz) + std::fabs(fy) + std::fabs(s * (y - z));
     const double noise = moved + dz * std::fabs(s) + ds * std::fabs(y - z) + 1e-12 * terms;
     worst = std::max(worst, std::max(0.0, excess - noise) / (terms + energy + 1e-300));
-  });
+  }
   return worst;
 }
 
@@ -145,7 +138,7 @@ bool not_a_pseudo_potential(const Potential& phi, double z) {
   const double f0 = phi.value(0.0), fz = phi.value(z);
   if (!std::isfinite(fz)) return false;  // outside the domain: the certificate's finding
   if (!(std::fabs(f0) <= 1e-12 * std::fabs(fz)) || fz < 0.0) return true;
-  // Midpoint convexity on the points 0, ±z/2, ±z, 3z/2, 2z, each pair to its rounding.
+  // Midpoint convexity on five chords among −z, 0, z/2, z, 3z/2, 2z, each to its rounding.
   auto above_chord = [&](double a, double b) {
     const double fa = phi.value(a), fb = phi.value(b), fm = phi.value(0.5 * (a + b));
     return std::isfinite(fa) && std::isfinite(fb) &&

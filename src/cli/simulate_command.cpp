@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -305,7 +306,8 @@ class Recorder final : public SimulationObserver {
 
 // ---- writing ----------------------------------------------------------------------------------
 
-ojson summary_json(const Setup& s, const SimulationResult& r) {
+ojson summary_json(const Setup& s, const SimulationResult& r,
+                   const std::optional<UnresistedSlide>& slide) {
   ojson j;
   j["scene"] = s.name;
   j["law"] = s.scene.law.describe();
@@ -329,7 +331,6 @@ ojson summary_json(const Setup& s, const SimulationResult& r) {
   j["first_accumulation_time"] = number(r.first_accumulation_time);
   j["moreau_jean_steps"] = r.steps;
   j["phase_switches"] = r.phase_switches;
-  const auto slide = unresisted_slide(s.scene, s.options, r);
   if (slide) {
     ojson sl;
     sl["contact"] = slide->contact;
@@ -341,7 +342,8 @@ ojson summary_json(const Setup& s, const SimulationResult& r) {
   return j;
 }
 
-void print_summary(const Setup& s, const SimulationResult& r, const std::filesystem::path& dir,
+void print_summary(const Setup& s, const SimulationResult& r,
+                   const std::optional<UnresistedSlide>& slide, const std::filesystem::path& dir,
                    const Recorder& rec) {
   const auto& q = r.state.q;
   const auto& v = r.state.qdot;
@@ -371,7 +373,7 @@ void print_summary(const Setup& s, const SimulationResult& r, const std::filesys
               r.energy_initial, r.energy_final, r.max_energy_rise);
   std::printf("final state:  q = (%.9g, %.9g, %.9g), qdot = (%.9g, %.9g, %.9g)\n", q.x(), q.y(),
               q.z(), v.x(), v.y(), v.z());
-  if (const auto slide = unresisted_slide(s.scene, s.options, r))
+  if (slide)
     std::printf(
         "sliding:      contact %d slides at D_T = %.6g m/s at the end, and the law puts no "
         "tangential percussion on that slide (a viscous dead zone |D_T| <= r, or no friction): "
@@ -409,9 +411,10 @@ void run(const SimulateArguments& args) {
     refuse(e.what());
   }
   rec.clear();
+  const std::optional<UnresistedSlide> slide = unresisted_slide(setup.scene, setup.options, result);
 
   try {
-    ojson summary = summary_json(setup, result);
+    ojson summary = summary_json(setup, result, slide);
     summary["phases"] = rec.phases();
     write_atomically(dir, "trajectory.csv", rec.csv());
     // One impact a line: a list that reads as a table and still parses as JSON.
@@ -425,7 +428,7 @@ void run(const SimulateArguments& args) {
     std::fprintf(stderr, "fremond simulate: error: %s\n", e.what());
     exit_with(kExitWriteFailed);
   }
-  print_summary(setup, result, dir, rec);
+  print_summary(setup, result, slide, dir, rec);
   if (result.status == SimulationStatus::interrupted) {
     std::fprintf(stderr,
                  "fremond simulate: interrupted at t = %.9g s; the files hold the run up to "

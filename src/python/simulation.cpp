@@ -182,7 +182,7 @@ void bind_simulation(py::module_& m) {
         Simulation run;
         Recorder recorder(run);
         {
-          py::gil_scoped_release free;
+          py::gil_scoped_release released;
           run.result = simulate(scene, options, &recorder);
         }
         if (recorder.interrupted()) throw py::error_already_set();  // the KeyboardInterrupt

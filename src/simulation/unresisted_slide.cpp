@@ -11,26 +11,11 @@ namespace fremond {
 namespace {
 // True where the law of contact k puts no tangential percussion on a slide at D_T.
 bool resists_no_slide(const ImpactLaw& law, int k, double D_T) {
-  switch (law.type) {
-    case LawType::newton:
-    case LawType::poisson:
-      return true;
-    case LawType::newton_coulomb:
-    case LawType::poisson_coulomb:
-      return law.mu[k] == 0.0;
-    case LawType::fremond:
-      switch (law.tangential) {
-        case TangentialLaw::none:
-          return true;
-        case TangentialLaw::coulomb:
-          return law.mu[k] == 0.0;
-        case TangentialLaw::potential:
-          // The slide's mean velocity is D_T itself (before = after): no percussion when
-          // 0 ∈ ∂φ_T(D_T).
-          return law.tangential_potential[k].subdifferential(D_T).contains(0.0);
-      }
-  }
-  return false;
+  // A tangential potential: the slide's mean velocity is D_T itself (before = after), so no
+  // percussion where 0 ∈ ∂φ_T(D_T). Otherwise Coulomb's with μ = 0, or no friction at all.
+  if (law.type == LawType::fremond && law.tangential == TangentialLaw::potential)
+    return law.tangential_potential[k].subdifferential(D_T).contains(0.0);
+  return !law.has_friction() || law.mu[k] == 0.0;
 }
 }  // namespace
 

@@ -1085,7 +1085,7 @@ struct FremondChain {
         Stage<&F::splitting_allowed, &F::splitting>,  // from Newton's end or the guess, then 0
         Stage<&F::after_failed_splitting, &F::newton_from_splitting>, Stage<&F::always, &F::nlopt>,
         Stage<&F::after_nlopt_with_prox, &F::newton_from_nlopt>,
-        Stage<&F::late_velocity_newton_applies, &F::late_velocity_newton>,
+        Stage<&F::late_velocity_newton_applies, &F::velocity_newton>,
         Stage<&F::after_velocity_newton, &F::newton_from_velocity_newton>,
         Stage<&F::normal_rows_apart, &F::normal_rows_first>,         // G_NT = 0: normal rows alone
         Stage<&F::splitting_and_nlopt_failed, &F::nearest_failure>,  // the nearest failure
@@ -1167,6 +1167,10 @@ struct FremondChain {
     return automatic && velocity_space && nlopt_end.status != SolverStatus::converged &&
            P0.size() == cs.rows();
   }
+  // Without Coulomb the velocity-space problem is strongly convex, and its Newton reaches the
+  // minimiser where contact space's methods stall on a badly scaled G; only where every other
+  // method failed, since answers accepted at the law's rounding floor are not all equally near
+  // the exact one.
   bool late_velocity_newton_applies() const {
     return nlopt_failed_in_velocity_space() && !velocity_ran;
   }
@@ -1466,12 +1470,6 @@ struct FremondChain {
     return newton_answers(P, AttemptStart::nlopt_end,
                           "semismooth Newton converged from NLopt's answer");
   }
-
-  // Without Coulomb the velocity-space problem is strongly convex, and its Newton reaches the
-  // minimiser where contact space's methods stall on a badly scaled G; only where every other
-  // method failed, since answers accepted at the law's rounding floor are not all equally near
-  // the exact one.
-  bool late_velocity_newton() { return velocity_newton(); }
 
   bool newton_from_velocity_newton() {
     return newton_answers(PV, AttemptStart::velocity_newton_end,

@@ -17,6 +17,14 @@
 namespace fremond {
 
 namespace {
+/// A chain that logs no attempt of its own (the classical laws') gets its answer's method as one.
+template <int N, int C>
+void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
+  if (out.solver.attempt_count == 0 && out.solver.status != SolverStatus::not_run)
+    out.solver.record(out.solver.method, AttemptStart::none, out.solver.status,
+                      out.solver.residual);
+}
+
 /// Frémond's law dissipates by construction ((15), (17) and (19) hold for every exact solution
 /// whose separating contacts carry no reaction: docs/concepts.md), so an answer marked converged
 /// that its certificate refuses is not resolved in double precision, whatever the law's residual
@@ -26,14 +34,6 @@ namespace {
 /// (fremond_coulomb #3655 of stress seed 7). The classical laws are not held to it: Newton's and
 /// Poisson's with Coulomb create energy, which is the certificate's finding, not the solver's
 /// failure.
-/// A chain that logs no attempt of its own (the classical laws') gets its answer's method as one.
-template <int N, int C>
-void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
-  if (out.solver.attempt_count == 0 && out.solver.status != SolverStatus::not_run)
-    out.solver.record(out.solver.method, AttemptStart::none, out.solver.status,
-                      out.solver.residual);
-}
-
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
   if (law.type != LawType::fremond || out.solver.status != SolverStatus::converged ||
