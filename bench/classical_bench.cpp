@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "../src/solvers/detail/classical_law.hpp"
 #include "problems.hpp"
+#include "solvers/detail/classical_law.hpp"
 
 namespace {
 

@@ -28,8 +28,8 @@
 #include <string>
 #include <vector>
 
-#include "../src/solvers/detail/fremond.hpp"
 #include "fremond_suite.hpp"
+#include "solvers/detail/fremond.hpp"
 #ifdef FREMOND_HAVE_SICONOS
 #include "siconos_peers.hpp"
 #endif

@@ -4,7 +4,7 @@
 #include <limits>
 #include <sstream>
 
-#include "fremond/potentials/detail/validate.hpp"
+#include "core/detail/validate.hpp"
 
 namespace fremond {
 

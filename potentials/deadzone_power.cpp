@@ -4,8 +4,8 @@
 #include <limits>
 #include <sstream>
 
-#include "fremond/potentials/detail/power_root.hpp"
-#include "fremond/potentials/detail/validate.hpp"
+#include "core/detail/validate.hpp"
+#include "detail/power_root.hpp"
 
 namespace fremond {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 
 namespace fremond {
 

@@ -4,9 +4,9 @@
 #include <limits>
 #include <sstream>
 
+#include "core/detail/validate.hpp"
+#include "detail/power_root.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/power_root.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 
 namespace fremond {
 

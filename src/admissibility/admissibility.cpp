@@ -2,14 +2,15 @@
 // reaction, (19) for the dissipative part, Fenchel–Young gaps and non-penetration.
 #include "fremond/admissibility/admissibility.hpp"
 
-#include "../solvers/detail/fremond_rows.hpp"
-#include "../solvers/detail/separating_contacts.hpp"
-#include "detail/admissibility.hpp"
-#include "fremond/core/detail/cholesky.hpp"
+#include "admissibility/detail/admissibility.hpp"
+#include "core/detail/cholesky.hpp"
+#include "laws/detail/fremond_rows.hpp"
+#include "laws/detail/separating_contacts.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include "laws/detail/impact_problem.hpp"
 
 namespace fremond {
 

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
+#include "cli/output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/curves/curves.hpp"
-#include "output.hpp"
 
 namespace fremond::cli {
 

@@ -18,13 +18,13 @@
 #include <optional>
 #include <string>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
+#include "cli/output.hpp"
+#include "cli/watchdog.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/solve_impact.hpp"
-#include "output.hpp"
-#include "watchdog.hpp"
 
 namespace fremond::cli {
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fremond: impact laws of rigid bodies (Newton, Poisson, Coulomb, Frémond)"};

@@ -1,5 +1,5 @@
 // Writing the commands' results (see output.hpp).
-#include "output.hpp"
+#include "cli/output.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>

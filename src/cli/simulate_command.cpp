@@ -27,7 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
+#include "cli/output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/scene_file.hpp"
 #include "fremond/potentials/registry.hpp"
@@ -35,7 +36,6 @@
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/unresisted_slide.hpp"
-#include "output.hpp"
 
 namespace fremond::cli {
 

@@ -1,4 +1,4 @@
-#include "watchdog.hpp"
+#include "cli/watchdog.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/enum_names.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/potentials/deadzone_power.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 #include "fremond/potentials/power.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 

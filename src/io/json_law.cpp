@@ -2,7 +2,7 @@
 // that name the key as the file spells it. The library's own checks (ImpactLaw::validate, the
 // potentials' constructors, the registry) stay the authority on values; this file only adds what
 // JSON brings: types, shapes, key names, and keys nobody asked for.
-#include "detail/json_law.hpp"
+#include "io/detail/json_law.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <optional>
 #include <set>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 
 namespace fremond::io::detail {
 

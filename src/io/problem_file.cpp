@@ -8,9 +8,9 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "detail/json_law.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/core/types.hpp"
+#include "io/detail/json_law.hpp"
 
 namespace fremond::io {
 

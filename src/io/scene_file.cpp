@@ -6,11 +6,11 @@
 #include <iterator>
 #include <sstream>
 
-#include "detail/json_law.hpp"
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "io/detail/json_law.hpp"
 
 namespace fremond::io {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 
 namespace fremond {
 

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <string>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
+#include "laws/detail/impact_problem.hpp"
 
 namespace fremond {
 

@@ -4,10 +4,9 @@
 #include <string>
 #include <utility>
 
-#include "../solvers/detail/fremond.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/solvers/detail/classical.hpp"
 #include "fremond/solvers/impact_result.hpp"
+#include "laws/detail/residuals.hpp"
 
 namespace fremond {
 

@@ -2,9 +2,9 @@
 #include <variant>
 #include <vector>
 
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/curves/curves.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

@@ -1,6 +1,4 @@
 // Every public enum of the library, by the names its to_string gives (one helper, bind_enum).
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/admissibility/admissibility_report.hpp"
 #include "fremond/curves/curves.hpp"
 #include "fremond/laws/impact_law.hpp"
@@ -8,6 +6,8 @@
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulation_options.hpp"
 #include "fremond/solvers/solver_status.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

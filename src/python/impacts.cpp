@@ -6,14 +6,14 @@
 #include <variant>
 #include <vector>
 
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/laws/residual.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

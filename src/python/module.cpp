@@ -1,7 +1,7 @@
 // The compiled part of the Python package `fremond` (imported by fremond/__init__.py). It only
 // wires up the binding units; each binds one layer of the library.
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 PYBIND11_MODULE(_fremond, m) {
   namespace fp = fremond::python;

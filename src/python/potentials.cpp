@@ -5,8 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/potentials/absolute_value.hpp"
 #include "fremond/potentials/conformance.hpp"
 #include "fremond/potentials/deadzone_power.hpp"
@@ -15,6 +13,8 @@
 #include "fremond/potentials/power.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/potentials/sum.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

@@ -3,14 +3,14 @@
 #include <string>
 #include <vector>
 
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/scene_file.hpp"
 #include "fremond/scenes/kinematics.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/scenes/scene.hpp"
 #include "fremond/simulation/calibration.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

@@ -4,11 +4,11 @@
 #include <tuple>
 #include <vector>
 
-#include "bind_helpers.hpp"
-#include "docstrings.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulation_options.hpp"
 #include "fremond/simulation/unresisted_slide.hpp"
+#include "python/bind_helpers.hpp"
+#include "python/docstrings.hpp"
 
 namespace fremond::python {
 

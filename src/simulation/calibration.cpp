@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 #include "fremond/potentials/power.hpp"
 #include "fremond/scenes/kinematics.hpp"
 #include "fremond/simulation/event_detection.hpp"

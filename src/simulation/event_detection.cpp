@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "detail/ulp.hpp"
+#include "simulation/detail/ulp.hpp"
 
 namespace fremond {
 

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <map>
 
-#include "detail/ulp.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
 #include "fremond/scenes/kinematics.hpp"
@@ -15,6 +14,7 @@
 #include "fremond/simulation/free_flight.hpp"
 #include "fremond/simulation/persistent_contact.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "simulation/detail/ulp.hpp"
 
 namespace fremond {
 

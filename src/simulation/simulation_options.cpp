@@ -3,9 +3,9 @@
 
 #include <cmath>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/enum_names.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 #include "fremond/simulation/simulate.hpp"
 
 namespace fremond {

@@ -14,14 +14,15 @@
 // so. An answer that still misses the tolerance beyond rounding is refined in its mode, solved in
 // velocities in its mode (classical_velocity_mode.hpp), and last, on up to 4 contacts, replaced by
 // the answer of every mode solved in velocities where that converges.
-#include "fremond/solvers/detail/classical.hpp"
+#include "solvers/detail/classical.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "detail/classical_law.hpp"
-#include "detail/classical_refine.hpp"
-#include "detail/classical_velocity_mode.hpp"
+#include "laws/detail/residuals.hpp"
+#include "solvers/detail/classical_law.hpp"
+#include "solvers/detail/classical_refine.hpp"
+#include "solvers/detail/classical_velocity_mode.hpp"
 
 namespace fremond::detail {
 

@@ -8,12 +8,13 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/classical_law.hpp"
-#include "detail/fremond.hpp"
-#include "detail/separating_contacts.hpp"
-#include "detail/small_lu.hpp"
+#include "core/detail/small_lu.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/potentials/power.hpp"
+#include "laws/detail/residuals.hpp"
+#include "laws/detail/separating_contacts.hpp"
+#include "solvers/detail/classical_law.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 
@@ -1720,32 +1721,6 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
 }
 
 template <int N, int C>
-double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                        const ImpactResultT<N, C>& r) {
-  ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
-  if (cs.active == 0) {  // every contact separates: undriven, each keeps P = 0
-    double off_trivial = 0.0;
-    for (int i = 0; i < cs.contacts; ++i)
-      off_trivial = std::max({off_trivial, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
-    return off_trivial;
-  }
-  // Every contact obeys the law, the separating ones with the reaction alone
-  // (separating_contacts.hpp); where none separates that is the law as it is.
-  const ImpactLaw every = law_of_every_contact(law, cs.D_N);
-  if (cs.active < cs.contacts)
-    build_contact_space(pb, law.tangential != TangentialLaw::none, cs, HeldContacts::every);
-  FremondRowsT<N, C> rows;
-  rows.init(cs, every);
-  Rows<N, C> P(cs.rows());
-  for (int k = 0; k < cs.active; ++k) {
-    P(k) = r.P_N(cs.index(k));
-    if (cs.tangential) P(cs.active + k) = r.P_T(cs.index(k));
-  }
-  return rows.plain_residual(P) / cs.v_scale;
-}
-
-template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
                                                    const ImpactLaw& law, const SolverOptions& opt,
                                                    HeldContacts held) {
@@ -1792,8 +1767,6 @@ std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& p
 #define FREMOND_INSTANTIATE(N, C)                                                            \
   template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
                               const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
-  template double fremond_residual(const ImpactProblemT<N, C>&, const ImpactLaw&,            \
-                                   const ImpactResultT<N, C>&);                              \
   template std::vector<ImpactResultT<N, C>> solve_fremond_all(                               \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)

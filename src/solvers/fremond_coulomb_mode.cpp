@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/fremond.hpp"
 #include "fremond/potentials/power.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 

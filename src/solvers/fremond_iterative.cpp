@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/fremond.hpp"
-#include "detail/small_full_piv_lu.hpp"
-#include "detail/small_lu.hpp"
+#include "core/detail/small_full_piv_lu.hpp"
+#include "core/detail/small_lu.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 

@@ -32,8 +32,8 @@
 #include <limits>
 #include <vector>
 
-#include "detail/fremond.hpp"
 #include "fremond/solvers/lemke.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/fremond.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 

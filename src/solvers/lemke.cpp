@@ -5,9 +5,9 @@
 #include <limits>
 #include <string>
 
-#include "detail/lemke.hpp"
 #include "fremond/core/enum_names.hpp"
 #include "fremond/core/error.hpp"
+#include "solvers/detail/lemke.hpp"
 
 namespace fremond {
 

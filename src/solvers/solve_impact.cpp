@@ -6,13 +6,14 @@
 #include <cmath>
 #include <limits>
 
-#include "../admissibility/detail/admissibility.hpp"
-#include "detail/fremond.hpp"
-#include "detail/independent_groups.hpp"
-#include "detail/separating_contacts.hpp"
+#include "admissibility/detail/admissibility.hpp"
+#include "contact_space/contact_space.hpp"
 #include "fremond/admissibility/admissibility.hpp"
-#include "fremond/solvers/detail/classical.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
+#include "laws/detail/impact_problem.hpp"
+#include "laws/detail/separating_contacts.hpp"
+#include "solvers/detail/classical.hpp"
+#include "solvers/detail/fremond.hpp"
+#include "solvers/detail/independent_groups.hpp"
 
 namespace fremond {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/potentials/detail/validate.hpp"
 
 namespace fremond {
 

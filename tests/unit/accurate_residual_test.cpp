@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "fremond/solvers/detail/accurate_dot.hpp"
+#include "core/detail/accurate_dot.hpp"
 
 namespace {
 

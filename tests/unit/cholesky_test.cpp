@@ -1,6 +1,7 @@
-// The Cholesky factor of the contact space and of G (core/detail/cholesky.hpp): the hand loops of
-// the stack sizes against Eigen's LLT (the factor to rounding, L Lᵀ = A, solves), the same refusal
-// of matrices that are not positive definite, and the heap sizes going through Eigen itself.
+// The Cholesky factor of the contact space and of G (src/core/detail/cholesky.hpp): the hand loops
+// of the stack sizes against Eigen's LLT (the factor to rounding, L Lᵀ = A, solves), the same
+// refusal of matrices that are not positive definite, and the heap sizes going through Eigen
+// itself.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -9,7 +10,7 @@
 #include <limits>
 #include <random>
 
-#include "fremond/core/detail/cholesky.hpp"
+#include "core/detail/cholesky.hpp"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <limits>
 #include <random>
 
-#include "../../src/solvers/detail/classical_law.hpp"
 #include "fremond/fremond.hpp"
 #include "reference/fremond_reference.hpp"
+#include "solvers/detail/classical_law.hpp"
 
 namespace fremond {
 namespace {

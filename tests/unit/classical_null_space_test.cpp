@@ -1,4 +1,4 @@
-// The kernel of the classical laws' G (src/solvers/detail/small_null_space.hpp: pivoted Cholesky,
+// The kernel of the classical laws' G (src/core/detail/small_null_space.hpp: pivoted Cholesky,
 // then the orthogonal complement of its range) against Eigen's FullPivLU with the same 1e-10
 // threshold: the same rank and the same subspace (compared through orthogonal projectors, since the
 // two bases differ), on symmetric semidefinite matrices of every rank, zero and identity, exact
@@ -11,8 +11,8 @@
 #include <cmath>
 #include <random>
 
-#include "../../src/solvers/detail/classical_phase.hpp"
-#include "../../src/solvers/detail/small_null_space.hpp"
+#include "core/detail/small_null_space.hpp"
+#include "solvers/detail/classical_phase.hpp"
 
 namespace {
 

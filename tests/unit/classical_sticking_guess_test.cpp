@@ -9,8 +9,8 @@
 #include <Eigen/QR>
 #include <random>
 
-#include "../../src/solvers/detail/classical_phase.hpp"
 #include "classical_support.hpp"
+#include "solvers/detail/classical_phase.hpp"
 
 namespace {
 

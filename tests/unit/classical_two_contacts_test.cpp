@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "../../src/solvers/detail/classical_law.hpp"
+#include "solvers/detail/classical_law.hpp"
 
 namespace {
 

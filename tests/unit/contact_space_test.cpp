@@ -1,4 +1,4 @@
-// The contact space of a diagonal mass matrix (solvers/detail/contact_space.hpp): the fixed-size
+// The contact space of a diagonal mass matrix (src/contact_space/contact_space.hpp): the fixed-size
 // path that the planar and spatial bodies and the point masses take gives the general path's
 // numbers to the last bit, in every member; its M⁻¹W and G are the exact ones to rounding
 // (against long double sums); and where it cannot apply (an overflow, a pivot that is not
@@ -13,8 +13,8 @@
 #include <random>
 #include <string>
 
+#include "contact_space/contact_space.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <string>
 
-#include "../src/io/detail/json_law.hpp"
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
+#include "io/detail/json_law.hpp"
 
 namespace fremond {
 namespace {

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "../bench/problems.hpp"
+#include "core/detail/accurate_dot.hpp"
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
-#include "fremond/solvers/detail/accurate_dot.hpp"
 #include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
 #include "support/test_problems.hpp"

@@ -13,7 +13,7 @@
 #include "fremond/simulation/event_detection.hpp"
 #include "fremond/simulation/free_flight.hpp"
 
-#include "../src/simulation/detail/ulp.hpp"
+#include "simulation/detail/ulp.hpp"
 
 namespace fremond {
 namespace {

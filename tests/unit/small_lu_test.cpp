@@ -1,4 +1,4 @@
-// The small LU of semismooth Newton (src/solvers/detail/small_lu.hpp) against Eigen's full-pivoting
+// The small LU of semismooth Newton (src/core/detail/small_lu.hpp) against Eigen's full-pivoting
 // LU and the explicit inverse: solutions to rounding, the exact 1-norm condition number, and
 // singular matrices reported as such.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <Eigen/LU>
 #include <random>
 
-#include "../../src/solvers/detail/small_full_piv_lu.hpp"
-#include "../../src/solvers/detail/small_lu.hpp"
+#include "core/detail/small_full_piv_lu.hpp"
+#include "core/detail/small_lu.hpp"
 
 namespace {
 

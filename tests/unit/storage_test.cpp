@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "../bench/problems.hpp"
+#include "contact_space/contact_space.hpp"
 #include "fremond/fremond.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 
 namespace fremond {
 namespace {

@@ -2,8 +2,6 @@
 /// @file One impact problem (docs/concepts.md): M (q̇_E − q̇_A) = W_N P_N + W_T P_T.
 #include <Eigen/Core>
 
-#include "fremond/core/detail/cholesky.hpp"
-#include "fremond/core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 
 namespace fremond {
@@ -42,26 +40,6 @@ using SmallImpactProblem = ImpactProblemT<kSmallDofs, kSmallContacts>;
 /// the member (`M`, `W_N`, `W_T`, `w_N`, `w_T`, `qdot_A`) and the reason.
 template <int MaxDofs, int MaxContacts>
 void validate(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
-
-namespace detail {
-/// ½ vᵀ M v. A hand loop for the stack-stored sizes, where Eigen's dynamic-size matrix-vector
-/// product costs more in dispatch than in arithmetic.
-template <int N>
-double kinetic_energy(const MatT<N, N>& M, const VecT<N>& v) {
-  if constexpr (N != Dynamic) {
-    return small_dense::half_quadratic_form(M, v);
-  } else {
-    return 0.5 * v.dot(M * v);
-  }
-}
-
-/// validate() without the positive-definiteness test, for callers that factorise M anyway.
-template <int MaxDofs, int MaxContacts>
-void validate_shapes(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
-/// The positive-definiteness test of validate() on a Cholesky factorisation of M.
-template <int MaxDofs>
-void require_positive_definite(const MatT<MaxDofs, MaxDofs>& M, const CholeskyT<MaxDofs>& llt);
-}  // namespace detail
 
 /// Copies a problem into the stack-stored small form; throws InvalidArgument if it does not fit.
 SmallImpactProblem to_small(const ImpactProblem& problem);

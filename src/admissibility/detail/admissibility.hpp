@@ -1,10 +1,10 @@
 #pragma once
 /// @file The admissibility check with the contact velocities' rounding supplied by the caller, who
 /// already has the Delassus matrix (solve_impact); the public check_admissibility computes it.
+#include "contact_space/contact_space.hpp"
 #include "fremond/admissibility/admissibility_report.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <limits>
 
-#include "classical_phase.hpp"
+#include "contact_space/contact_space.hpp"
+#include "core/detail/accurate_dot.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/solvers/detail/accurate_dot.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 #include "fremond/solvers/solver_status.hpp"
+#include "solvers/detail/classical_phase.hpp"
 
 namespace fremond::detail::classical {
 

@@ -24,12 +24,13 @@
 #include <limits>
 #include <new>
 
-#include "fixed_size.hpp"
-#include "fremond/core/detail/small_dense.hpp"
+#include "core/detail/fixed_size.hpp"
+#include "core/detail/small_dense.hpp"
+#include "core/detail/small_null_space.hpp"
 #include "fremond/core/types.hpp"
 #include "fremond/solvers/lemke.hpp"
-#include "lemke.hpp"
-#include "small_null_space.hpp"
+#include "laws/detail/residuals.hpp"
+#include "solvers/detail/lemke.hpp"
 
 namespace fremond::detail::classical {
 

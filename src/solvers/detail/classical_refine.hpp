@@ -21,10 +21,11 @@
 #include <cmath>
 #include <limits>
 
+#include "contact_space/contact_space.hpp"
+#include "core/detail/small_lu.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
-#include "small_lu.hpp"
+#include "laws/detail/residuals.hpp"
 
 namespace fremond::detail::classical {
 

@@ -34,8 +34,9 @@
 #include <cmath>
 #include <limits>
 
-#include "classical_refine.hpp"
-#include "fremond/solvers/detail/accurate_dot.hpp"
+#include "core/detail/accurate_dot.hpp"
+#include "laws/detail/residuals.hpp"
+#include "solvers/detail/classical_refine.hpp"
 
 namespace fremond::detail::classical {
 

@@ -3,10 +3,10 @@
 // method works on the same rows (fremond_rows.hpp) and ends in finish_fremond.
 #include <vector>
 
+#include "contact_space/contact_space.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 #include "fremond/solvers/solver_options.hpp"
-#include "fremond_rows.hpp"
+#include "laws/detail/fremond_rows.hpp"
 
 namespace fremond::detail {
 
@@ -92,10 +92,5 @@ bool solve_in_coulomb_mode(const ImpactProblemT<N, C>& pb, const FremondRowsT<N,
                            typename FremondRowsT<N, C>::Rows& P,
                            const typename ImpactResultT<N, C>::CVec& P_N_reaction,
                            const SolverOptions& options);
-
-/// Scaled Frémond residual of an answer (law_residual for Frémond's law).
-template <int N, int C>
-double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                        const ImpactResultT<N, C>& result);
 
 }  // namespace fremond::detail

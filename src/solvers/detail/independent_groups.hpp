@@ -17,9 +17,9 @@
 #include <limits>
 #include <vector>
 
-#include "fremond.hpp"
-#include "fremond/solvers/detail/classical.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
+#include "contact_space/contact_space.hpp"
+#include "solvers/detail/classical.hpp"
+#include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
 

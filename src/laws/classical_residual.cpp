@@ -7,9 +7,10 @@
 #include <cmath>
 #include <limits>
 
-#include "fremond/solvers/detail/accurate_dot.hpp"
-#include "fremond/solvers/detail/classical.hpp"
-#include "fremond/solvers/detail/refined_solve.hpp"
+#include "contact_space/contact_space.hpp"
+#include "core/detail/accurate_dot.hpp"
+#include "core/detail/refined_solve.hpp"
+#include "laws/detail/residuals.hpp"
 
 namespace fremond::detail {
 

@@ -14,8 +14,8 @@
 #include <limits>
 #include <utility>
 
-#include "fixed_size.hpp"
-#include "small_lu.hpp"
+#include "core/detail/fixed_size.hpp"
+#include "core/detail/small_lu.hpp"
 
 namespace fremond::detail {
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "fremond/core/detail/small_dense.hpp"
+#include "core/detail/small_dense.hpp"
 #include "fremond/core/types.hpp"
 
 namespace fremond::detail {

@@ -11,13 +11,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "fremond/core/detail/cholesky.hpp"
-#include "fremond/core/detail/small_dense.hpp"
+#include "core/detail/accurate_dot.hpp"
+#include "core/detail/cholesky.hpp"
+#include "core/detail/refined_solve.hpp"
+#include "core/detail/small_dense.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/laws/impact_problem.hpp"
-#include "fremond/solvers/detail/accurate_dot.hpp"
-#include "fremond/solvers/detail/refined_solve.hpp"
 #include "fremond/solvers/impact_result.hpp"
+#include "laws/detail/impact_problem.hpp"
 
 namespace fremond::detail {
 

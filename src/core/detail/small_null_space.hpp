@@ -1,6 +1,6 @@
 #pragma once
 // An orthonormal basis of the kernel of a symmetric positive semidefinite matrix, for the classical
-// laws' G = Wᵀ M⁻¹ W (src/solvers/detail/classical_phase.hpp, null_space). By hand loops, one code
+// laws' G = Wᵀ M⁻¹ W (classical_phase.hpp, null_space). By hand loops, one code
 // for the stack-stored sizes and the heap-stored ones, so that both storages get the same basis to
 // the last bit.
 //

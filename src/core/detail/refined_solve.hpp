@@ -16,8 +16,8 @@
 #include <cmath>
 #include <limits>
 
-#include "fremond/core/detail/cholesky.hpp"
-#include "fremond/solvers/detail/accurate_dot.hpp"
+#include "core/detail/accurate_dot.hpp"
+#include "core/detail/cholesky.hpp"
 
 namespace fremond::detail {
 

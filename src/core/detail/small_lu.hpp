@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "fixed_size.hpp"
+#include "core/detail/fixed_size.hpp"
 
 namespace fremond::detail {
 

@@ -14,8 +14,8 @@
 #include <cmath>
 #include <limits>
 
+#include "contact_space/contact_space.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 
 namespace fremond::detail {
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 
+#include "contact_space/contact_space.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/potentials/power.hpp"
-#include "fremond/solvers/detail/contact_space.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 

@@ -1,0 +1,30 @@
+#pragma once
+/// @file The residual of each law family (laws/residual.hpp dispatches to them); the solvers report
+/// and stop on the same functions.
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/impact_result.hpp"
+
+namespace fremond::detail {
+
+/// The scaled natural-map residual of a classical law at `result` (see laws/residual.hpp).
+/// `beyond_rounding`, if given, receives the same residual without the contacts whose every term
+/// is within its rounding floor, min(16ε (|w| + |W_N,i|ᵀq + |W_T,i|ᵀq), 1e-6 v_scale) with
+/// q = |q̇_A| + |q̇_E| (+ |q̇_C|): the solvers' stopping test, as Frémond's row_rounding_floor.
+/// `percussions_rounded`: the percussions are the exact solution of their contact mode rounded to
+/// double (refined, classical_refine.hpp); the floor then also holds the terms 16ε Σ_k |G_ik||P_k|
+/// that this rounding moves the velocities by, up to `percussion_cap` v_scale. Never for an
+/// unrefined answer: Lemke's pivots on cond(M) = 1e9 leave errors of 1e-5 that such a floor would
+/// hide.
+template <int MaxDofs, int MaxContacts>
+double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+                          const ImpactResultT<MaxDofs, MaxContacts>& result,
+                          double* beyond_rounding = nullptr, bool percussions_rounded = false,
+                          double percussion_cap = 1e-10);
+
+/// Scaled Frémond residual of an answer (law_residual for Frémond's law).
+template <int N, int C>
+double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                        const ImpactResultT<N, C>& result);
+
+}  // namespace fremond::detail
