@@ -229,7 +229,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   for (int i = 0; i < c; ++i)
     p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
-  const bool fremond = law.type == LawType::fremond;
+  const bool fremond = law.is_fremond();
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
   double worst_contact_value = 0.0;
@@ -290,13 +290,13 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
            std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) / (pscale * v_scale)});
       if (!separating)
         fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
-      if (law.tangential == TangentialLaw::potential) {
+      if (law.has_tangential_potential()) {
         if (!separating)
           fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
         else  // φ_T = 0: its conjugate allows P_T = 0 alone
           fy = std::max(fy, std::max(0.0, std::fabs(r.P_T(i)) - ds) / (p_scale + 1e-300));
       }
-      if (law.tangential == TangentialLaw::coulomb) {
+      if (law.uses_coulomb()) {
         // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
         // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
         const double b = law.mu[i] * std::fabs(r.P_N(i));
@@ -415,9 +415,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     const bool every = detail::stops_a_separating_contact(r);
     detail::ContactSpaceT<N, C> cs;
     detail::build_contact_space(
-        pb,
-        law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction(),
-        cs, every ? detail::HeldContacts::every : detail::HeldContacts::approaching);
+        pb, law.has_friction(), cs,
+        every ? detail::HeldContacts::every : detail::HeldContacts::approaching);
     if (cs.llt.info() == Eigen::Success) {
       rounding = detail::velocity_rounding(cs, r, &percussion);
       g_max = detail::delassus_max(cs);

@@ -83,8 +83,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   const double inf = std::numeric_limits<double>::infinity();
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
-  const bool friction = law.type == LawType::newton_coulomb || law.type == LawType::poisson_coulomb;
+  const bool poisson = law.has_phases();
+  const bool friction = law.has_friction();
   if (r.P_N.size() != c || r.P_T.size() != c) return inf;
   if (poisson && (!r.has_phases || r.P_NC.size() != c || r.P_TC.size() != c)) return inf;
 

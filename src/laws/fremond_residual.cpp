@@ -14,7 +14,7 @@ template <int N, int C>
 double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                         const ImpactResultT<N, C>& r) {
   ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.tangential != TangentialLaw::none, cs);
+  build_contact_space(pb, law.has_friction(), cs);
   if (cs.active == 0) {  // every contact separates: undriven, each keeps P = 0
     double off_trivial = 0.0;
     for (int i = 0; i < cs.contacts; ++i)
@@ -24,8 +24,7 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   // Every contact obeys the law, the separating ones with the reaction alone
   // (separating_contacts.hpp); where none separates that is the law as it is.
   const ImpactLaw every = law_of_every_contact(law, cs.D_N);
-  if (cs.active < cs.contacts)
-    build_contact_space(pb, law.tangential != TangentialLaw::none, cs, HeldContacts::every);
+  if (cs.active < cs.contacts) build_contact_space(pb, law.has_friction(), cs, HeldContacts::every);
   FremondRowsT<N, C> rows;
   rows.init(cs, every);
   typename FremondRowsT<N, C>::Rows P(cs.rows());

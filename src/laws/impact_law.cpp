@@ -61,15 +61,8 @@ ImpactLaw ImpactLaw::fremond_coulomb(PerContactPotential normal, PerContact mu) 
 }
 
 bool ImpactLaw::has_friction() const {
-  switch (type) {
-    case LawType::newton_coulomb:
-    case LawType::poisson_coulomb:
-      return true;
-    case LawType::fremond:
-      return tangential != TangentialLaw::none;
-    default:
-      return false;
-  }
+  return is_fremond() ? tangential != TangentialLaw::none
+                      : type == LawType::newton_coulomb || type == LawType::poisson_coulomb;
 }
 
 namespace {
@@ -84,23 +77,21 @@ void check_count(const char* name, std::size_t size, int contacts) {
 // which names the offending key, runs only when something is wrong.
 bool ImpactLaw::quick_valid(int contacts) const {
   auto count_ok = [&](std::size_t n) { return n == 1 || static_cast<int>(n) == contacts; };
-  if (type != LawType::fremond) {
+  if (!is_fremond()) {
     if (!count_ok(e.values.size())) return false;
     for (double v : e.values)
       if (!(v >= 0.0 && v <= 1.0)) return false;
   }
-  const bool uses_mu = type == LawType::newton_coulomb || type == LawType::poisson_coulomb ||
-                       (type == LawType::fremond && tangential == TangentialLaw::coulomb);
-  if (uses_mu) {
+  if (uses_coulomb()) {
     if (!count_ok(mu.values.size())) return false;
     for (double v : mu.values)
       if (!(v >= 0.0 && std::isfinite(v))) return false;
   }
-  if (type == LawType::fremond) {
+  if (is_fremond()) {
     if (normal.empty() || !count_ok(normal.potentials.size())) return false;
     for (const auto& p : normal.potentials)
       if (!p) return false;
-    if (tangential == TangentialLaw::potential) {
+    if (has_tangential_potential()) {
       if (tangential_potential.empty() || !count_ok(tangential_potential.potentials.size()))
         return false;
       for (const auto& p : tangential_potential.potentials)
@@ -112,29 +103,26 @@ bool ImpactLaw::quick_valid(int contacts) const {
 
 void ImpactLaw::validate(int contacts) const {
   if (quick_valid(contacts)) return;
-  const bool classical = type != LawType::fremond;
-  if (classical) {
+  if (!is_fremond()) {
     check_count("law.e", e.values.size(), contacts);
     for (std::size_t i = 0; i < e.values.size(); ++i)
       detail::require_in_unit_interval(
           e.values.size() == 1 ? "law.e" : "law.e[" + std::to_string(i) + "]", e.values[i]);
   }
-  const bool uses_mu = type == LawType::newton_coulomb || type == LawType::poisson_coulomb ||
-                       (type == LawType::fremond && tangential == TangentialLaw::coulomb);
-  if (uses_mu) {
+  if (uses_coulomb()) {
     check_count("law.mu", mu.values.size(), contacts);
     for (std::size_t i = 0; i < mu.values.size(); ++i)
       detail::require_finite_at_least(
           mu.values.size() == 1 ? "law.mu" : "law.mu[" + std::to_string(i) + "]", mu.values[i],
           0.0);
   }
-  if (type == LawType::fremond) {
+  if (is_fremond()) {
     if (normal.empty())
       throw InvalidArgument("law.normal", "Frémond's law needs a normal potential");
     check_count("law.normal", normal.potentials.size(), contacts);
     for (const auto& p : normal.potentials)
       if (!p) throw InvalidArgument("law.normal", "a potential is missing (null)");
-    if (tangential == TangentialLaw::potential) {
+    if (has_tangential_potential()) {
       if (tangential_potential.empty())
         throw InvalidArgument("law.tangential", "the tangential law needs a potential");
       check_count("law.tangential", tangential_potential.potentials.size(), contacts);

@@ -27,7 +27,7 @@ double law_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     // the same to the last bit (solve_impact.cpp).
     if (fits_small(pb) && fits_small(r)) return law_residual(to_small(pb), law, to_small(r));
   }
-  if (law.type != LawType::fremond) return detail::classical_residual(pb, law, r);
+  if (!law.is_fremond()) return detail::classical_residual(pb, law, r);
   return detail::fremond_residual(pb, law, r);
 }
 

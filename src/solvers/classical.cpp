@@ -33,7 +33,7 @@ void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<
                             const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
                             const typename ContactSpaceT<N, C>::Rows& P_C, ImpactResultT<N, C>& out,
                             const VecT<N>* velocities, const VecT<N>* compression_velocities) {
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool poisson = law.has_phases();
   if (velocities) {
     out.qdot_E = *velocities;
     scatter_at_velocities(pb, cs, P, out);
@@ -77,7 +77,7 @@ using classical::solve_law;
 constexpr double kRoundedPercussionCap = 1e-8;
 
 bool is_poisson(const ImpactLaw& law) {
-  return law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  return law.has_phases();
 }
 
 // The mode offsets of Newton's laws: no fixed part, target e D_NA (eq. 5).

@@ -1133,8 +1133,7 @@ struct FremondChain {
            (automatic || want == SolverMethod::mode_enumeration);
   }
   bool one_contact_dead_zone() const {
-    return has_prox && cs.active == 1 && cs.tangential &&
-           law.tangential == TangentialLaw::potential &&
+    return has_prox && cs.active == 1 && cs.tangential && law.has_tangential_potential() &&
            (automatic || want == SolverMethod::scalar_newton ||
             want == SolverMethod::closed_form) &&
            cs.G(0, 0) > 0.0;
@@ -1155,8 +1154,7 @@ struct FremondChain {
     return has_prox && (automatic || want == SolverMethod::semismooth_newton);
   }
   bool coulomb_newton_from_zero() const {
-    return automatic && newton_allowed() && law.tangential == TangentialLaw::coulomb &&
-           !P0.isZero(0.0);
+    return automatic && newton_allowed() && law.uses_coulomb() && !P0.isZero(0.0);
   }
   bool coulomb_modes_after_newton() const { return automatic && newton_allowed() && rows.coulomb; }
   bool splitting_allowed() const {
@@ -1725,7 +1723,7 @@ std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& p
                                                    const ImpactLaw& law, const SolverOptions& opt,
                                                    HeldContacts held) {
   ContactSpaceT<N, C> cs;
-  build_contact_space(pb, law.tangential != TangentialLaw::none, cs, held);
+  build_contact_space(pb, law.has_friction(), cs, held);
   FremondRowsT<N, C> rows;
   rows.init(cs, law);
   std::vector<ImpactResultT<N, C>> all;

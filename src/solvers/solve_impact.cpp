@@ -37,7 +37,7 @@ void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
 /// failure.
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
-  if (law.type != LawType::fremond || out.solver.status != SolverStatus::converged ||
+  if (!law.is_fremond() || out.solver.status != SolverStatus::converged ||
       out.admissibility.admissible)
     return;
   // A reaction that stops a separating contact works on its true mean velocity D_NA/2 > 0: total
@@ -51,7 +51,7 @@ void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
     const int k = static_cast<int>(i);
     const bool defect =
         detail::not_a_pseudo_potential(law.normal[k], 0.5 * (out.D_NA(i) + out.D_NE(i))) ||
-        (law.tangential == TangentialLaw::potential &&
+        (law.has_tangential_potential() &&
          detail::not_a_pseudo_potential(law.tangential_potential[k],
                                         0.5 * (out.D_TA(i) + out.D_TE(i))));
     if (!defect) continue;
@@ -136,15 +136,15 @@ std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, co
   // Independent groups of contacts: the product of the groups' lists (independent_groups.hpp).
   std::vector<ImpactResultT<N, C>> all;
   if (!detail::solve_all_by_groups(pb, law, options, all))
-    all = law.type == LawType::fremond ? detail::solve_fremond_all(pb, law, options)
-                                       : detail::solve_classical_all(pb, law, options);
+    all = law.is_fremond() ? detail::solve_fremond_all(pb, law, options)
+                           : detail::solve_classical_all(pb, law, options);
   // Every contact takes part (separating_contacts.hpp): where an answer without the separating
   // contacts drives one of them into its obstacle, the list is made again on every contact.
   bool drives = false;
   for (const auto& r : all) drives = drives || detail::drives_a_separating_contact(pb, r, options);
   if (drives) {
     const ImpactLaw every = detail::law_of_every_contact(law, all.front().D_NA);
-    all = law.type == LawType::fremond
+    all = law.is_fremond()
               ? detail::solve_fremond_all(pb, every, options, detail::HeldContacts::every)
               : detail::solve_classical_all(pb, every, options, detail::HeldContacts::every);
   }

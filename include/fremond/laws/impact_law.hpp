@@ -81,8 +81,24 @@ struct ImpactLaw {
   /// Frémond with Coulomb friction on the mean tangential velocity.
   static ImpactLaw fremond_coulomb(PerContactPotential normal, PerContact mu);
 
-  /// True for the laws with a tangential percussion.
+  // What the solvers, the residual, the certificate and the simulation ask of a law, answered
+  // here once instead of by switching on `type` where they need it.
+
+  /// Frémond's laws: pseudo-potentials of the mean velocity, dissipative by construction.
+  bool is_fremond() const { return type == LawType::fremond; }
+  /// Poisson's laws: a compression and an expansion phase (P_C, P_E).
+  bool has_phases() const { return type == LawType::poisson || type == LawType::poisson_coulomb; }
+  /// Laws with tangential rows: the classical laws with Coulomb, Frémond's with a tangential law.
   bool has_friction() const;
+  /// Laws whose tangential percussion is bounded by μ|P_N| (reads `mu`).
+  bool uses_coulomb() const {
+    return type == LawType::newton_coulomb || type == LawType::poisson_coulomb ||
+           (type == LawType::fremond && tangential == TangentialLaw::coulomb);
+  }
+  /// Frémond with a tangential pseudo-potential φ_T (reads `tangential_potential`).
+  bool has_tangential_potential() const {
+    return type == LawType::fremond && tangential == TangentialLaw::potential;
+  }
   /// Checks parameters and their counts against the number of contacts; throws InvalidArgument
   /// naming `law.e`, `law.mu`, `law.normal`, `law.tangential`.
   void validate(int contacts) const;

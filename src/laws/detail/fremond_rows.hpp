@@ -75,7 +75,7 @@ struct FremondRowsT {
   void init(const CS& space, const ImpactLaw& l) {
     cs = &space;
     law = &l;
-    coulomb = l.tangential == TangentialLaw::coulomb && space.tangential;
+    coulomb = l.uses_coulomb() && space.tangential;
     // One pass over the law's potentials, the contacts that take no part included: what the law
     // can do does not depend on which contacts touch.
     all_prox = all_quadratic = true;
@@ -85,7 +85,7 @@ struct FremondRowsT {
       all_quadratic = all_quadratic && cap.quadratic;
     };
     for (const auto& p : l.normal.potentials) take(*p);
-    if (l.tangential == TangentialLaw::potential)
+    if (l.has_tangential_potential())
       for (const auto& p : l.tangential_potential.potentials) take(*p);
     const int r = space.rows();
     tau.resize(r);

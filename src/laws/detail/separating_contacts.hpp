@@ -33,30 +33,21 @@ template <class Vec>
 ImpactLaw law_of_every_contact(const ImpactLaw& law, const Vec& D_N) {
   const int c = static_cast<int>(D_N.size());
   ImpactLaw out = law;
-  switch (law.type) {
-    case LawType::newton:
-    case LawType::newton_coulomb: {
-      std::vector<double> e(static_cast<std::size_t>(c));
-      for (int i = 0; i < c; ++i) e[static_cast<std::size_t>(i)] = D_N(i) > 0.0 ? 0.0 : law.e[i];
-      out.e = PerContact(std::move(e));
-      break;
+  if (law.is_fremond()) {
+    const PowerPotential none(0.0, 2.0);  // φ = 0: the reaction alone
+    PerContactPotential normal, tangential;
+    for (int i = 0; i < c; ++i) {
+      normal.potentials.emplace_back(D_N(i) > 0.0 ? none.clone() : law.normal[i].clone());
+      if (law.has_tangential_potential())
+        tangential.potentials.emplace_back(D_N(i) > 0.0 ? none.clone()
+                                                        : law.tangential_potential[i].clone());
     }
-    case LawType::fremond: {
-      const PowerPotential none(0.0, 2.0);  // φ = 0: the reaction alone
-      PerContactPotential normal, tangential;
-      for (int i = 0; i < c; ++i) {
-        normal.potentials.emplace_back(D_N(i) > 0.0 ? none.clone() : law.normal[i].clone());
-        if (law.tangential == TangentialLaw::potential)
-          tangential.potentials.emplace_back(D_N(i) > 0.0 ? none.clone()
-                                                          : law.tangential_potential[i].clone());
-      }
-      out.normal = std::move(normal);
-      if (law.tangential == TangentialLaw::potential)
-        out.tangential_potential = std::move(tangential);
-      break;
-    }
-    default:  // Poisson's laws: a separating contact obeys both phases as the others do
-      break;
+    out.normal = std::move(normal);
+    if (law.has_tangential_potential()) out.tangential_potential = std::move(tangential);
+  } else if (!law.has_phases()) {  // Poisson's: a separating contact obeys both phases as is
+    std::vector<double> e(static_cast<std::size_t>(c));
+    for (int i = 0; i < c; ++i) e[static_cast<std::size_t>(i)] = D_N(i) > 0.0 ? 0.0 : law.e[i];
+    out.e = PerContact(std::move(e));
   }
   return out;
 }

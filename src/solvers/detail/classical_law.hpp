@@ -426,7 +426,7 @@ void decide_in_extended_precision(const ImpactProblemT<N, C>& pb, const ContactS
 template <int N, int C>
 bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                            const ImpactLaw& law, LawOutcome<C>& out) {
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool poisson = law.has_phases();
   const bool f = cs.tangential;
   const int r = f ? 2 : 1, i = cs.index(0);
   const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
@@ -516,7 +516,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   if (a == 1 && (force == SolverMethod::automatic || force == SolverMethod::closed_form) &&
       solve_law_one_contact(pb, cs, law, out))
     return;
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool poisson = law.has_phases();
   Phase<C> ph;
   ph.a = a;
   ph.friction = cs.tangential;

@@ -70,7 +70,7 @@ bool coupled_to_first(const ContactSpaceT<N, C>& cs) {
 template <int N, int C>
 void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  if (law.type == LawType::fremond)
+  if (law.is_fremond())
     solve_fremond(pb, cs, law, options, out);
   else
     solve_classical(pb, cs, law, options, out);
@@ -79,7 +79,7 @@ void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
 /// Whether the law has tangential rows in contact space (Frémond's with any tangential law, the
 /// classical laws with Coulomb), as solve_impact builds it.
 inline bool tangential_rows(const ImpactLaw& law) {
-  return law.type == LawType::fremond ? law.tangential != TangentialLaw::none : law.has_friction();
+  return law.has_friction();
 }
 
 /// `sub` = the problem with the contacts of every group but g lifted off: D_NA = −D_NA + v_scale
@@ -158,7 +158,7 @@ class GroupMerge {
   /// `out` untouched, where the velocities or the energy are not finite.
   bool write(const ImpactLaw& law, ImpactResultT<N, C>& out) const {
     ImpactResultT<N, C> merged;
-    if (law.type == LawType::fremond) {
+    if (law.is_fremond()) {
       scatter_solution(pb_, cs_, P_, merged);
       merged.P_N_reaction = reaction_;
     } else {
@@ -249,8 +249,8 @@ bool solve_all_by_groups(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   long total = 1;
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
-    lists[g] = law.type == LawType::fremond ? solve_fremond_all(sub, law, options)
-                                            : solve_classical_all(sub, law, options);
+    lists[g] = law.is_fremond() ? solve_fremond_all(sub, law, options)
+                                : solve_classical_all(sub, law, options);
     if (lists[g].empty()) return false;
     for (const ImpactResultT<N, C>& r : lists[g])
       if (r.solver.status != SolverStatus::converged) return false;
