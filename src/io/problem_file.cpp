@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "detail/json_law.hpp"
+#include "detail/json_reader.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/core/types.hpp"
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "detail/json_law.hpp"
+#include "detail/json_reader.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/potentials/detail/validate.hpp"
 #include "fremond/scenes/presets.hpp"
