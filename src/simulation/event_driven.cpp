@@ -3,9 +3,9 @@
 // Moreau–Jean.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "detail/run.hpp"
-#include "fremond/simulation/event_detection.hpp"
 #include "fremond/simulation/free_flight.hpp"
 
 namespace fremond::detail {
@@ -45,24 +45,11 @@ void Run::event_driven_phase() {
       return;
     }
 
-    // The first event of any contact; later contacts only need to look up to the best so far.
     const double horizon = opt_.t_end - t_;
     std::array<double, kMaxC> when;
-    double best = kInf;
-    for (int k = 0; k < nc_; ++k) {
-      const EventSearchResult r = find_first_event(gap[k], std::min(horizon, best + tau),
-                                                   touching[k], opt_.max_gap_evaluations);
-      res_.gap_evaluations += r.evaluations;
-      if (r.exhausted) {  // the state stays at the start of the flight: nothing is guessed
-        finish(SimulationStatus::event_search_failed,
-               "the event search of a free flight spent integrator.max_gap_evaluations without "
-               "deciding where the next contact event is: the body turns too fast for its "
-               "events to be resolved");
-        return;
-      }
-      when[k] = r.s;
-      best = std::min(best, r.s);
-    }
+    const std::optional<double> first = first_event(gap, touching, horizon, when);
+    if (!first) return;
+    const double best = *first;
     const auto state_at = [&](double t) { return flight.at_elapsed(t - flight.t0); };
     if (best == kInf) {  // flies to the end
       sampler_.until(opt_.t_end, true, phase_, state_at);
@@ -87,6 +74,31 @@ void Run::event_driven_phase() {
     sample(t_, st_);
     if (after_event_impact()) return;
   }
+}
+
+// The first contact event of the flight within `horizon` after its start (kInf: none), and each
+// contact's own in when[k]; later contacts only need to look up to the best so far. Nothing when a
+// search spent its budget: the run stops at the start of the flight, where nothing is guessed.
+std::optional<double> Run::first_event(const std::array<GapFunction, kMaxC>& gap,
+                                       const std::array<bool, kMaxC>& touching, double horizon,
+                                       std::array<double, kMaxC>& when) {
+  const double tau = opt_.simultaneity_tolerance;
+  double best = kInf;
+  for (int k = 0; k < nc_; ++k) {
+    const EventSearchResult r = find_first_event(gap[k], std::min(horizon, best + tau), touching[k],
+                                                 opt_.max_gap_evaluations);
+    res_.gap_evaluations += r.evaluations;
+    if (r.exhausted) {
+      finish(SimulationStatus::event_search_failed,
+             "the event search of a free flight spent integrator.max_gap_evaluations without "
+             "deciding where the next contact event is: the body turns too fast for its "
+             "events to be resolved");
+      return std::nullopt;
+    }
+    when[k] = r.s;
+    best = std::min(best, r.s);
+  }
+  return best;
 }
 
 // The accumulation test after an event impact; on an accumulation, closes it and switches to

@@ -32,6 +32,26 @@ int Run::active_contacts(const Eigen::Vector3d& q, const Eigen::Vector3d& v, dou
   return na;
 }
 
+// Step 2: the active contacts f[0..na) that get the law's impact in step k (length hk), into idx;
+// returns their count. Those that approach faster than one step of smooth forces could make them;
+// slower ones are persistent contact (steps 3-4). The bound is twice what gravity and the rotation
+// add to D_N in one step of free flight: a contact constrained by others (a bar pivoting on one
+// end) accelerates faster than in free flight (1.5 g at the free end of a pivoting bar). A contact
+// that had the law's impact in the previous step is not given another: a bounce that gravity
+// undoes within one step is below the resolution of the step, and bouncing it again at every step
+// would only chatter (and sink, through the midpoint rule).
+int Run::law_impact_contacts(const Frames& f, const int* active, int na, const Eigen::Vector3d& v,
+                             double hk, long k, int* idx) {
+  const double g = sc_.gravity, w2 = v.z() * v.z();
+  int n = 0;
+  for (int i = 0; i < na; ++i) {
+    const int j = active[i];
+    if (f[i].W_N.dot(v) < -2.0 * hk * (g + w2 * reach_[j]) && hit_step_[j] != k - 1) idx[n++] = j;
+  }
+  for (int i = 0; i < n; ++i) hit_step_[idx[i]] = k;
+  return n;
+}
+
 // The persistent-contact impulse (persistent_contact.hpp) on the active contacts f[0..na), from
 // velocity v to v_out = v + dv + M⁻¹(W_N P_N + W_T P_T), where dv is what gravity adds over the
 // step: (0, −g h, 0). Two uses:
@@ -118,22 +138,8 @@ void Run::moreau_jean_phase() {
       ++free_steps;
     } else {
       free_steps = 0;
-      // 2. The law's impact, on the contacts that approach faster than one step of smooth
-      //    forces could make them (slower ones are persistent contact, steps 3-4).
-      //    The bound is twice what gravity and the rotation add to D_N in one step of free
-      //    flight: a contact constrained by others (a bar pivoting on one end) accelerates
-      //    faster than in free flight (1.5 g at the free end of a pivoting bar). A contact
-      //    that had the law's impact in the previous step is not given another: a bounce that
-      //    gravity undoes within one step is below the resolution of the step, and bouncing
-      //    it again at every step would only chatter (and sink, through the midpoint rule).
-      const double w2 = v.z() * v.z();
-      int n = 0;
-      for (int i = 0; i < na; ++i) {
-        const int j = active[i];
-        if (f[i].W_N.dot(v) < -2.0 * hk * (g + w2 * reach_[j]) && hit_step_[j] != k - 1)
-          idx[n++] = j;
-      }
-      for (int i = 0; i < n; ++i) hit_step_[idx[i]] = k;
+      // 2. The law's impact, on the contacts approaching too fast for persistent contact.
+      const int n = law_impact_contacts(f, active.data(), na, v, hk, k, idx.data());
       if (n > 0) {
         PlanarState s{q, v};
         if (!impact(t_, s, idx.data(), n, ImpactKind::time_step)) return;

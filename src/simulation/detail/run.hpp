@@ -10,12 +10,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string_view>
 
 #include "accumulation.hpp"
 #include "contact_laws.hpp"
 #include "energy_audit.hpp"
 #include "fremond/scenes/kinematics.hpp"
+#include "fremond/simulation/event_detection.hpp"
 #include "fremond/simulation/persistent_contact.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "sampling.hpp"
@@ -85,6 +87,9 @@ class Run {
 
   // ---- event-driven phase (event_driven.cpp) ----
   void event_driven_phase();
+  std::optional<double> first_event(const std::array<GapFunction, kMaxC>& gap,
+                                    const std::array<bool, kMaxC>& touching, double horizon,
+                                    std::array<double, kMaxC>& when);
   bool after_event_impact();
 
   // ---- accumulations (accumulation.cpp) ----
@@ -94,6 +99,8 @@ class Run {
   void moreau_jean_phase();
   int active_contacts(const Eigen::Vector3d& q, const Eigen::Vector3d& v, double h, double cth,
                       double sth, Frames& f, int* active) const;
+  int law_impact_contacts(const Frames& f, const int* active, int na, const Eigen::Vector3d& v,
+                          double hk, long k, int* idx);
   bool persistent_impulse(const Frames& f, const int* active, int na, const Eigen::Vector3d& v,
                           bool closing, const Eigen::Vector3d& dv, Eigen::Vector3d& v_out);
   // What gravity adds to the velocity over a step h, (0, −g h, 0).
