@@ -115,47 +115,47 @@ InvalidArgument with_file_key(const InvalidArgument& e, const json& j, const std
   return InvalidArgument(file, reason_of(e));
 }
 
-}  // namespace
+// The law make() builds, validated for `contacts`. The factories and validate() refuse bad values
+// under the library's names; the refusal names the file's key instead.
+template <class Make>
+ImpactLaw built(const Make& make, int contacts, const json& j, const std::string& where) {
+  try {
+    ImpactLaw law = make();
+    law.validate(contacts);
+    return law;
+  } catch (const InvalidArgument& e) {
+    throw with_file_key(e, j, where);
+  }
+}
 
-ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& registry,
-                        const std::string& where) {
-  require_object(j, where);
-  const LawType type = law_type_from_json(j, where);
-  const std::string context = "a '" + std::string(to_string(type)) + "' law";
-  const auto values = [&](const json& obj, const std::string& obj_key, std::string_view key) {
-    return number_or_list(required_key(obj, obj_key, key), key_path(obj_key, key), contacts);
-  };
-  // The factories and validate() refuse bad values, naming them as the library does.
-  const auto checked = [&](auto make) {
-    try {
-      ImpactLaw law = make();
-      law.validate(contacts);
-      return law;
-    } catch (const InvalidArgument& e) {
-      throw with_file_key(e, j, where);
-    }
-  };
-  switch (type) {
-    case LawType::newton:
-    case LawType::poisson: {
-      check_keys(j, where, {"type", "e"}, context);
-      const auto e = values(j, where, "e");
-      return checked(
-          [&] { return type == LawType::newton ? ImpactLaw::newton(e) : ImpactLaw::poisson(e); });
-    }
-    case LawType::newton_coulomb:
-    case LawType::poisson_coulomb: {
-      check_keys(j, where, {"type", "e", "mu"}, context);
-      const auto e = values(j, where, "e");
-      const auto mu = values(j, where, "mu");
-      return checked([&] {
+// The values of obj[key] under the key path obj_key.key: a number or one per contact.
+std::vector<double> values(const json& obj, const std::string& obj_key, std::string_view key,
+                           int contacts) {
+  return number_or_list(required_key(obj, obj_key, key), key_path(obj_key, key), contacts);
+}
+
+ImpactLaw classical_law_from_json(LawType type, const json& j, int contacts,
+                                  const std::string& where, const std::string& context) {
+  if (type == LawType::newton || type == LawType::poisson) {
+    check_keys(j, where, {"type", "e"}, context);
+    const auto e = values(j, where, "e", contacts);
+    return built(
+        [&] { return type == LawType::newton ? ImpactLaw::newton(e) : ImpactLaw::poisson(e); },
+        contacts, j, where);
+  }
+  check_keys(j, where, {"type", "e", "mu"}, context);
+  const auto e = values(j, where, "e", contacts);
+  const auto mu = values(j, where, "mu", contacts);
+  return built(
+      [&] {
         return type == LawType::newton_coulomb ? ImpactLaw::newton_coulomb(e, mu)
                                                : ImpactLaw::poisson_coulomb(e, mu);
-      });
-    }
-    case LawType::fremond:
-      break;
-  }
+      },
+      contacts, j, where);
+}
+
+ImpactLaw fremond_law_from_json(const json& j, int contacts, const PotentialRegistry& registry,
+                                const std::string& where, const std::string& context) {
   check_keys(j, where, {"type", "normal", "tangential"}, context);
   const std::string normal_key = key_path(where, "normal");
   const json& normal = required_key(j, where, "normal");
@@ -167,20 +167,35 @@ ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& re
   auto normal_potential = potential_from_json(normal, normal_key, contacts, registry);
   const json* tangential = optional_key(j, "tangential");
   if (!tangential)  // docs/problem-file.md: omitted means no tangential percussion
-    return checked([&] { return ImpactLaw::fremond(std::move(normal_potential)); });
+    return built([&] { return ImpactLaw::fremond(std::move(normal_potential)); }, contacts, j,
+                 where);
   const std::string tkey = key_path(where, "tangential");
   require_object(*tangential, tkey);
   const std::string tname =
       string_from_json(required_key(*tangential, tkey, "potential"), key_path(tkey, "potential"));
   if (tname == "coulomb") {
     check_keys(*tangential, tkey, {"potential", "mu"}, "the tangential law 'coulomb'");
-    const auto mu = values(*tangential, tkey, "mu");
-    return checked([&] { return ImpactLaw::fremond_coulomb(std::move(normal_potential), mu); });
+    const auto mu = values(*tangential, tkey, "mu", contacts);
+    return built([&] { return ImpactLaw::fremond_coulomb(std::move(normal_potential), mu); },
+                 contacts, j, where);
   }
   auto tangential_potential = potential_from_json(*tangential, tkey, contacts, registry);
-  return checked([&] {
-    return ImpactLaw::fremond(std::move(normal_potential), std::move(tangential_potential));
-  });
+  return built(
+      [&] {
+        return ImpactLaw::fremond(std::move(normal_potential), std::move(tangential_potential));
+      },
+      contacts, j, where);
+}
+
+}  // namespace
+
+ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& registry,
+                        const std::string& where) {
+  require_object(j, where);
+  const LawType type = law_type_from_json(j, where);
+  const std::string context = "a '" + std::string(to_string(type)) + "' law";
+  if (type == LawType::fremond) return fremond_law_from_json(j, contacts, registry, where, context);
+  return classical_law_from_json(type, j, contacts, where, context);
 }
 
 }  // namespace fremond::io::detail
