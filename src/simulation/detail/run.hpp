@@ -5,7 +5,8 @@
 //  - impact.cpp: an impact with the scene's law (posed, solved, logged);
 //  - accumulation.cpp: telling and closing an accumulation of impacts;
 //  - moreau_jean.cpp: the Moreau–Jean step;
-//  - sampling.cpp, energy_audit.hpp, impact_record.hpp: the rows, the energy audit, the log.
+//  - sampling.cpp, energy_audit.hpp, impact_record.hpp: the rows, the energy audit, the log;
+//  - contact_laws.cpp: the scene's law restricted to the contacts of an impact.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
