@@ -11,6 +11,7 @@
 #include "fremond/core/error.hpp"
 #include "fremond/core/types.hpp"
 #include "io/detail/json_law.hpp"
+#include "io/detail/json_reader.hpp"
 
 namespace fremond::io {
 

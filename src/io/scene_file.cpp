@@ -11,6 +11,7 @@
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "io/detail/json_law.hpp"
+#include "io/detail/json_reader.hpp"
 
 namespace fremond::io {
 

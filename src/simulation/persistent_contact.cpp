@@ -2,12 +2,12 @@
 #include "fremond/simulation/persistent_contact.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "fremond/core/enum_names.hpp"
+#include "simulation/detail/min_norm_solve.hpp"
 
 namespace fremond {
 
@@ -118,9 +118,7 @@ bool try_mode(const PersistentContactProblem& pb, const ContactMode* mode, const
     Rhs sol = A.partialPivLu().solve(b);
     if (!consistent(sol)) {
       // Dependent rows (a flat bar sticking at both ends: four rows, three degrees of freedom).
-      // (An SVD: Eigen's complete orthogonal decomposition allocates in its solve.)
-      const Eigen::JacobiSVD<Sys> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
-      sol = svd.solve(b);
+      sol = detail::min_norm_solve(A, b);
       if (!consistent(sol)) return false;
     }
     for (int r = 0; r < n; ++r) x[r] = sol(r);

@@ -11,7 +11,7 @@ namespace fremond::detail {
 /// every x (+∞ and NaN give NaN, the largest finite double gives +∞). By the bit pattern: the
 /// doubles ≥ 0 are ordered as their patterns are, so the next one up is the pattern plus one.
 /// The event search takes it at every interval it splits; std::nextafter is an out-of-line libm
-/// call that cost as much as the rest of a split.
+/// call costing as much as the rest of a split.
 inline double ulp(double x) {
   const double a = std::fabs(x);
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(a) + 1) - a;
