@@ -18,7 +18,6 @@
 #include <utility>
 #include <vector>
 
-#include "../bench/problems.hpp"
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/solvers/detail/accurate_dot.hpp"
@@ -1241,7 +1240,7 @@ namespace {
 /// The paper's bar lying flat (θ = 0) on c points of its length, all with the tangent (1, 0, 0):
 /// with two or more contacts sticking, their tangential rows of Newton's Jacobian are equal.
 SmallImpactProblem flat_plate(int c) {
-  return to_small(bench::plate_many_contacts(c, true));
+  return to_small(testing::plate_many_contacts(c, true));
 }
 
 // The plate touching with 3 and 4 contacts under Frémond + Coulomb (p = 3, μ = 1): the contacts
@@ -1305,12 +1304,12 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
 // (3 unknowns) takes about 12 steps. Reference: the quad solution.
 TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
   namespace ref = fremond_reference;
-  const double k = bench::bar_fremond_k_normal(3.0);
+  const double k = testing::bar_fremond_k_normal(3.0);
   const double kT = 1.5, q = 2.0, r0 = 0.2;
   for (const bool viscous : {false, true}) {
     for (const int c : {16, 32}) {
       SCOPED_TRACE(std::to_string(c) + (viscous ? " contacts, viscous" : " contacts"));
-      const ImpactProblem pb = bench::plate_many_contacts(c, viscous);
+      const ImpactProblem pb = testing::plate_many_contacts(c, viscous);
       const ImpactLaw law =
           viscous ? ImpactLaw::fremond(PowerPotential(k, 3.0), DeadZonePowerPotential(kT, q, r0))
                   : ImpactLaw::fremond(PowerPotential(k, 3.0));
@@ -1338,7 +1337,7 @@ TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
 // no reaction, stops at the unconstrained minimum and says so; contact space's methods answer.
 TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
   namespace ref = fremond_reference;
-  const ImpactProblem pb = bench::plate_many_contacts(16, false);
+  const ImpactProblem pb = testing::plate_many_contacts(16, false);
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(1e-3, 3.0));
   const auto r = solve_impact(pb, law);
   ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
@@ -1393,7 +1392,7 @@ Eigen::Vector3d plate_coulomb_reference(const ImpactProblem& pb, double k, doubl
 TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNotConverged) {
   for (const int c : {3, 4})
     for (const double p : {1.01, 1.2, 1.5, 3.0}) {
-      ImpactProblem pb = bench::plate_many_contacts(c, true);
+      ImpactProblem pb = testing::plate_many_contacts(c, true);
       const double k = 1e6, mu = 0.3;
       const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu));
       const Eigen::Vector3d ref_qE = plate_coulomb_reference(pb, k, p, mu);
@@ -1422,7 +1421,7 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSo
   for (const int c : {3, 4})
     for (const double p : {1.01, 1.2, 1.5}) {
       SCOPED_TRACE("c = " + std::to_string(c) + ", p = " + std::to_string(p));
-      ImpactProblem pb = bench::plate_many_contacts(c, true);
+      ImpactProblem pb = testing::plate_many_contacts(c, true);
       const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(1e6, p), 0.3));
       ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
       if (c == 4 && p == 1.2) {  // the first case seen; others may converge by other paths
@@ -1770,7 +1769,7 @@ TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
 /// θ̇_E is known in double only to about 3e-9: P_N1 − P_N2 = 3.3e-7 against P_N = 3, so each ulp
 /// of P_N moves θ̇ by 2.7e-9. In the kinetic-energy norm that is 1e-13 of the velocities.
 TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
-  SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+  SmallImpactProblem pb = testing::flat_bar_two_contacts(true);
   pb.M(2, 2) *= 1e-6;
   ASSERT_EQ(Eigen::Vector3d(pb.qdot_A), Eigen::Vector3d(2, -3, 1));
   const ImpactLaw law =
@@ -1810,7 +1809,7 @@ TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
         Case{1e-10, 1.01, 1e6, 2, 0.2}, Case{1e-10, 1.01, 1, 1.01, 0.2}}) {
     SCOPED_TRACE(::testing::Message() << "speed " << c.speed << ", p = " << c.p << ", k = " << c.k
                                       << ", q = " << c.q << ", r = " << c.r);
-    SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+    SmallImpactProblem pb = testing::flat_bar_two_contacts(true);
     pb.qdot_A *= c.speed;
     pb.M(2, 2) *= c.k == 1 ? 1e6 : 1e-6;
     const double r = c.r * c.speed;
