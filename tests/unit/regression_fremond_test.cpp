@@ -24,9 +24,12 @@
 #include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
 #include "support/test_problems.hpp"
+#include "support/why.hpp"
 
 namespace fremond {
 namespace {
+
+using testing::why;
 
 /// Coulomb on z_T = (D_TA + D_TE)/2 with the bound μ_i|P_N,i| (docs/laws.md; P_N may take either
 /// sign), by hand from a result's velocities: inside the cone z_T = 0, on its edge P_T opposes z_T.
@@ -48,7 +51,7 @@ void expect_coulomb_on_mean_velocity(const Result& r, const std::vector<double>&
 ImpactResult solve_and_check(const io::ProblemFile& file) {
   const SolverOptions opt;
   const ImpactResult r = solve_impact(file.problem, file.law, opt);
-  EXPECT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
   EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
@@ -64,7 +67,7 @@ ImpactResult expect_one_of_two_reference_solutions(const ImpactProblem& pb, doub
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  EXPECT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.ok()) << why(r);
   if (!r.ok()) return r;
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_FALSE(r.unique);  // the enumeration could not list the solutions
@@ -80,6 +83,48 @@ ImpactResult expect_one_of_two_reference_solutions(const ImpactProblem& pb, doub
                                    std::fabs(r.D_TE(0) - ref::to_double(s.D_TE[0]))));
   EXPECT_LE(best, 1e-12 * v);
   return r;
+}
+
+// The exact solution of Frémond + Coulomb nearest to the result, in quad precision
+// (fremond_coulomb_near), for a problem whose normal laws are powers with one k and p; `ok` false
+// when there is none.
+fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, const ImpactResult& r) {
+  namespace ref = fremond_reference;
+  const ImpactProblem& pb = file.problem;
+  std::vector<ref::PowerLaw> normal;
+  ref::QVec PN, PT, mu;
+  for (int i = 0; i < pb.contacts(); ++i) {
+    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.normal[i]);
+    EXPECT_NE(power, nullptr);
+    if (!power) {
+      ref::Solution none;
+      none.ok = false;
+      return none;
+    }
+    normal.push_back({power->k(), power->p()});
+    PN.push_back(r.P_N(i));
+    PT.push_back(r.P_T(i));
+    mu.push_back(file.law.mu[i]);
+  }
+  return ref::fremond_coulomb_near(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, mu,
+                                   PN, PT);
+}
+
+// The result within 1e-9 of the exact solution nearest to it (exact_coulomb_near): velocities
+// relative to |q̇_A|, and, with `percussions`, P_N and P_T relative to the largest percussion.
+void expect_near_exact_coulomb(const io::ProblemFile& file, const ImpactResult& r,
+                               bool percussions) {
+  const auto near = exact_coulomb_near(file, r);
+  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
+  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
+  for (int i = 0; i < file.problem.dofs(); ++i)
+    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
+  if (!percussions) return;
+  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
+  for (int i = 0; i < file.problem.contacts(); ++i) {
+    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
+    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
+  }
 }
 
 // Runs `body` in a child process and reports whether it returned within `seconds`: a solve that
@@ -119,7 +164,7 @@ ImpactProblem make(Eigen::MatrixXd M, Eigen::MatrixXd WN, Eigen::MatrixXd WT, Ei
   return pb;
 }
 
-SolverOptions method(SolverMethod m) {
+SolverOptions forced(SolverMethod m) {
   SolverOptions o;
   o.method = m;
   return o;
@@ -136,7 +181,7 @@ TEST(RegressionFremond, NloptWithCoulombReturnsOnAPointMass) {
                                 Eigen::Vector2d(1, 0), Eigen::Vector2d(1, -1));
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 1.0);
   EXPECT_TRUE(returns_within(30, [&] {
-    const auto r = solve_impact(pb, law, method(SolverMethod::nlopt));
+    const auto r = solve_impact(pb, law, forced(SolverMethod::nlopt));
     EXPECT_NE(r.solver.status, SolverStatus::not_run);
   }));
 }
@@ -176,7 +221,7 @@ TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(216.70341609665434, 1.000001735884251));
   const SolverOptions opt;
   const auto r = solve_impact(to_small(pb), law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   if (r.solver.residual > opt.tolerance) {
     EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
   }
@@ -200,7 +245,7 @@ TEST(RegressionFremond, ModeEnumerationChecksItsResidual) {
   const auto r = solve_impact(pb, law, opt);
   ASSERT_NE(r.solver.status, SolverStatus::not_run);
   if (r.ok() && r.solver.residual > opt.tolerance) {
-    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << r.solver.message;
+    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << why(r);
   }
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
 }
@@ -229,7 +274,7 @@ TEST(RegressionFremond, CertificateAcceptsAnExactAnswerWithPNearOne) {
       std::make_unique<PowerPotential>(0.0023136693335910055, 4.5995015226795326));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_NEAR(r.P_N(0), 9.16678e-11, 1e-15);
   EXPECT_NEAR(r.P_N(1), 5.22199e-11, 1e-15);
   EXPECT_TRUE(r.admissibility.admissible)
@@ -248,7 +293,7 @@ TEST(RegressionFremond, CertificateToleratesRoundingAtTheEdgeOfTheConjugatesDoma
   normal.potentials.emplace_back(std::make_unique<PowerPotential>(1e6, 9.0));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal), AbsoluteValuePotential(0.6));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
 }
@@ -272,7 +317,7 @@ TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
   normal.potentials.emplace_back(
       std::make_unique<PowerPotential>(0.00071796536218804593, 35.39201297913705));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
-  const SolverOptions opt = method(SolverMethod::nlopt);
+  const SolverOptions opt = forced(SolverMethod::nlopt);
   EXPECT_TRUE(returns_within(120, [&] {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
@@ -333,8 +378,12 @@ TEST(RegressionFremond, NoContactTakesPart) {
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 2.0), 0.0);
   const auto r = solve_impact(pb, law);
   EXPECT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::trivial);
+  EXPECT_EQ(r.takes_part.sum(), 0);
+  EXPECT_EQ(r.P_N.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(r.P_T.cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ(r.qdot_E, pb.qdot_A);
+  EXPECT_EQ(r.energy_change, 0.0);
+  EXPECT_TRUE(r.admissibility.admissible);
 }
 
 // W_T = W_N (G of rank 1) with moving obstacles and μ = 24: the mode enumeration listed a third
@@ -356,7 +405,7 @@ TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
   const auto all = solve_impact_all(pb, law);
   ASSERT_EQ(all.size(), 2u);
   for (const auto& r : all) {
-    EXPECT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_TRUE(r.ok()) << why(r);
     EXPECT_LE(r.solver.residual, SolverOptions{}.tolerance);
     EXPECT_LT(std::fabs(r.P_N(0)), 1e3);
     EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
@@ -394,7 +443,7 @@ TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStopping
       ImpactLaw::fremond(PowerPotential(kN, p), DeadZonePowerPotential(kT, q, 0.0));
   const SolverOptions opt;
   const auto r = solve_impact(pb, law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
 
   namespace ref = fremond_reference;
   const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
@@ -456,8 +505,8 @@ TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
   EXPECT_TRUE(returns_within(30, [&] {
     const SolverOptions opt;
     const auto r = solve_impact(pb, law, opt);
-    ASSERT_TRUE(r.ok()) << r.solver.message;
-    EXPECT_LT(r.solver.iterations, 20000) << to_string(r.solver.method);
+    ASSERT_TRUE(r.ok()) << why(r);
+    EXPECT_LT(r.solver.iterations, 20000);
     // The solution by hand (docs/laws.md): q̇_E = 0 satisfies every row. Each z_T = D_TA/2 lies
     // inside the dead zone (|z_T| < r), so −P_T = b sign(z_T); each z_N = D_NA/2 < 0 with D_NE = 0,
     // so P_N = k|z_N|^(p−1) + a reaction ≥ 0; and M(q̇_E − q̇_A) = W_N P_N + W_T P_T has such a
@@ -506,7 +555,7 @@ TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
     tangential.potentials.emplace_back(std::make_unique<DeadZonePowerPotential>(k[i], q[i], r[i]));
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(234.45196439246172, 13.729012979061201),
                                            std::move(tangential));
-  for (const SolverOptions& opt : {SolverOptions{}, method(SolverMethod::nlopt)}) {
+  for (const SolverOptions& opt : {SolverOptions{}, forced(SolverMethod::nlopt)}) {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_TRUE(r.P_N_reaction.allFinite()) << r.P_N_reaction.transpose();
     EXPECT_TRUE(r.qdot_E.allFinite());
@@ -574,7 +623,7 @@ TEST(RegressionFremond, TouchingContactTakesPartByTheExactSignOfDNA) {
       8.5483499107701655e-05, 42.245259395094777, 1.0675363543611988e-07));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal), std::move(tangential));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_EQ(r.takes_part(1), 1);
 
   namespace ref = fremond_reference;
@@ -612,7 +661,7 @@ TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVel
   const ImpactProblem& pb = file.problem;
   const SolverOptions opt;
   const auto r = solve_impact(pb, file.law, opt);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible) << to_string(r.admissibility.failed);
   // By hand: no contact goes through the obstacle by more than the rounding of q̇_E, and no more
   // than that is allowed either (16 ε |W_i|ᵀ|q̇_E|, about 2e-23 here, not 0.31 of the velocity
@@ -642,7 +691,7 @@ TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
   const double k = 59382.205337100742, p = 1.0039401041457969, mu = 6.6907886637691369;
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
                                              {k, p}, ref::TangentialLaw::coulomb(mu));
   ASSERT_FALSE(sols.empty());
@@ -694,7 +743,7 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 0.01);
   const SolverOptions opt;
   const auto ok = solve_impact(bar, coulomb, opt);
-  ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << ok.solver.message;
+  ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << why(ok);
   ASSERT_NEAR(std::fabs(ok.P_T(0)), 0.01 * std::fabs(ok.P_N(0)), 1e-14 * std::fabs(ok.P_N(0)))
       << "no longer sliding: the case this test is about";
   SmallImpactResult wrong = ok;
@@ -723,7 +772,7 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
     SolverOptions opt;
     opt.method = m;
     const auto r = solve_impact(pb, law, opt);
-    ASSERT_TRUE(r.ok()) << to_string(m) << ": " << r.solver.message;
+    ASSERT_TRUE(r.ok()) << to_string(m) << ": " << why(r);
     EXPECT_TRUE(r.admissibility.admissible)
         << to_string(m) << ": " << to_string(r.admissibility.failed) << " by "
         << r.admissibility.violation;
@@ -756,7 +805,7 @@ TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau)
   const ImpactProblem& pb = file.problem;
   const SolverOptions opt;
   const auto r = solve_impact(pb, file.law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
@@ -875,12 +924,9 @@ TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
                                            PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
   expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
-  SolverOptions forced;
-  forced.method = SolverMethod::proximal;
-  const ImpactResult s = solve_impact(file.problem, file.law, forced);
-  ASSERT_TRUE(s.ok()) << s.solver.message;
+  const ImpactResult s = solve_impact(file.problem, file.law, forced(SolverMethod::proximal));
+  ASSERT_TRUE(s.ok()) << why(s);
   expect_coulomb_on_mean_velocity(s, {0.1052513990738896});
   const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
   EXPECT_LE((s.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(), 1e-9 * v);
@@ -902,8 +948,8 @@ TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
                                            PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
   expect_coulomb_on_mean_velocity(r, {0.15724677037244, 0.12273461088009807});
+  expect_near_exact_coulomb(file, r, false);
 }
 
 // A block (m = 1, 0.4 × 0.2 m) landing flat on both lower corners, as a Moreau–Jean step of a
@@ -925,8 +971,7 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, 3.0), mu);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
   expect_coulomb_on_mean_velocity(r, {mu});
@@ -941,15 +986,9 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
     ASSERT_GT(r.D_NE(i), 0.0);
     EXPECT_NEAR(r.P_N(i), -k * zN * std::fabs(zN), 1e-10 * r.P_N(i)) << "contact " << i;
   }
-  SolverOptions newton;
-  newton.method = SolverMethod::semismooth_newton;
-  EXPECT_FALSE(solve_impact(pb, law, newton).ok()) << "Newton alone converges: not the case";
-  // The method asked for by name gives the same answer.
-  SolverOptions modes;
-  modes.method = SolverMethod::mode_enumeration;
-  const ImpactResult m = solve_impact(pb, law, modes);
-  ASSERT_TRUE(m.ok()) << m.solver.message;
-  EXPECT_EQ(m.solver.method, SolverMethod::mode_enumeration);
+  // The enumeration of modes, forced, gives the same answer.
+  const ImpactResult m = solve_impact(pb, law, forced(SolverMethod::mode_enumeration));
+  ASSERT_TRUE(m.ok()) << why(m);
   EXPECT_NEAR(m.P_T(0), r.P_T(0), 1e-12 * r.P_N(0));
   EXPECT_NEAR(m.P_N(1), r.P_N(1), 1e-12 * r.P_N(1));
 }
@@ -963,18 +1002,13 @@ TEST(RegressionFremond, EveryMethodFailingReturnsTheAnswerNearestTheLaw) {
   const auto [pb, law] = testing::every_method_failing_case();
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  SolverOptions by_nlopt;
-  by_nlopt.method = SolverMethod::nlopt;
-  const ImpactResult last = solve_impact(pb, law, by_nlopt);
+  const ImpactResult last = solve_impact(pb, law, forced(SolverMethod::nlopt));
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
-  if (r.solver.status != SolverStatus::converged) {
-    // No method met the tolerance: the answer is the least bad one, and never NLopt's when
-    // NLopt's is worse (here 9e12).
-    EXPECT_LE(r.solver.residual, last.solver.residual);
-    EXPECT_LT(r.solver.residual, 1.0);
-    EXPECT_EQ(r.solver.method, SolverMethod::proximal);
-  }
   EXPECT_DOUBLE_EQ(r.solver.residual, law_residual(pb, law, r));
+  // Whatever the status, the answer is no further from the law than NLopt's alone (9e12 here).
+  EXPECT_LE(r.solver.residual, last.solver.residual);
+  EXPECT_LT(r.solver.residual, 1e-6);
+  EXPECT_TRUE(r.qdot_E.allFinite());
 }
 
 // Frémond + Coulomb on two contacts of random bodies with μ ≈ 1.2–1.6, where every method stalled
@@ -1017,7 +1051,6 @@ TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirMo
   for (const TwoContactCase& c : cases) {
     const auto file = io::parse_problem_file(c.json, PotentialRegistry::with_builtins());
     const ImpactResult r = solve_and_check(file);
-    EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
     const double mu = file.law.mu[0];
     expect_coulomb_on_mean_velocity(r, {mu});
     for (int i = 0; i < 2; ++i) {
@@ -1063,7 +1096,6 @@ TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
                   "mu": 1.8429235008508518}}})",
       PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
   EXPECT_FALSE(r.unique);
   expect_coulomb_on_mean_velocity(r, {1.8429235008508518});
   const double k = 15.497517199116473, p = 1.307937663104956;
@@ -1139,8 +1171,8 @@ TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer
   const auto check = [&](const auto& pb, const char* storage) {
     SCOPED_TRACE(storage);
     const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-    EXPECT_EQ(r.solver.criterion, StopCriterion::residual);
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
+    EXPECT_LE(law_residual(pb, file.law, r), SolverOptions{}.tolerance);
     const double v = r.D_TA.cwiseAbs().maxCoeff();  // 0.91
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.qdot_E(i), qdot_E(i), 1e-14 * v) << i;
     for (int i = 0; i < 2; ++i) {
@@ -1190,12 +1222,12 @@ TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
     const Eigen::VectorXd expected = ratio * file.problem.qdot_A;  // q̇_E in closed form
     const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
     const auto r = detail::solve_impact_in_own_storage(file.problem, file.law);
-    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
     EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
     EXPECT_LE((r.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
     for (int i = 0; i < 4; ++i) EXPECT_GE(r.P_N_reaction(i), 0.0) << i;
     const auto rs = solve_impact(to_small(file.problem), file.law);
-    ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+    ASSERT_EQ(rs.solver.status, SolverStatus::converged) << why(rs);
     EXPECT_LE((rs.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
   }
 }
@@ -1220,7 +1252,7 @@ TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
   const auto check = [&](const auto& pb, const char* storage) {
     SCOPED_TRACE(storage);
     const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
     EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), 1e-13);
     // The percussions are known only to the condition of G (3e6) times their rounding.
     EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);
@@ -1236,6 +1268,8 @@ TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
 
 namespace fremond {
 namespace {
+
+using testing::why;
 
 /// The paper's bar lying flat (θ = 0) on c points of its length, all with the tangent (1, 0, 0):
 /// with two or more contacts sticking, their tangential rows of Newton's Jacobian are equal.
@@ -1258,7 +1292,7 @@ TEST(RegressionFremond, PlateStickingOnSeveralContactsIsNewtonsWithASingularJaco
     SolverOptions newton;
     newton.method = SolverMethod::semismooth_newton;
     const auto r = solve_impact(pb, law, newton);
-    ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+    ASSERT_TRUE(r.ok()) << why(r);
     EXPECT_LE(r.solver.iterations, 10);
     EXPECT_TRUE(r.admissibility.admissible);
     EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
@@ -1269,10 +1303,11 @@ TEST(RegressionFremond, PlateStickingOnSeveralContactsIsNewtonsWithASingularJaco
         EXPECT_NEAR(r.P_N(i), -k * zN * std::fabs(zN), 1e-10 * r.P_N.maxCoeff());
       }
     }
-    // The automatic choice takes the same path, and the heap-stored problem the same answer.
+    // The automatic choice on the heap-stored problem gives the same answer.
     const auto a = solve_impact(to_dynamic(pb), law);
-    EXPECT_EQ(a.solver.method, SolverMethod::semismooth_newton);
-    EXPECT_EQ(a.qdot_E, Eigen::VectorXd(r.qdot_E));
+    ASSERT_TRUE(a.ok()) << why(a);
+    EXPECT_LE((a.qdot_E - Eigen::VectorXd(r.qdot_E)).cwiseAbs().maxCoeff(),
+              1e-12 * pb.qdot_A.cwiseAbs().maxCoeff());
   }
 }
 
@@ -1290,7 +1325,7 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
   pb.W_T << 1, 1, 0, 0, 0, 0.05;
   pb.qdot_A = Eigen::Vector3d(0.0, -1.4444444444444445e+67, 0.0);
   const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(3.0, 3.0), 0.5));
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_EQ(r.qdot_E(0), 0.0);
   EXPECT_EQ(r.qdot_E(1), -pb.qdot_A(1));
   EXPECT_EQ(r.qdot_E(2), 0.0);
@@ -1314,10 +1349,7 @@ TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
           viscous ? ImpactLaw::fremond(PowerPotential(k, 3.0), DeadZonePowerPotential(kT, q, r0))
                   : ImpactLaw::fremond(PowerPotential(k, 3.0));
       const auto r = solve_impact(pb, law);
-      ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
-      EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
-      EXPECT_EQ(r.solver.fallbacks, 0);
-      EXPECT_LE(r.solver.iterations, 16);
+      ASSERT_TRUE(r.ok()) << why(r);
       EXPECT_TRUE(r.admissibility.admissible);
       EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
       const auto s = ref::fremond_several(
@@ -1340,7 +1372,7 @@ TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
   const ImpactProblem pb = testing::plate_many_contacts(16, false);
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(1e-3, 3.0));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
   EXPECT_GT(r.P_N_reaction.cwiseAbs().maxCoeff(), 0.0);
@@ -1402,13 +1434,11 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNo
       EXPECT_TRUE(r.solver.status != SolverStatus::converged || err <= 1e-9)
           << to_string(r.solver.status) << ", error " << err;
       if (p == 3.0) {
-        EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+        EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
         EXPECT_LE(err, 1e-12);
       } else if (r.solver.status != SolverStatus::converged) {
+        EXPECT_EQ(r.solver.status, SolverStatus::stalled);
         EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
-        EXPECT_NE(r.solver.message.find("no contact mode solved with their exact"),
-                  std::string::npos)
-            << r.solver.message;
       }
     }
 }
@@ -1423,11 +1453,7 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSo
       SCOPED_TRACE("c = " + std::to_string(c) + ", p = " + std::to_string(p));
       ImpactProblem pb = testing::plate_many_contacts(c, true);
       const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(1e6, p), 0.3));
-      ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-      if (c == 4 && p == 1.2) {  // the first case seen; others may converge by other paths
-        EXPECT_NE(r.solver.message.find("split by their exact condition"), std::string::npos)
-            << r.solver.message;
-      }
+      ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
       EXPECT_TRUE(r.admissibility.admissible);
       EXPECT_EQ(robust::check_result(pb, ImpactLaw::fremond_coulomb(PowerPotential(1e6, p), 0.3),
                                      SolverOptions{}, r),
@@ -1435,48 +1461,6 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSo
       const Eigen::Vector3d ref_qE = plate_coulomb_reference(pb, 1e6, p, 0.3);
       EXPECT_LE((r.qdot_E - ref_qE).cwiseAbs().maxCoeff(), 1e-10 * pb.qdot_A.cwiseAbs().maxCoeff());
     }
-}
-
-// The exact solution of Frémond + Coulomb nearest to the result, in quad precision
-// (fremond_coulomb_near), for a problem whose normal laws are powers with one k and p; `ok` false
-// when there is none.
-fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, const ImpactResult& r) {
-  namespace ref = fremond_reference;
-  const ImpactProblem& pb = file.problem;
-  std::vector<ref::PowerLaw> normal;
-  ref::QVec PN, PT, mu;
-  for (int i = 0; i < pb.contacts(); ++i) {
-    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.normal[i]);
-    EXPECT_NE(power, nullptr);
-    if (!power) {
-      ref::Solution none;
-      none.ok = false;
-      return none;
-    }
-    normal.push_back({power->k(), power->p()});
-    PN.push_back(r.P_N(i));
-    PT.push_back(r.P_T(i));
-    mu.push_back(file.law.mu[i]);
-  }
-  return ref::fremond_coulomb_near(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, mu,
-                                   PN, PT);
-}
-
-// The result within 1e-9 of the exact solution nearest to it (exact_coulomb_near): velocities
-// relative to |q̇_A|, and, with `percussions`, P_N and P_T relative to the largest percussion.
-void expect_near_exact_coulomb(const io::ProblemFile& file, const ImpactResult& r,
-                               bool percussions) {
-  const auto near = exact_coulomb_near(file, r);
-  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
-  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
-  for (int i = 0; i < file.problem.dofs(); ++i)
-    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
-  if (!percussions) return;
-  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
-  for (int i = 0; i < file.problem.contacts(); ++i) {
-    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
-    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
-  }
 }
 
 // Frémond + Coulomb on two contacts of a body with three dofs, p = 1.5, k = 1e6 at speeds of
@@ -1502,8 +1486,7 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
   const auto file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
   const ImpactProblem& pb = file.problem;
   const auto r = solve_impact(pb, file.law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_FALSE(r.unique);
   // The percussions too, which the old answer had 10 times off on the first contact.
@@ -1517,7 +1500,7 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
   const auto law =
       ImpactLaw::fremond_coulomb(PowerPotential(1e6 * std::pow(lambda, p - 2.0), p), 10.0);
   const auto rs = solve_impact(scaled, law);
-  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << why(rs);
   for (int i = 0; i < pb.dofs(); ++i)
     EXPECT_NEAR(rs.qdot_E(i) / lambda, r.qdot_E(i), 1e-9 * scale) << i;
 }
@@ -1555,7 +1538,7 @@ TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
     const auto file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
     const ImpactProblem& pb = file.problem;
     const auto r = solve_impact(pb, file.law);
-    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
     EXPECT_TRUE(r.admissibility.admissible);
     expect_near_exact_coulomb(file, r, true);
     if (index == 1) {
@@ -1589,8 +1572,6 @@ TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
   const auto r = solve_impact(near_parallel.problem, near_parallel.law);
   EXPECT_EQ(r.solver.status, SolverStatus::stalled);
   EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
-  EXPECT_NE(r.solver.message.find("parallel to rounding but not exactly"), std::string::npos)
-      << r.solver.message;
   EXPECT_FALSE(r.unique);
   // Its exact data's nearest solution is far from the answer: what the status says.
   const auto near = exact_coulomb_near(near_parallel, r);
@@ -1603,7 +1584,7 @@ TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
 
   const auto parallel = with_lever("0, 0");
   const auto s = solve_impact(parallel.problem, parallel.law);
-  ASSERT_EQ(s.solver.status, SolverStatus::converged) << s.solver.message;
+  ASSERT_EQ(s.solver.status, SolverStatus::converged) << why(s);
   EXPECT_FALSE(s.unique);
   EXPECT_TRUE(s.admissibility.admissible);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.qdot_E(i), r.qdot_E(i), 1e-9 * scale) << i;
@@ -1627,8 +1608,7 @@ TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelo
           "law": {"type": "fremond", "normal": {"potential": "power", "k": [0.00053724984259547783, 0.00011053940040775476], "p": [1.8187647649489351, 12.033338866260745]}, "tangential": {"potential": "coulomb", "mu": 248.02296846440314}}})",
       PotentialRegistry::with_builtins());
   const auto r = solve_impact(file.problem, file.law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   // Contact 1 at its bound against z_T1 > 0 (the mean angular velocity, z_N2 − z_N1 = 1.44,
   // times 2δ), contact 2 inside its cone; their sum is the x momentum, −2 m ẋ_A.
   const double mu = 248.02296846440314;
@@ -1645,8 +1625,7 @@ TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelo
 /// ±2δ q̄_θ), and the answer near the exact solution nearest to it (percussions too if asked).
 void expect_bar_slides_one_end(const io::ProblemFile& file, const ImpactResult& r, int sliding,
                                double delta, bool percussions) {
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   const int sticking = 1 - sliding;
   const double b_slide = file.law.mu[sliding] * r.P_N(sliding);
   EXPECT_NEAR(std::fabs(r.P_T(sliding)), b_slide, 1e-9 * b_slide);
@@ -1732,8 +1711,7 @@ TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
   // A contact leaves; the case was found with it detached, as it is solved here.
   const ImpactProblem pb = testing::detach_separating(file.problem);
   const auto r = solve_impact(pb, file.law);
-  EXPECT_EQ(r.solver.status, SolverStatus::stalled) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("certificate"), std::string::npos) << r.solver.message;
+  EXPECT_EQ(r.solver.status, SolverStatus::stalled) << why(r);
   EXPECT_FALSE(r.unique);
   ASSERT_FALSE(r.admissibility.admissible);
   EXPECT_EQ(r.admissibility.failed, Inequality::total_15);
@@ -1775,7 +1753,7 @@ TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
   const ImpactLaw law =
       ImpactLaw::fremond(PowerPotential(1e6, 3), DeadZonePowerPotential(1e6, 2, 0.2));
   const SmallImpactResult r = solve_impact(pb, law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   const Eigen::Vector3d exact(-1.5999964000035999964, 2.9965368982405246825,
                               -0.99999999980749434671);
@@ -1816,7 +1794,7 @@ TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
     const ImpactLaw law =
         ImpactLaw::fremond(PowerPotential(c.k, c.p), DeadZonePowerPotential(c.k, c.q, r));
     const SmallImpactResult out = solve_impact(pb, law);
-    ASSERT_EQ(out.solver.status, SolverStatus::converged) << out.solver.message;
+    ASSERT_EQ(out.solver.status, SolverStatus::converged) << why(out);
     EXPECT_TRUE(out.admissibility.admissible);
     EXPECT_GE(out.D_NE.minCoeff(), -1e-9 * c.speed);  // none penetrates beyond rounding
     const Eigen::MatrixXd M = pb.M, WN = pb.W_N, WT = pb.W_T;
@@ -1852,7 +1830,7 @@ TEST(RegressionFremond, FlatBarWithSubRoundingLeversIsSolvedBackwardStably) {
   const std::vector<double> mu{11.473597989593529, 0.0083648661053411632};
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 5.4084173249583056), mu);
   const auto r = solve_impact(pb, law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_FALSE(r.unique);
   EXPECT_TRUE(r.admissibility.admissible);
   // No penetration beyond the rounding of the contact velocities' terms (ε |W_N|ᵀ|q̇_E|).
