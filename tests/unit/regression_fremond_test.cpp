@@ -233,7 +233,7 @@ TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
 // enumeration said converged (criterion exact) with the law's residual at 1.1e-6, its exactness
 // unchecked. Its answer is now checked by the shared stopping test: here the residual is at the
 // rows' rounding floor (μ|P_N| and cond(G) make 16ε|G||P| of that size), which the criterion says.
-TEST(RegressionFremond, ModeEnumerationChecksItsResidual) {
+TEST(RegressionFremond, LargeMuIsConvergedWithinToleranceOrAtRounding) {
   Eigen::Matrix2d M;
   M << 8632987.2039246373, -12094358.729443323, -12094358.729443323, 16943557.284278292;
   const ImpactProblem pb = make(M, Eigen::Vector2d(0.63512214541751955, 0.85540948712427789),
@@ -369,7 +369,7 @@ TEST(RegressionFremond, LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
 // solve of M⁻¹W with W of no column binds a reference to a null pointer inside Eigen (UBSan:
 // "reference binding to null pointer", contact_space.hpp build_contact_space). Harmless in a
 // plain build; a sanitizer build stops here. Found by the fuzzer.
-TEST(RegressionFremond, NoContactTakesPart) {
+TEST(RegressionFremond, NoContactTakingPartGivesNoPercussion) {
   Eigen::MatrixXd WN(1, 2), WT(1, 2);
   WN << 1.1652840070182156, 0.24082765331720424;
   WT << 0.21804852846310818, -0.046024192687695309;
@@ -389,8 +389,8 @@ TEST(RegressionFremond, NoContactTakesPart) {
 // W_T = W_N (G of rank 1) with moving obstacles and μ = 24: the mode enumeration listed a third
 // "solution" P_N = −P_T = 1.05e23 with a law residual of 1.0 of the velocity scale, accepted as
 // converged by the rounding floors that percussions of that size bring. Found by a 100,000-problem
-// stress run (fremond_coulomb #82420); the quad reference finds exactly the two others.
-TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
+// stress run; the quad reference finds exactly the two others.
+TEST(RegressionFremond, EverySolutionListedMeetsTheLaw) {
   Eigen::Matrix3d M;
   M << 742038.61993826088, -545155.53454118327, -1055200.1952735728, -545155.53454118327,
       541865.08400820207, 1054996.2273617117, -1055200.1952735728, 1054996.2273617117,
@@ -419,7 +419,7 @@ TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
 // stopping test promises, tolerance · v_scale / (G_max/2) = 4.4e-25 (the weighted residual of
 // fremond_rows.hpp), but the certificate allowed the percussions only tolerance · max|P| =
 // 1.1e-25, and the conjugate |s|^q'/(q' k^(q'−1)) at s = 2.6e-25 made a Fenchel–Young gap of
-// 1.4e-6 of the energy scale. Fremond_viscous #5902 (8 in 100,000).
+// 1.4e-6 of the energy scale.
 TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStoppingTest) {
   Eigen::MatrixXd M(5, 5);
   M << 35851.014596685403, 11660.46148096718, -27326.469541011604, -17585.721781158081,
@@ -527,8 +527,8 @@ TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
 // NLopt stopped far from the answer (p = 13.7, |q̇_A| = 3e7, a dead zone with k = 0): P and the
 // velocities were finite but φ_N'(z_N) was not, and the reaction part P_N + φ_N'(z_N) left the
 // library as NaN. Any non-finite part of the answer now means no percussion is returned.
-// Fremond_viscous #84838 (the automatic chain reaches NLopt there).
-TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
+//
+TEST(RegressionFremond, NoNaNInTheReactionWhateverTheMethod) {
   Eigen::Matrix4d M;
   M << 4309.9357158486337, 4053.4907649244801, -5636.7924585722903, -436.57504440825613,
       4053.4907649244801, 3881.9245711565181, -5387.7441528527152, -439.68613019735983,
@@ -569,7 +569,7 @@ TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
 // lets the contact take no part (docs/concepts.md: only D_NA ≤ 0), gives it no percussion, and it
 // leaves at D_NE = −8.2e-6: 0.46 of the velocity scale from the quad reference, whose answer
 // (reaction active, D_NE = 0) is the law's for these data. All three methods agree with each other;
-// the decision of which contacts take part is wrong. Fremond_viscous #72700. Open: the contact
+// the decision of which contacts take part is wrong. Open: the contact
 // space (build_contact_space, scatter_solution) must take the sign from accurate_dot.
 Eigen::MatrixXd touching_M() {
   Eigen::MatrixXd M(4, 4);
@@ -650,7 +650,7 @@ TEST(RegressionFremond, TouchingContactTakesPartByTheExactSignOfDNA) {
 // satisfies the law (residual 3e-51), but the certificate flagged a penetration of 0.31 of the
 // velocity scale. q̇_E = q̇_A + M⁻¹WP is stored in doubles, so D_NE of the answer returned is known
 // only to ε|W_i|ᵀ|q̇_E| — which, once D_NA is exact (accurate_dot.hpp), is far above the velocity
-// scale; the certificate now allows that rounding. 72 in 100,000 problems (fremond #21085).
+// scale; the certificate now allows that rounding. 72 in 100,000 problems.
 TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVelocity) {
   const auto file = io::parse_problem_file(
       R"json({"M": [[363002.38510894508, 7453800.7153358515, -1464464.1593099665, -11857298.787199307, 8486724.8792210463, -1772155.2885893928], [7453800.7153358515, 153956151.43200928, -30240872.888719223, -244926263.52707323, 175271744.79227889, -36597273.62038523], [-1464464.1593099665, -30240872.888719223, 5942553.2008131957, 48110849.336683854, -34428442.050655507, 7187926.2365514701], [-11857298.787199307, -244926263.52707323, 48110849.336683854, 389651504.26070505, -278836443.06714487, 58223169.639781982], [8486724.8792210463, 175271744.79227889, -34428442.050655507, -278836443.06714487, 199539164.1039817, -41663779.100352518], [-1772155.2885893928, -36597273.62038523, 7187926.2365514701, 58223169.639781982, -41663779.100352518, 8701989.9454486277]],
@@ -704,11 +704,11 @@ TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
 }
 
 // Two contacts on one normal row (a repeated row), touching below rounding (D_NA = -1.3e-14) beside
-// sliding at 25 and -48 m/s, with mu = 1e8 and cond(M) = 3e9 (fremond_coulomb #10340 of the stress
-// seed). P_N = -5.9e-20 and P_T = 6e-12 change the velocities by 6e-14, below their rounding: the
-// percussions are noise, known to ds = 2e-9 (the stopping test's resolution, tolerance · v /
-// (G_max/2)). The certificate held P_T to the cone |P_T| <= mu|P_N| to 1e-12 relative and refused
-// an excess of 1.3e-14: mu|P_N| is known only to mu · ds = 0.2. The law holds to what is known.
+// sliding at 25 and -48 m/s, with mu = 1e8 and cond(M) = 3e9. P_N = -5.9e-20 and P_T = 6e-12 change
+// the velocities by 6e-14, below their rounding: the percussions are noise, known to ds = 2e-9 (the
+// stopping test's resolution, tolerance · v / (G_max/2)). The certificate held P_T to the cone
+// |P_T| <= mu|P_N| to 1e-12 relative and refused an excess of 1.3e-14: mu|P_N| is known only to mu
+// · ds = 0.2. The law holds to what is known.
 TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   const auto file = io::parse_problem_file(R"({
     "M": [[167788258156.5007, 57049729490.485641, 105780350143.83472],
@@ -754,7 +754,7 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
 }
 
 // Two contacts on one degree of freedom at 5e-10 m/s (T_A = 7.6e-18 J), solved by NLopt to its
-// tolerance 1e-9 (fremond_coulomb #42250 of seed 7). Contact 1's dissipation P·z came out at
+// tolerance 1e-9. Contact 1's dissipation P·z came out at
 // -2.9e-26 J, and (15) per contact was judged against 1e-9·T_A = 7.6e-27 J: but P·z is itself
 // known only to NLopt's 1e-9 of the velocities, 1e-9·|P|·|D_A| = 3e-26 J. The answer is the law's
 // to what was asked; the semismooth Newton answer (tolerance 1e-13) is admissible as it was.
@@ -781,7 +781,7 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
 }
 
 // Four contacts on two degrees of freedom (cond(M) = 2.6e7) at 1e-6 m/s, p = 1.0008, tangential
-// dead zones up to q = 14 (fremond_viscous #14485 of the stress seed). Contact 2's tangential row
+// dead zones up to q = 14. Contact 2's tangential row
 // has G_TT = 1.8e-7 beside G_max = 5.7e-3: its percussion moves no velocity the solver can see, and
 // the stopping test passed it at its rounding floor with P_T = -2.4e-15 where the law gives
 // -3e-73. The certificate held P_T to the tolerance-based 2.6e-16 and, as φ*(s) ~ s^1.08 there,
@@ -845,11 +845,11 @@ TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau)
   EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
-// One contact, Frémond + Coulomb in the Painlevé-type case with p = 1.0088 (fremond_coulomb #60 of
-// stress seed 7): the scalar normal roots of the modes lie far below the smallest double, so
-// the mode enumeration resolved none and the library said no_solution, while the quad reference
-// finds two solutions and semismooth Newton, forced, converged to one. Semismooth Newton now
-// gets a try before "no solution" is said; its answer is one of the reference's.
+// One contact, Frémond + Coulomb in the Painlevé-type case with p = 1.0088: the scalar normal roots
+// of the modes lie far below the smallest double, so the mode enumeration resolved none and the
+// library said no_solution, while the quad reference finds two solutions and semismooth Newton,
+// forced, converged to one. Semismooth Newton now gets a try before "no solution" is said; its
+// answer is one of the reference's.
 TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   ImpactProblem pb;
   pb.M.setConstant(1, 1, 0.18526508520387094);
@@ -865,11 +865,10 @@ TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   EXPECT_EQ(all[0].D_NE(0), r.D_NE(0));
 }
 
-// The same kind with μ = 56 and p = 1 + 7.9e-6 (fremond_coulomb #88780 of stress seed 1, found once
-// the quad reference could resolve roots below its own range): semismooth Newton stalls there, and
+// The same kind with μ = 56 and p = 1 + 7.9e-6: semismooth Newton stalls there, and
 // "no solution" was said although the reference finds two. The splitting from P = 0 reaches one;
 // it now gets its try after Newton's.
-TEST(RegressionFremond, RootBelowDoubleRangeIsReachedByTheSplittingWhereNewtonStalls) {
+TEST(RegressionFremond, RootBelowDoubleRangeWithLargeMuIsFound) {
   ImpactProblem pb;
   pb.M.setConstant(1, 1, 0.010102341962160373);
   pb.W_N.setConstant(1, 1, 0.61542191091166965);
@@ -880,7 +879,7 @@ TEST(RegressionFremond, RootBelowDoubleRangeIsReachedByTheSplittingWhereNewtonSt
 }
 
 // Three contacts, cond(M) > 1e9, mu = 1e8, normal laws with p = 33.4, 2 and 1.0000067
-// (fremond_coulomb #56347 of the stress seed): percussions of 1e18 over a G known to ε·κ(M) leave z
+//: percussions of 1e18 over a G known to ε·κ(M) leave z
 // known to ±1e12 m/s beside a velocity scale of 4e7. φ = k|z|^33.4/33.4 overflows within that
 // range, and the certificate, ignoring the infinite sides, reported a Fenchel-Young gap of 1 from
 // values it could not resolve. Where φ leaves double precision within dz of z the subdifferential
@@ -903,16 +902,10 @@ TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflo
   ASSERT_TRUE(r.ok());
 }
 
-// The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8
-// (fremond_coulomb #62070 of seed 23). Semismooth Newton stalls from either start; the splitting,
-// started from its last iterate, did not converge either, and NLopt returned `stalled`, while
-// the splitting forced from P = 0 converges: the law is quasi-variational and where the iteration
-// ends depends on where it starts. Automatic then restarted the splitting from zero before NLopt;
-// since the enumeration of Coulomb's modes also holds each normal row's branch (reaction active or
-// not), it finds the answer before the splitting runs. Both ways are checked: automatic (by the
-// enumeration) and the splitting forced from zero, to the same answer, each by the law's own
-// conditions contact by contact.
-TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
+// The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8:
+// the law is quasi-variational and an iteration's end depends on its start. The answer meets
+// Coulomb's law contact by contact and agrees with the splitting forced from P = 0.
+TEST(RegressionFremond, UprightBarUnderCoulombAgreesWithTheSplittingFromZero) {
   const auto file = io::parse_problem_file(R"({
     "M": [[1.2587692343452668, 0, 0], [0, 1.2587692343452668, 0], [0, 0, 0.1048974361954389]],
     "W_N": [[0, 0], [1, 1], [-1.793661927069458e-07, 1.793661927069458e-07]],
@@ -933,10 +926,9 @@ TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
 }
 
 // The bar upright on both ends (θ → π/2), Frémond + Coulomb with μ = (0.157, 0.123), k = 4e4 and
-// p = 1 + 1.7e-4 (fremond_coulomb #25729 of seed 23). Semismooth Newton from the decoupled guess
-// ends at a stationary point of ‖R‖² that is no solution, the splitting and NLopt stall; Newton
-// from P = 0 converges. Automatic now tries it before the splitting.
-TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
+// p = 1 + 1.7e-4, where ‖R‖² has stationary points that are no solution: the answer meets Coulomb's
+// law and is the exact solution nearest to it.
+TEST(RegressionFremond, UprightBarUnderCoulombWithPNearOneMeetsTheExactSolution) {
   const auto file = io::parse_problem_file(R"({
     "M": [[83.891280671005802, 0, 0], [0, 83.891280671005802, 0], [0, 0, 6.9909400559171502]],
     "W_N": [[0, 0], [1, 1], [-9.8476833163081442e-08, 9.8476833163081442e-08]],
@@ -959,7 +951,7 @@ TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
 // the run stopped with impact_failed; with the tangential modes fixed (slide, stick) the rows are
 // smooth and Newton converges. The answer is checked against the law written out here: Coulomb on
 // the mean velocity, and P_N = −k z_N|z_N| where the reaction is idle (D_NE > 0).
-TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
+TEST(RegressionFremond, BlockLandingFlatSlidesAtOneCornerAndSticksAtTheOther) {
   ImpactProblem pb;
   pb.M = Eigen::Vector3d(1.0, 1.0, (0.16 + 0.04) / 12.0).asDiagonal();
   pb.W_N.resize(3, 2);
@@ -996,9 +988,8 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
 // Four contacts on three dofs, two of them with the same normal (G of rank 3 with 8 rows),
 // cond(M) = 1.4e10, p from 1.003 to 31: semismooth Newton and the splitting stall, and NLopt,
 // the last fallback, stopped by its budget 9e12 of the velocities away from the law. That last
-// answer was returned; the nearest to the law of the failed methods' is (fremond_viscous #63 of
-// stress seed 23).
-TEST(RegressionFremond, EveryMethodFailingReturnsTheAnswerNearestTheLaw) {
+// answer was returned; the nearest to the law of the failed methods' is.
+TEST(RegressionFremond, HardCaseIsNoFurtherFromTheLawThanNlopt) {
   const auto [pb, law] = testing::every_method_failing_case();
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
@@ -1024,7 +1015,7 @@ struct TwoContactCase {
   double k, p;              // the normal law's, as in the file
 };
 
-TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirModes) {
+TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullMeetTheLaw) {
   const TwoContactCase cases[] = {
       {R"({"M": [[0.89454061787307704,0.12353883818861629],[0.12353883818861629,0.66926193129968803]],
            "W_N": [[0.13514964382422012,0.10343002905295173],[0.35444246388020306,0.22887193134179817]],
@@ -1079,7 +1070,7 @@ TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirMo
 // method stalled (the enumeration stopped at three contacts). The enumeration now takes four,
 // with each normal row's branch held fixed. Checked by the law's own conditions, by hand; `unique`
 // is not claimed (Frémond + Coulomb on several contacts can have other answers).
-TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
+TEST(RegressionFremond, FourContactsWithAPullMeetTheLaw) {
   const auto file = io::parse_problem_file(
       R"({"M": [[0.90486457889432192,0.25182285395303855,0.40815359970455872],
                 [0.25182285395303855,1.0100251316494115,-0.0029116209631458445],
@@ -1113,7 +1104,7 @@ TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
 // splitting, started from Newton's last iterate, stops on stagnation: (a) at 6e-8, where Newton
 // restarted from there converges; (b) where the splitting from zero converges (2,726 sweeps).
 // Both restarts, once for Coulomb only, now run for every law. Against the quad reference.
-TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitting) {
+TEST(RegressionFremond, ViscousFourContactsMatchTheReference) {
   struct Case {
     const char* json;
     double kN, p, kT, q, r;
@@ -1151,7 +1142,7 @@ TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitt
 // storage) or failed (stack storage: the splitting's end was returned, `stalled`). Newton from
 // NLopt's end now polishes it. Reference: the mode's four equations (P_N1 = −φ'(z_N1), D_NE2 = 0,
 // P_Ti = −φ_T'(z_Ti)) solved to 50 digits by mpmath's findroot from the data as printed here.
-TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer) {
+TEST(RegressionFremond, NearlyEqualNormalRowsMatchTheReference) {
   const auto file = io::parse_problem_file(R"({
     "M": [[179.32339602043095, 0, 0], [0, 179.32339602043095, 0], [0, 0, 14.943616335035912]],
     "W_N": [[0, 0], [1, 1], [-3.5741238053350548e-09, 3.5741238053350548e-09]],
@@ -1238,7 +1229,7 @@ TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
 /// was 2.3e-9 from the 50-digit reference (mpmath, nested bisection of the two rows) in the
 /// kinetic-energy norm, with D_NE = −6e-3 where the reaction holds it at 0; refined with the mean
 /// velocity taken from q̇_E itself (velocity_space_residual), it is within 1e-13.
-TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
+TEST(RegressionFremond, LightRotorMatchesTheReferenceBeyondTheContactSpacesRounding) {
   const auto file = io::parse_problem_file(R"({
     "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
     "W_N": [[0], [1], [-0.23486765760076336]], "W_T": [[1], [0], [0.44140365133642767]],
@@ -1337,7 +1328,7 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
 // up to the small diagonal D T of the stiff power law: Newton took 22 steps on 16 contacts and
 // stalled on 32, where the splitting then took 4,231 sweeps (5 ms). Newton in velocity space
 // (3 unknowns) takes about 12 steps. Reference: the quad solution.
-TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
+TEST(RegressionFremond, PlateOnManyContactsMatchesTheReference) {
   namespace ref = fremond_reference;
   const double k = testing::bar_fremond_k_normal(3.0);
   const double kT = 1.5, q = 2.0, r0 = 0.2;
@@ -1367,7 +1358,7 @@ TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
 // The same plate with a soft power law (k = 1e-3): the power law alone would let it through the
 // ground, so every contact's reaction takes part. Newton in velocity space, whose objective holds
 // no reaction, stops at the unconstrained minimum and says so; contact space's methods answer.
-TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
+TEST(RegressionFremond, PlateThatNeedsReactionsMatchesTheReference) {
   namespace ref = fremond_reference;
   const ImpactProblem pb = testing::plate_many_contacts(16, false);
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(1e-3, 3.0));
@@ -1476,7 +1467,7 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSo
 // (1.77e-6, −1.31e-5), the first contact sliding at the bound. It must be within 1e-9 of the
 // exact solution nearest to it, percussions included, and the same problem scaled by homogeneity
 // (q̇ × λ and k × λ^(p−2) scale the solutions by λ) must give the same answer scaled.
-TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContactMode) {
+TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceMeetsTheExactSolution) {
   const char* text =
       R"({"M": [[1.0060024034301078,0.26260809967819926,-0.039730369216919692],[0.26260809967819926,0.72346905622592961,0.12268876206479999],[-0.039730369216919692,0.12268876206479999,0.76714462427817876]],
           "W_N": [[0.60697893899842259,0.41367413045827561],[-0.0019323421694139586,0.31518104494282895],[0.13068061927728669,0.23239829439442339]],
@@ -1515,7 +1506,7 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
 //  - p = 1.1, k = 1e6, speeds 1e-6: z_T near 1e-69, and p = 1.01: near 1e-1000; below ε² of the
 //    rows' velocities (taken as zero, where sliding either way holds) the answer stays.
 // Each must converge within 1e-9 of the exact solution nearest to it, percussions included.
-TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
+TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedMeetsTheExactSolution) {
   const char* cases[] = {
       R"({"M": [[751.25078100777114,131.27917941120265],[131.27917941120265,114.1215955636812]],
           "W_N": [[0.20883423682614399,0.17320470615169081],[0.21997220111119664,0.93727638714037931]],
@@ -1777,7 +1768,7 @@ TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
 /// penetrating (every method on all four rows failed); the normal rows solved alone, then Newton
 /// on all rows from there, converge. Against the quad reference of the same equations
 /// (fremond_several), in the kinetic-energy norm relative to q̇_A.
-TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
+TEST(RegressionFremond, FlatBarWithALightRotorMatchesTheReference) {
   namespace ref = fremond_reference;
   struct Case {
     double speed, p, k, q, r;
