@@ -1002,70 +1002,6 @@ TEST(RegressionFremond, HardCaseIsNoFurtherFromTheLawThanNlopt) {
   EXPECT_TRUE(r.qdot_E.allFinite());
 }
 
-// Frémond + Coulomb on two contacts of random bodies with μ ≈ 1.2–1.6, where every method stalled
-// though the law has an answer (found independently by solving each contact mode's smooth
-// equations from random starts, scipy's least_squares, in the numbers below): Newton on a sliding
-// mode stopped at the kink of the reaction's bound (case a: contact 1 slides with its reaction
-// active, D_NE = 0) or of |P_N| at 0 (case b: contact 1 pulls, P_N < 0, and slides). The
-// enumeration now holds the normal branch and the sign of P_N fixed too.
-struct TwoContactCase {
-  const char* json;
-  std::array<double, 4> P;  // P_N0, P_N1, P_T0, P_T1 of the independent solution
-  bool reaction1;           // contact 1's reaction active (D_NE,1 = 0)
-  double k, p;              // the normal law's, as in the file
-};
-
-TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullMeetTheLaw) {
-  const TwoContactCase cases[] = {
-      {R"({"M": [[0.89454061787307704,0.12353883818861629],[0.12353883818861629,0.66926193129968803]],
-           "W_N": [[0.13514964382422012,0.10343002905295173],[0.35444246388020306,0.22887193134179817]],
-           "W_T": [[-0.12799946634758541,-0.17008761446306631],[0.50418105813738245,0.77879616678591557]],
-           "qdot_A": [-0.03992636693183238,-0.89706377380061997],
-           "law": {"type": "fremond", "normal": {"potential": "power", "k": 1.6800602152347377,
-                   "p": 2.6858380569943954}, "tangential": {"potential": "coulomb",
-                   "mu": 1.5900116209312292}}})",
-       {0.075248259805519, 0.384665797800025, 0.119645607545627, 0.611623088676823},
-       true,
-       1.6800602152347377,
-       2.6858380569943954},
-      {R"({"M": [[1.0199949079440893,-0.074173875383324706],[-0.074173875383324706,1.0022131152693703]],
-           "W_N": [[0.21600916069434528,-0.60719521364543194],[0.0091490270775755889,0.65232733453664116]],
-           "W_T": [[0.73344355966180586,-0.34614040763183596],[-0.97320782779504489,-0.93695819465419161]],
-           "qdot_A": [-0.44000471298616328,-0.46232708096663599],
-           "law": {"type": "fremond", "normal": {"potential": "power", "k": 39.607325258481417,
-                   "p": 1.7804379247431372}, "tangential": {"potential": "coulomb",
-                   "mu": 1.1919726367808714}}})",
-       {1.263081467628761, -0.756516120154213, -0.436224416606899, -0.901746514507452},
-       false,
-       39.607325258481417,
-       1.7804379247431372}};
-  for (const TwoContactCase& c : cases) {
-    const auto file = io::parse_problem_file(c.json, PotentialRegistry::with_builtins());
-    const ImpactResult r = solve_and_check(file);
-    const double mu = file.law.mu[0];
-    expect_coulomb_on_mean_velocity(r, {mu});
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_NEAR(r.P_N(i), c.P[i], 1e-9) << "contact " << i;
-      EXPECT_NEAR(r.P_T(i), c.P[2 + i], 1e-9) << "contact " << i;
-    }
-    // The normal law by hand: the power law's percussion where the contact is free, D_NE = 0 and
-    // a reaction that pushes (P_N ≥ −φ'(z_N)) where it is active.
-    const double k = c.k, p = c.p;
-    const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
-    for (int i = 0; i < 2; ++i) {
-      const double zN = 0.5 * (r.D_NA(i) + r.D_NE(i));
-      const double power = -k * zN * std::pow(std::fabs(zN), p - 2.0);
-      if (i == 1 && c.reaction1) {
-        EXPECT_NEAR(r.D_NE(i), 0.0, 1e-12 * v);
-        EXPECT_GT(r.P_N(i), power);
-      } else {
-        EXPECT_GT(r.D_NE(i), 0.0);
-        EXPECT_NEAR(r.P_N(i), power, 1e-10 * std::fabs(power)) << "contact " << i;
-      }
-    }
-  }
-}
-
 // Four contacts on a random 3-dof body (μ = 1.84, p = 1.31), contact 2 pulling (P_N < 0): every
 // method stalled (the enumeration stopped at three contacts). The enumeration now takes four,
 // with each normal row's branch held fixed. Checked by the law's own conditions, by hand; `unique`
@@ -1134,48 +1070,6 @@ TEST(RegressionFremond, ViscousFourContactsMatchTheReference) {
   }
 }
 
-// The bar nearly upright on both ends (W_N's columns differ by 7e-9 in one entry), one contact
-// soft (k = 6.8e-6, p = 2.58), the other with its reaction active; viscous dead zones. Newton from
-// the decoupled guess and the splitting stalled on wrong splits of P_N between the nearly equal
-// rows (3e-9 and 7e-9 of the velocities: a wrong split moves them by 7e-9 times the error), and
-// NLopt, the last fallback, stopped at its own tolerance 8e-10 from the reference (dynamic
-// storage) or failed (stack storage: the splitting's end was returned, `stalled`). Newton from
-// NLopt's end now polishes it. Reference: the mode's four equations (P_N1 = −φ'(z_N1), D_NE2 = 0,
-// P_Ti = −φ_T'(z_Ti)) solved to 50 digits by mpmath's findroot from the data as printed here.
-TEST(RegressionFremond, NearlyEqualNormalRowsMatchTheReference) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[179.32339602043095, 0, 0], [0, 179.32339602043095, 0], [0, 0, 14.943616335035912]],
-    "W_N": [[0, 0], [1, 1], [-3.5741238053350548e-09, 3.5741238053350548e-09]],
-    "W_T": [[1, 1], [0, 0], [0.5, -0.5]],
-    "qdot_A": [-0.90311200536352632, -0.30976052981586705, 0.015417588641822787],
-    "law": {"type": "fremond",
-            "normal": {"potential": "power", "k": [6.8259324178360091e-06, 35.253899449369612],
-                       "p": [2.5760277635250635, 2]},
-            "tangential": {"potential": "deadzone_power",
-                           "k": [8.7629353705275542e-05, 158.86181804355593], "q": [2, 2],
-                           "r": [0, 0.017350158885100681]}}})",
-                                           PotentialRegistry::with_builtins());
-  const Eigen::Vector3d qdot_E(-0.6175479837544124988719945, 6.068717835959395379462766e-9,
-                               -1.69795960254669628205947);
-  const Eigen::Vector4d P(3.610549432132220412679155e-7, 55.54731088687738358575489,
-                          1.034872433410523586566764e-4, 51.20820664895467687567923);
-  const auto check = [&](const auto& pb, const char* storage) {
-    SCOPED_TRACE(storage);
-    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
-    EXPECT_LE(law_residual(pb, file.law, r), SolverOptions{}.tolerance);
-    const double v = r.D_TA.cwiseAbs().maxCoeff();  // 0.91
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.qdot_E(i), qdot_E(i), 1e-14 * v) << i;
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_NEAR(r.P_N(i), P(i), 1e-13 * P(1)) << i;
-      EXPECT_NEAR(r.P_T(i), P(2 + i), 1e-13 * P(1)) << i;
-    }
-    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
-  };
-  check(file.problem, "dynamic");
-  check(to_small(file.problem), "small");
-}
-
 /// Three contacts that take part on a body of 2 dofs (no moving obstacle): the percussions that
 /// give the answer's velocities are a family, and every method failed on both problems below.
 /// (a) cond(M) = 7e6, p = 1.0001 with k = 1.3e4: φ_N' jumps from 0 to nearly k within |z| of
@@ -1223,37 +1117,6 @@ TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
   }
 }
 
-/// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6) hit at 1e6 m/s: G has condition
-/// 3e6, the percussions are 1e6 and the terms G_jk P_k of z = D_A + GP/2 are 1e12 that cancel to
-/// velocities of 1e6. Newton's answer stopped at that form's rounding floor (criterion `rounding`)
-/// was 2.3e-9 from the 50-digit reference (mpmath, nested bisection of the two rows) in the
-/// kinetic-energy norm, with D_NE = −6e-3 where the reaction holds it at 0; refined with the mean
-/// velocity taken from q̇_E itself (velocity_space_residual), it is within 1e-13.
-TEST(RegressionFremond, LightRotorMatchesTheReferenceBeyondTheContactSpacesRounding) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
-    "W_N": [[0], [1], [-0.23486765760076336]], "W_T": [[1], [0], [0.44140365133642767]],
-    "qdot_A": [-751980.2931977182, -1439035.6379865322, 1777218.0671113417],
-    "law": {"type": "fremond", "normal": {"potential": "power", "k": 100, "p": 1.5},
-            "tangential": {"potential": "deadzone_power", "k": 1e-06, "q": 3, "r": 0}}})",
-                                           PotentialRegistry::with_builtins());
-  const Eigen::Vector3d qdot_E(-294848.3432693812811552702, -579913.2378973941970961045,
-                               -2469106.405800461187807878);
-  const double PN = 859122.4000891379825426389, PT = 457131.9499283369349510254;
-  const auto check = [&](const auto& pb, const char* storage) {
-    SCOPED_TRACE(storage);
-    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
-    EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), 1e-13);
-    // The percussions are known only to the condition of G (3e6) times their rounding.
-    EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);
-    EXPECT_NEAR(r.P_T(0), PT, 1e-9 * PN);
-    EXPECT_TRUE(r.admissibility.admissible);
-    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
-  };
-  check(file.problem, "dynamic");
-  check(to_small(file.problem), "small");
-}
 }  // namespace
 }  // namespace fremond
 
