@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -926,68 +925,6 @@ TEST(RegressionClassical, EveryModeOfALargeMuIsSolved) {
   }
   EXPECT_NEAR(r.energy_change, best_e, 1e-9 * std::fabs(best_e));
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
-}
-
-/// A light rotor's one-contact problem solved in both storages: converged, within `tol` of the
-/// 60-digit reference velocity in the kinetic norm, its percussions within 1e-9 of P_N (known only
-/// to cond(G) = 3e6 times their rounding), Poisson's compression percussions where given, and the
-/// stress invariants.
-void expect_light_rotor_answer(const io::ProblemFile& file, const Eigen::Vector3d& qdot_E,
-                               double PN, double PT, double tol,
-                               std::optional<std::pair<double, double>> compression = {}) {
-  const auto check = [&](const auto& pb, const char* storage) {
-    SCOPED_TRACE(storage);
-    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
-    EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), tol);
-    EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);
-    EXPECT_NEAR(r.P_T(0), PT, 1e-9 * PN);
-    if (compression) {
-      EXPECT_NEAR(r.P_NC(0), compression->first, 1e-9 * PN);
-      EXPECT_NEAR(r.P_TC(0), compression->second, 1e-9 * PN);
-    }
-    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
-  };
-  check(file.problem, "dynamic");
-  check(to_small(file.problem), "small");
-}
-
-// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6, M diagonal) sticking under Newton +
-// Coulomb. The torques of P_N and P_T, 2.3e-6 each, cancel to 1.9e-13: the last bit of P moves
-// θ̇_E, and with it D_TE, by 1e-10 of the velocities, so no answer formed from double percussions
-// meets the 1e-10 allowance of the refinement, and this one, 8e-14 from the 60-digit reference
-// (mpmath, the stick mode solved exactly) in the kinetic norm, was `stalled`. It is `converged`
-// (criterion rounding) and still that close.
-TEST(RegressionClassical, LightRotorStickingIsConvergedToItsPercussionsRounding) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
-    "W_N": [[0], [1], [-0.06416359683692201]], "W_T": [[1], [0], [0.4958659424087814]],
-    "qdot_A": [-1.1295252459736679e-05, -2.3211176634313982e-05, 1.54650068799862e-05],
-    "law": {"type": "newton_coulomb", "e": 0.5, "mu": 0.5}})",
-                                           PotentialRegistry::with_builtins());
-  expect_light_rotor_answer(
-      file,
-      Eigen::Vector3d(-0.000006615105258571718195829592, 0.0000129577087456176138885526,
-                      0.00001334051140200785406383921),
-      0.00003616888537993159581972379, 0.000004680147201164960445305577, 1e-12);
-}
-
-// The same light rotor under Poisson + Coulomb (e = 1, μ = 1), sticking in both phases: the mode's
-// refinement stops on corrections that no longer shrink (the percussions' last bits) at a residual
-// of 2.2e-12, 1e-16 from the 60-digit reference (mpmath, each phase's modes solved exactly), and
-// the answer was `stalled`.
-TEST(RegressionClassical, LightRotorUnderPoissonIsConvergedToItsPercussionsRounding) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
-    "W_N": [[0], [1], [-0.18934866068208808]], "W_T": [[1], [0], [0.4627602885921603]],
-    "qdot_A": [1050.7029378231775, -434.9610869914763, -1718.5934823820232],
-    "law": {"type": "poisson_coulomb", "e": 1, "mu": 1}})",
-                                           PotentialRegistry::with_builtins());
-  expect_light_rotor_answer(file,
-                            Eigen::Vector3d(1054.237663053457399548437, -426.3221185850894913448722,
-                                            -2278.150673344785903100202),
-                            8.638968406386801606247677, 3.53472523027986415597679, 1e-12,
-                            std::pair{4.319484203193400803123839, 1.767312920708548832474372});
 }
 
 // Poisson + Coulomb with e = 0 on the light rotor, sticking: the expansion is both "open" (ΔP = 0)
