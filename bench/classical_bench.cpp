@@ -70,7 +70,11 @@ const std::vector<Case>& cases() {
                      ImpactLaw::poisson_coulomb(e, mu),
                      {}});
     {
-      Case c{"point_mass", "newton_coulomb", {point_mass()}, ImpactLaw::newton_coulomb(e, mu), {}};
+      Case c{"point_mass",
+             "newton_coulomb",
+             {planar_point_mass()},
+             ImpactLaw::newton_coulomb(e, mu),
+             {}};
       c.expected.push_back(coulomb_expected(c.problems[0]));
       v.push_back(c);
     }

@@ -222,7 +222,7 @@ inline SmallImpactProblem bar_one_contact(const Eigen::Vector3d& qdot_A,
 
 /// A point mass m = 1 on the ground, frictionless rows only (q = (x, y), q̇_A = (2, −1)).
 inline SmallImpactProblem point_mass_normal() {
-  return point_mass(1.0, false);
+  return planar_point_mass(1.0, false);
 }
 
 /// Frémond's k_N giving a point mass (G = 1/m) the normal restitution e at D_NA (normal law alone):

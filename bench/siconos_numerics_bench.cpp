@@ -303,7 +303,7 @@ const std::vector<Case>& cases() {
     }
     // A point mass sliding.
     {
-      Case c = make_case("point_mass", "newton_coulomb", {point_mass()});
+      Case c = make_case("point_mass", "newton_coulomb", {planar_point_mass()});
       const ContactSpace cs = contact_space(c.problems[0]);
       const Eigen::Vector2d P = newton_coulomb_one_contact(cs.G, cs.D_A(0), cs.D_A(1), c.e, c.mu);
       c.expected.push_back({velocity_after(c.problems[0], cs, P)});

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
 
 namespace fremond::robust {
 
@@ -143,9 +144,9 @@ class Draw {
     return pb;
   }
 
-  /// The paper's bar (the paper's Fig. 1) near the degenerate angles, one or both ends, scaled.
+  /// The paper's bar (fixtures.hpp) near the degenerate angles, one or both ends, of mass m.
   ImpactProblem bar(bool tangential, std::string& shape) {
-    const double l = 0.5, m = decades(-3.0, 3.0);
+    const double m = decades(-3.0, 3.0);
     double theta;
     const double u = uniform(0.0, 1.0);
     if (u < 0.35) {
@@ -163,16 +164,7 @@ class Draw {
     }
     const int c = chance(0.5) ? 2 : 1;
     if (c == 2) shape += "_both_ends";
-    ImpactProblem pb;
-    pb.M = Eigen::MatrixXd::Zero(3, 3);
-    pb.M.diagonal() << m, m, m * l * l / 3.0;
-    pb.W_N.resize(3, c);
-    pb.W_T.resize(3, tangential ? c : 0);
-    for (int i = 0; i < c; ++i) {
-      const double s = i == 0 ? -1.0 : 1.0;
-      pb.W_N.col(i) << 0.0, 1.0, s * l * std::cos(theta);
-      if (tangential) pb.W_T.col(i) << 1.0, 0.0, -s * l * std::sin(theta);
-    }
+    ImpactProblem pb = fixtures::bar(theta, Eigen::Vector3d::Zero(), c == 2, m, tangential);
     const double v = decades(-12.0, 8.0);
     pb.qdot_A =
         Eigen::Vector3d(v * uniform(-2.0, 2.0), -v * uniform(0.0, 1.0), v * uniform(-3.0, 3.0));

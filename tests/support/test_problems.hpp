@@ -1,6 +1,7 @@
 #pragma once
-// Problems shared by the tests: the paper's bar (the paper's Fig. 1), point masses, and random
-// problems with a fixed seed (random SPD M, random contact directions, some contacts taking part).
+// Problems of the tests beside the shared fixtures (fixtures.hpp, which this brings into
+// fremond::testing): random problems with a fixed seed (random SPD M, random contact directions,
+// some contacts taking part), detached separating contacts, and a case every method finds hard.
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -8,56 +9,11 @@
 #include <Eigen/QR>
 
 #include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
 
 namespace fremond::testing {
 
-inline constexpr double kBarHalfLength = 0.5;
-inline constexpr double kGravity = 9.81;
-
-/// The bar of the paper's Fig. 1 with one end at angle θ on the ground; `end` = −1 the lower end at
-/// θ > 0. W_N = (0, 1, s l cos θ), W_T = (1, 0, −s l sin θ) for the end s (the paper's Fig. 1 for s
-/// = −1, θ = π/4).
-inline ImpactProblem bar_problem(double theta, Eigen::Vector3d qdot, bool both_ends = false) {
-  const double l = kBarHalfLength, m = 1.0;
-  ImpactProblem pb;
-  pb.M = MatrixX::Zero(3, 3);
-  pb.M.diagonal() << m, m, m * l * l / 3.0;
-  const int c = both_ends ? 2 : 1;
-  pb.W_N.resize(3, c);
-  pb.W_T.resize(3, c);
-  for (int i = 0; i < c; ++i) {
-    const double s = (i == 0) ? -1.0 : 1.0;
-    pb.W_N.col(i) << 0.0, 1.0, s * l * std::cos(theta);
-    pb.W_T.col(i) << 1.0, 0.0, -s * l * std::sin(theta);
-  }
-  pb.qdot_A = qdot;
-  return pb;
-}
-
-/// The bar at its first impact from the paper's initial state: a free fall from y = 1 until the
-/// lower end touches (centre at l sin θ), ẋ = 2, θ̇ = 0.
-inline ImpactProblem paper_bar_first_impact() {
-  const double th = std::numbers::pi / 4;
-  const double drop = 1.0 - kBarHalfLength * std::sin(th);
-  return bar_problem(th, Eigen::Vector3d(2.0, -std::sqrt(2.0 * kGravity * drop), 0.0));
-}
-
-/// A point mass m hitting the ground with normal velocity v < 0 (and tangential velocity vt).
-inline ImpactProblem point_mass(double m, double v, double vt = 0.0, bool tangential = false) {
-  ImpactProblem pb;
-  const int n = tangential ? 2 : 1;
-  pb.M = m * MatrixX::Identity(n, n);
-  pb.W_N = MatrixX::Zero(n, 1);
-  pb.W_N(n - 1, 0) = 1.0;
-  if (tangential) {
-    pb.W_T = MatrixX::Zero(n, 1);
-    pb.W_T(0, 0) = 1.0;
-    pb.qdot_A = Eigen::Vector2d(vt, v);
-  } else {
-    pb.qdot_A = VectorX::Constant(1, v);
-  }
-  return pb;
-}
+using namespace fremond::fixtures;  // the bar, the flat bar, the plate, the point masses
 
 /// A random problem: n dofs, c contacts, M = AᵀA + δI with condition up to `cond`, directions of
 /// unit scale, velocities of scale `vscale`; at least one contact takes part.

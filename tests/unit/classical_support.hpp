@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
 
 namespace fremond::test {
 
@@ -15,12 +16,7 @@ inline constexpr double kM = 1.0, kL = 0.5, kJ = kM * kL * kL / 3, kG = 9.81;
 /// The bar of the paper's Fig. 1 with its lower end on the ground at angle θ: W_N = (0, 1, −l cos
 /// θ), W_T = (1, 0, l sin θ), M = diag(m, m, J).
 inline ImpactProblem bar(double theta, const Eigen::Vector3d& qdot, bool friction = true) {
-  ImpactProblem p;
-  p.M = Eigen::Vector3d(kM, kM, kJ).asDiagonal();
-  p.W_N = Eigen::Vector3d(0, 1, -kL * std::cos(theta));
-  p.W_T = friction ? MatrixX(Eigen::Vector3d(1, 0, kL * std::sin(theta))) : MatrixX(3, 0);
-  p.qdot_A = qdot;
-  return p;
+  return fixtures::bar(theta, qdot, false, kM, friction);
 }
 
 /// ẏ just before the first impact: free fall of the centre from y = 1 to l sin(π/4).

@@ -15,7 +15,7 @@
 namespace fremond {
 namespace {
 
-using testing::bar_problem;
+using testing::bar;
 using testing::paper_bar_first_impact;
 using testing::point_mass;
 using testing::random_problem;
@@ -162,7 +162,7 @@ TEST(FremondBar, CoulombOnTheMeanVelocityByHand) {
 // The flat bar (θ = 0) hits with both ends at once: G is singular with tangential rows (both
 // W_T columns are (1, 0, 0)); the symmetric answer has no rotation.
 TEST(FremondBar, FlatBarTwoContactsSingularG) {
-  const ImpactProblem pb = bar_problem(0.0, Eigen::Vector3d(1.0, -3.0, 0.0), true);
+  const ImpactProblem pb = bar(0.0, Eigen::Vector3d(1.0, -3.0, 0.0), true);
   const std::vector<ImpactLaw> laws{
       ImpactLaw::fremond(PowerPotential(10.0, 3.0)),
       ImpactLaw::fremond(PowerPotential(10.0, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2)),
@@ -194,7 +194,7 @@ TEST(FremondBar, PainleveCaseReportsEverySolution) {
   int cases_with_several = 0, cases_without = 0;
   for (double mu : {1.0, 1.7, 2.0, 4.0, 20.0}) {
     for (double vx : {-5.0, -2.0, 0.5, 2.0, 5.0}) {
-      const ImpactProblem pb = bar_problem(std::numbers::pi / 4, Eigen::Vector3d(vx, -1.0, 0.3));
+      const ImpactProblem pb = bar(std::numbers::pi / 4, Eigen::Vector3d(vx, -1.0, 0.3));
       const auto law = ImpactLaw::fremond_coulomb(PowerPotential(5.0, 3.0), mu);
       const auto all = solve_impact_all(pb, law);
       const auto one = solve_impact(pb, law);

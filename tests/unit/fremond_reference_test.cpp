@@ -191,7 +191,7 @@ SmallImpactProblem one_contact_problem(int kind, double speed, double mass_ratio
     p.qdot_A =
         Eigen::Vector3d(rng.uniform(-1, 1), -1.0, rng.uniform(-1, 1) * std::sqrt(mass_ratio));
   } else if (kind == 2) {  // a point mass of mass 1/mass_ratio
-    p = point_mass(1.0 / mass_ratio, true);
+    p = planar_point_mass(1.0 / mass_ratio, true);
     p.qdot_A = Eigen::Vector2d(rng.uniform(-2, 2), -1.0);
   } else {  // a random body with n = 4 dofs, masses spread by mass_ratio
     const int n = 4;

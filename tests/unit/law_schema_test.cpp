@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "../src/io/detail/json_law.hpp"
 #include "fremond/fremond.hpp"
+#include "io/detail/json_law.hpp"
 
 namespace fremond {
 namespace {

@@ -1,5 +1,5 @@
 // No heap allocation inside a solve of a stack-stored problem (SmallImpactProblem): every Frémond
-// method except NLopt, and the classical laws, on the benchmark problems (bench/problems.hpp).
+// method except NLopt, and the classical laws, on the shared problems (tests/support/fixtures.hpp).
 //
 // The test replaces the global operator new and the C allocation functions of this executable (the
 // library's calls resolve to them too) by counting wrappers around glibc's allocator; counting is
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "../bench/problems.hpp"
 #include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define FREMOND_COUNT_ALLOCATIONS 0
@@ -138,7 +138,7 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
 namespace fremond {
 namespace {
 
-using namespace fremond::bench;
+using namespace fremond::fixtures;
 
 /// Allocations during f(), with the call stack of the first one.
 template <class F>
@@ -194,7 +194,7 @@ std::vector<Case> fremond_cases() {
   v.push_back({"bar p3 viscous", bar_first_impact(true), viscous});
   v.push_back({"bar p3 coulomb", bar_first_impact(true), coulomb});
   for (double p : {1.1, 2.0, 3.0, 10.0})
-    v.push_back({"point mass p" + std::to_string(p), point_mass(1.0, false),
+    v.push_back({"point mass p" + std::to_string(p), planar_point_mass(1.0, false),
                  ImpactLaw::fremond(PowerPotential(4.0, p))});
   v.push_back({"flat bar p3", flat_bar_two_contacts(false), p3});
   v.push_back({"flat bar p3 viscous", flat_bar_two_contacts(true), viscous});
@@ -244,7 +244,7 @@ TEST(NoAllocation, ClassicalLawsSmallProblem) {
       {"poisson_coulomb", ImpactLaw::poisson_coulomb(0.9, 1.0)}};
   std::vector<std::pair<std::string, SmallImpactProblem>> problems{
       {"bar", bar_first_impact(true)},
-      {"point mass", point_mass(1.0, true)},
+      {"point mass", planar_point_mass(1.0, true)},
       {"flat bar", flat_bar_two_contacts(true)},
       {"two point masses", two_point_masses(true)}};
   for (int i = 0; i < 4; ++i)

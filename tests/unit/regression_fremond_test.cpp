@@ -1,5 +1,6 @@
-// Regressions found by the stress runs (tests/stress) and the fuzz targets (fuzz/) in Frémond's
-// law: each test is the smallest input found, and states what must hold. Tests named DISABLED_ are
+// Regression tests of Frémond's law: hard inputs (near-singular G, extreme scales, p near 1,
+// rounding-level velocities), each stating what must hold of the answer. Cases that are only a
+// problem and its reference answer are data (tests/data/regression). Tests named DISABLED_ are
 // open library issues (listed in tests/stress/known_issues.txt so that the stress and fuzz stages
 // keep running meanwhile); enable the test and delete the known-issue line when the fix lands:
 //
@@ -18,16 +19,18 @@
 #include <utility>
 #include <vector>
 
-#include "../bench/problems.hpp"
 #include "core/detail/accurate_dot.hpp"
 #include "fremond/fremond.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
 #include "support/test_problems.hpp"
+#include "support/why.hpp"
 
 namespace fremond {
 namespace {
+
+using testing::why;
 
 /// Coulomb on z_T = (D_TA + D_TE)/2 with the bound μ_i|P_N,i| (docs/laws.md; P_N may take either
 /// sign), by hand from a result's velocities: inside the cone z_T = 0, on its edge P_T opposes z_T.
@@ -49,7 +52,7 @@ void expect_coulomb_on_mean_velocity(const Result& r, const std::vector<double>&
 ImpactResult solve_and_check(const io::ProblemFile& file) {
   const SolverOptions opt;
   const ImpactResult r = solve_impact(file.problem, file.law, opt);
-  EXPECT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
   EXPECT_EQ(robust::check_result(file.problem, file.law, opt, r), "");
@@ -65,7 +68,7 @@ ImpactResult expect_one_of_two_reference_solutions(const ImpactProblem& pb, doub
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  EXPECT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  EXPECT_TRUE(r.ok()) << why(r);
   if (!r.ok()) return r;
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_FALSE(r.unique);  // the enumeration could not list the solutions
@@ -81,6 +84,48 @@ ImpactResult expect_one_of_two_reference_solutions(const ImpactProblem& pb, doub
                                    std::fabs(r.D_TE(0) - ref::to_double(s.D_TE[0]))));
   EXPECT_LE(best, 1e-12 * v);
   return r;
+}
+
+// The exact solution of Frémond + Coulomb nearest to the result, in quad precision
+// (fremond_coulomb_near), for a problem whose normal laws are powers with one k and p; `ok` false
+// when there is none.
+fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, const ImpactResult& r) {
+  namespace ref = fremond_reference;
+  const ImpactProblem& pb = file.problem;
+  std::vector<ref::PowerLaw> normal;
+  ref::QVec PN, PT, mu;
+  for (int i = 0; i < pb.contacts(); ++i) {
+    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.normal[i]);
+    EXPECT_NE(power, nullptr);
+    if (!power) {
+      ref::Solution none;
+      none.ok = false;
+      return none;
+    }
+    normal.push_back({power->k(), power->p()});
+    PN.push_back(r.P_N(i));
+    PT.push_back(r.P_T(i));
+    mu.push_back(file.law.mu[i]);
+  }
+  return ref::fremond_coulomb_near(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, mu,
+                                   PN, PT);
+}
+
+// The result within 1e-9 of the exact solution nearest to it (exact_coulomb_near): velocities
+// relative to |q̇_A|, and, with `percussions`, P_N and P_T relative to the largest percussion.
+void expect_near_exact_coulomb(const io::ProblemFile& file, const ImpactResult& r,
+                               bool percussions) {
+  const auto near = exact_coulomb_near(file, r);
+  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
+  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
+  for (int i = 0; i < file.problem.dofs(); ++i)
+    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
+  if (!percussions) return;
+  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
+  for (int i = 0; i < file.problem.contacts(); ++i) {
+    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
+    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
+  }
 }
 
 // Runs `body` in a child process and reports whether it returned within `seconds`: a solve that
@@ -120,16 +165,13 @@ ImpactProblem make(Eigen::MatrixXd M, Eigen::MatrixXd WN, Eigen::MatrixXd WT, Ei
   return pb;
 }
 
-SolverOptions method(SolverMethod m) {
+SolverOptions forced(SolverMethod m) {
   SolverOptions o;
   o.method = m;
   return o;
 }
 
-// --- Hangs: the NLopt fallback with Coulomb (then NLOPT_LD_MMA, whose dual subproblems nest
-// without a bound of their own) did not return on small problems. Found by the stress run: 11% of
-// random Frémond + Coulomb problems did not return within 10 s (automatic method). It now runs
-// SLSQP, bounded by its evaluation budget, and returns in well under a millisecond on both.
+// --- Every solve returns: NLopt with Coulomb is bounded by its evaluation budget.
 
 // A point mass: M = I, normal (0, 1), tangent (1, 0), k = 1 so the reaction is active.
 TEST(RegressionFremond, NloptWithCoulombReturnsOnAPointMass) {
@@ -137,14 +179,14 @@ TEST(RegressionFremond, NloptWithCoulombReturnsOnAPointMass) {
                                 Eigen::Vector2d(1, 0), Eigen::Vector2d(1, -1));
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 1.0);
   EXPECT_TRUE(returns_within(30, [&] {
-    const auto r = solve_impact(pb, law, method(SolverMethod::nlopt));
+    const auto r = solve_impact(pb, law, forced(SolverMethod::nlopt));
     EXPECT_NE(r.solver.status, SolverStatus::not_run);
+    EXPECT_EQ(robust::check_result(pb, law, forced(SolverMethod::nlopt), r), "");
   }));
 }
 
-// Two identical contacts on one degree of freedom (G singular, W_T = −W_N), large μ: the
-// automatic chain falls through to NLopt and did not return (observed: > 10 min). It now says
-// `stalled`: the fixed point on Coulomb's bound μ|P_N| cycles between stick and slip.
+// Two identical contacts on one degree of freedom (G singular, W_T = −W_N), large μ: the fixed
+// point on Coulomb's bound μ|P_N| cycles between stick and slip, and the solve must still return.
 TEST(RegressionFremond, AutomaticWithCoulombReturnsOnTwoIdenticalContacts) {
   Eigen::MatrixXd WN(1, 2), WT(1, 2);
   WN << -1, -1;
@@ -162,10 +204,9 @@ TEST(RegressionFremond, AutomaticWithCoulombReturnsOnTwoIdenticalContacts) {
 // --- "converged" must mean what SolverStatus says: the reported residual ≤ tolerance, or the
 // criterion `rounding` when the tolerance is below what floating point resolves for the data.
 
-// The paper's bar almost vertical (θ = π/2 − 5e-5) on both ends, p ≈ 1: semismooth Newton stopped
-// on its rows' rounding floors with a residual of 8.5e-13 against the tolerance 1e-13, and said
-// plain "converged" (75 of 1,800 solves in a 1,000-problem stress run). It now says so by the
-// criterion, and the residual it reports is the law's own.
+// The paper's bar almost vertical (θ = π/2 − 5e-5) on both ends, p ≈ 1: "converged" with a
+// residual above the tolerance is allowed only by the criterion `rounding`, and the residual
+// reported is the law's own.
 TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
   Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
   M.diagonal() << 0.051971855102967493, 0.051971855102967493, 0.0043309879252472908;
@@ -177,7 +218,7 @@ TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(216.70341609665434, 1.000001735884251));
   const SolverOptions opt;
   const auto r = solve_impact(to_small(pb), law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   if (r.solver.residual > opt.tolerance) {
     EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
   }
@@ -185,11 +226,10 @@ TEST(RegressionFremond, ConvergedMeansTheReportedResidualIsWithinTolerance) {
   EXPECT_EQ(robust::check_result(to_small(pb), law, opt, r), "");
 }
 
-// One contact with Coulomb, μ = 1e8, M with condition ~1e13 (accepted by validate): the mode
-// enumeration said converged (criterion exact) with the law's residual at 1.1e-6, its exactness
-// unchecked. Its answer is now checked by the shared stopping test: here the residual is at the
-// rows' rounding floor (μ|P_N| and cond(G) make 16ε|G||P| of that size), which the criterion says.
-TEST(RegressionFremond, ModeEnumerationChecksItsResidual) {
+// One contact with Coulomb, μ = 1e8, M with condition ~1e13: μ|P_N| and cond(G) put the rows'
+// rounding floor (16ε|G||P|) above the tolerance, and a converged answer above it must say so by
+// its criterion.
+TEST(RegressionFremond, LargeMuIsConvergedWithinToleranceOrAtRounding) {
   Eigen::Matrix2d M;
   M << 8632987.2039246373, -12094358.729443323, -12094358.729443323, 16943557.284278292;
   const ImpactProblem pb = make(M, Eigen::Vector2d(0.63512214541751955, 0.85540948712427789),
@@ -201,12 +241,12 @@ TEST(RegressionFremond, ModeEnumerationChecksItsResidual) {
   const auto r = solve_impact(pb, law, opt);
   ASSERT_NE(r.solver.status, SolverStatus::not_run);
   if (r.ok() && r.solver.residual > opt.tolerance) {
-    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << r.solver.message;
+    EXPECT_EQ(r.solver.criterion, StopCriterion::rounding) << why(r);
   }
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
 }
 
-// --- The certificate (docs/concepts.md) refuses right answers.
+// --- The certificate (docs/concepts.md) accepts right answers known only to their rounding.
 
 // p = 1.0001: the answer agrees with the quad-precision reference to 1e-7 (P_N = 9.16678e-11,
 // 5.22199e-11; law_residual 6e-17), yet the Fenchel–Young gap is reported as 0.077: the conjugate
@@ -230,15 +270,15 @@ TEST(RegressionFremond, CertificateAcceptsAnExactAnswerWithPNearOne) {
       std::make_unique<PowerPotential>(0.0023136693335910055, 4.5995015226795326));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_NEAR(r.P_N(0), 9.16678e-11, 1e-15);
   EXPECT_NEAR(r.P_N(1), 5.22199e-11, 1e-15);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
 }
 
-// A potential whose conjugate is finite on a bounded set only (b|y|, or k = 0): the dual value is
-// outside that set by rounding and the gap is reported as infinite. Found by the fuzzer.
+// A potential whose conjugate is finite on a bounded set only (b|y|, or k = 0): a dual value
+// outside that set by rounding must not make the Fenchel–Young gap infinite.
 TEST(RegressionFremond, CertificateToleratesRoundingAtTheEdgeOfTheConjugatesDomain) {
   Eigen::MatrixXd WN(2, 2), WT(2, 2);
   WN << 0, 0.1, 1, 1;
@@ -249,16 +289,15 @@ TEST(RegressionFremond, CertificateToleratesRoundingAtTheEdgeOfTheConjugatesDoma
   normal.potentials.emplace_back(std::make_unique<PowerPotential>(1e6, 9.0));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal), AbsoluteValuePotential(0.6));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
 }
 
 // --- No NaN leaves the library, whatever the status.
 
-// NLopt's budget ran out on the bar almost vertical with both ends: energy_change was not finite.
-// Its objective (p ≈ 35) overflows after SLSQP's first step: NLopt is now stopped there and the
-// best finite iterate is returned, `failed`, with q̇_E following from its percussions.
+// NLopt on the bar almost vertical with both ends, p ≈ 35: its objective overflows after SLSQP's
+// first step. Whatever the status, the result holds no NaN and q̇_E follows from its percussions.
 TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
   Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
   M.diagonal() << 54.31423032884171, 54.31423032884171, 4.5261858607368088;
@@ -273,7 +312,7 @@ TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
   normal.potentials.emplace_back(
       std::make_unique<PowerPotential>(0.00071796536218804593, 35.39201297913705));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
-  const SolverOptions opt = method(SolverMethod::nlopt);
+  const SolverOptions opt = forced(SolverMethod::nlopt);
   EXPECT_TRUE(returns_within(120, [&] {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
@@ -282,10 +321,9 @@ TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
 
 // --- The public API given a result of the wrong shape.
 
-// law_residual(problem, Frémond law, result) indexed the result's P_N and P_T by contact without
-// checking their sizes: a default-constructed result (or one of another problem) was read past the
-// end (a crash here). It refuses it, naming "result" and the sizes; the classical laws' residual
-// answers infinity (tests/unit/api_validation_test.cpp).
+// law_residual(problem, Frémond law, result) with a result of the wrong shape (default-constructed,
+// or of another problem) refuses it, naming "result" and the sizes, rather than reading past the
+// end; the classical laws' residual answers infinity (api_validation_test.cpp).
 TEST(RegressionFremond, LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
   ImpactProblem pb = make(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 1, -0.5),
                           Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, -2, 0.5));
@@ -321,11 +359,10 @@ TEST(RegressionFremond, LawResidualOfAResultOfTheWrongShapeIsNotACrash) {
   }
 }
 
-// Where the library keeps every contact space vector empty (no contact takes part), its Cholesky
-// solve of M⁻¹W with W of no column binds a reference to a null pointer inside Eigen (UBSan:
-// "reference binding to null pointer", contact_space.hpp build_contact_space). Harmless in a
-// plain build; a sanitizer build stops here. Found by the fuzzer.
-TEST(RegressionFremond, NoContactTakesPart) {
+// No contact takes part (every D_NA > 0): no percussion, q̇_E = q̇_A, nothing dissipated. Every
+// contact-space vector is then empty, which a sanitizer build checks (no null reference into
+// Eigen).
+TEST(RegressionFremond, NoContactTakingPartGivesNoPercussion) {
   Eigen::MatrixXd WN(1, 2), WT(1, 2);
   WN << 1.1652840070182156, 0.24082765331720424;
   WT << 0.21804852846310818, -0.046024192687695309;
@@ -334,15 +371,18 @@ TEST(RegressionFremond, NoContactTakesPart) {
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 2.0), 0.0);
   const auto r = solve_impact(pb, law);
   EXPECT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::trivial);
+  EXPECT_EQ(r.takes_part.sum(), 0);
+  EXPECT_EQ(r.P_N.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(r.P_T.cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ(r.qdot_E, pb.qdot_A);
+  EXPECT_EQ(r.energy_change, 0.0);
+  EXPECT_TRUE(r.admissibility.admissible);
 }
 
-// W_T = W_N (G of rank 1) with moving obstacles and μ = 24: the mode enumeration listed a third
-// "solution" P_N = −P_T = 1.05e23 with a law residual of 1.0 of the velocity scale, accepted as
-// converged by the rounding floors that percussions of that size bring. Found by a 100,000-problem
-// stress run (fremond_coulomb #82420); the quad reference finds exactly the two others.
-TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
+// W_T = W_N (G of rank 1) with moving obstacles and μ = 24: the quad reference finds two solutions.
+// Percussions of 1e23 bring rounding floors that would accept anything; every solution listed must
+// meet the law within tolerance and be of the problem's scale.
+TEST(RegressionFremond, EverySolutionListedMeetsTheLaw) {
   Eigen::Matrix3d M;
   M << 742038.61993826088, -545155.53454118327, -1055200.1952735728, -545155.53454118327,
       541865.08400820207, 1054996.2273617117, -1055200.1952735728, 1054996.2273617117,
@@ -357,21 +397,21 @@ TEST(RegressionFremond, EnumerationKeepsOnlyResolvedSolutions) {
   const auto all = solve_impact_all(pb, law);
   ASSERT_EQ(all.size(), 2u);
   for (const auto& r : all) {
-    EXPECT_TRUE(r.ok()) << r.solver.message;
+    EXPECT_TRUE(r.ok()) << why(r);
     EXPECT_LE(r.solver.residual, SolverOptions{}.tolerance);
     EXPECT_LT(std::fabs(r.P_N(0)), 1e3);
     EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
   }
 }
 
-// --- Frémond + viscous dead zone (found by a 100,000-problem stress run of fremond_viscous).
+// --- Frémond + viscous dead zone.
 
 // One contact barely loaded (D_NA = −4.3e-13 beside D_TA = −1.7e-12), dead zone q = 5.5, r = 0:
 // semismooth Newton stops at P_T = 2.6e-25 where the exact one is 2e-56. That is within what its
 // stopping test promises, tolerance · v_scale / (G_max/2) = 4.4e-25 (the weighted residual of
 // fremond_rows.hpp), but the certificate allowed the percussions only tolerance · max|P| =
 // 1.1e-25, and the conjugate |s|^q'/(q' k^(q'−1)) at s = 2.6e-25 made a Fenchel–Young gap of
-// 1.4e-6 of the energy scale. Fremond_viscous #5902 (8 in 100,000).
+// 1.4e-6 of the energy scale.
 TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStoppingTest) {
   Eigen::MatrixXd M(5, 5);
   M << 35851.014596685403, 11660.46148096718, -27326.469541011604, -17585.721781158081,
@@ -395,7 +435,7 @@ TEST(RegressionFremond, CertificateAllowsForThePercussionResolutionOfTheStopping
       ImpactLaw::fremond(PowerPotential(kN, p), DeadZonePowerPotential(kT, q, 0.0));
   const SolverOptions opt;
   const auto r = solve_impact(pb, law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
 
   namespace ref = fremond_reference;
   const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
@@ -457,8 +497,8 @@ TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
   EXPECT_TRUE(returns_within(30, [&] {
     const SolverOptions opt;
     const auto r = solve_impact(pb, law, opt);
-    ASSERT_TRUE(r.ok()) << r.solver.message;
-    EXPECT_LT(r.solver.iterations, 20000) << to_string(r.solver.method);
+    ASSERT_TRUE(r.ok()) << why(r);
+    EXPECT_LT(r.solver.iterations, 20000);
     // The solution by hand (docs/laws.md): q̇_E = 0 satisfies every row. Each z_T = D_TA/2 lies
     // inside the dead zone (|z_T| < r), so −P_T = b sign(z_T); each z_N = D_NA/2 < 0 with D_NE = 0,
     // so P_N = k|z_N|^(p−1) + a reaction ≥ 0; and M(q̇_E − q̇_A) = W_N P_N + W_T P_T has such a
@@ -476,11 +516,10 @@ TEST(RegressionFremond, SingularDelassusWithEveryReactionActiveStaysCheap) {
   }));
 }
 
-// NLopt stopped far from the answer (p = 13.7, |q̇_A| = 3e7, a dead zone with k = 0): P and the
-// velocities were finite but φ_N'(z_N) was not, and the reaction part P_N + φ_N'(z_N) left the
-// library as NaN. Any non-finite part of the answer now means no percussion is returned.
-// Fremond_viscous #84838 (the automatic chain reaches NLopt there).
-TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
+// NLopt ends far from the answer (p = 13.7, |q̇_A| = 3e7, a dead zone with k = 0), where
+// φ_N'(z_N) is not finite: no part of the answer, the reaction P_N + φ_N'(z_N) included, may be
+// NaN, automatic or NLopt forced.
+TEST(RegressionFremond, NoNaNInTheReactionWhateverTheMethod) {
   Eigen::Matrix4d M;
   M << 4309.9357158486337, 4053.4907649244801, -5636.7924585722903, -436.57504440825613,
       4053.4907649244801, 3881.9245711565181, -5387.7441528527152, -439.68613019735983,
@@ -507,7 +546,7 @@ TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
     tangential.potentials.emplace_back(std::make_unique<DeadZonePowerPotential>(k[i], q[i], r[i]));
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(234.45196439246172, 13.729012979061201),
                                            std::move(tangential));
-  for (const SolverOptions& opt : {SolverOptions{}, method(SolverMethod::nlopt)}) {
+  for (const SolverOptions& opt : {SolverOptions{}, forced(SolverMethod::nlopt)}) {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_TRUE(r.P_N_reaction.allFinite()) << r.P_N_reaction.transpose();
     EXPECT_TRUE(r.qdot_E.allFinite());
@@ -521,7 +560,7 @@ TEST(RegressionFremond, NloptLeavesNoNaNInTheReaction) {
 // lets the contact take no part (docs/concepts.md: only D_NA ≤ 0), gives it no percussion, and it
 // leaves at D_NE = −8.2e-6: 0.46 of the velocity scale from the quad reference, whose answer
 // (reaction active, D_NE = 0) is the law's for these data. All three methods agree with each other;
-// the decision of which contacts take part is wrong. Fremond_viscous #72700. Open: the contact
+// the decision of which contacts take part is wrong. Open: the contact
 // space (build_contact_space, scatter_solution) must take the sign from accurate_dot.
 Eigen::MatrixXd touching_M() {
   Eigen::MatrixXd M(4, 4);
@@ -575,7 +614,7 @@ TEST(RegressionFremond, TouchingContactTakesPartByTheExactSignOfDNA) {
       8.5483499107701655e-05, 42.245259395094777, 1.0675363543611988e-07));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal), std::move(tangential));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_EQ(r.takes_part(1), 1);
 
   namespace ref = fremond_reference;
@@ -598,11 +637,9 @@ TEST(RegressionFremond, TouchingContactTakesPartByTheExactSignOfDNA) {
   EXPECT_GE(r.D_NE(1), -allowed);  // −8.2e-6 before: the contact went through the obstacle
 }
 
-// Two repeated touching contacts (D_NA exact and far below |W||q̇|): semismooth Newton's answer
-// satisfies the law (residual 3e-51), but the certificate flagged a penetration of 0.31 of the
-// velocity scale. q̇_E = q̇_A + M⁻¹WP is stored in doubles, so D_NE of the answer returned is known
-// only to ε|W_i|ᵀ|q̇_E| — which, once D_NA is exact (accurate_dot.hpp), is far above the velocity
-// scale; the certificate now allows that rounding. 72 in 100,000 problems (fremond #21085).
+// Two repeated touching contacts (D_NA exact and far below |W||q̇|): q̇_E = q̇_A + M⁻¹WP is stored
+// in doubles, so D_NE of the answer is known only to ε|W_i|ᵀ|q̇_E|. The certificate allows that
+// rounding, and no more.
 TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVelocity) {
   const auto file = io::parse_problem_file(
       R"json({"M": [[363002.38510894508, 7453800.7153358515, -1464464.1593099665, -11857298.787199307, 8486724.8792210463, -1772155.2885893928], [7453800.7153358515, 153956151.43200928, -30240872.888719223, -244926263.52707323, 175271744.79227889, -36597273.62038523], [-1464464.1593099665, -30240872.888719223, 5942553.2008131957, 48110849.336683854, -34428442.050655507, 7187926.2365514701], [-11857298.787199307, -244926263.52707323, 48110849.336683854, 389651504.26070505, -278836443.06714487, 58223169.639781982], [8486724.8792210463, 175271744.79227889, -34428442.050655507, -278836443.06714487, 199539164.1039817, -41663779.100352518], [-1772155.2885893928, -36597273.62038523, 7187926.2365514701, 58223169.639781982, -41663779.100352518, 8701989.9454486277]],
@@ -613,7 +650,7 @@ TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVel
   const ImpactProblem& pb = file.problem;
   const SolverOptions opt;
   const auto r = solve_impact(pb, file.law, opt);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible) << to_string(r.admissibility.failed);
   // By hand: no contact goes through the obstacle by more than the rounding of q̇_E, and no more
   // than that is allowed either (16 ε |W_i|ᵀ|q̇_E|, about 2e-23 here, not 0.31 of the velocity
@@ -626,14 +663,10 @@ TEST(RegressionFremond, TouchingRepeatedRowsCertifiedToTheRoundingOfTheStoredVel
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
 }
 
-// --- One contact with Coulomb on one degree of freedom (found by a stress run of fremond_coulomb,
-// #23090 of the default seed, once G = WᵀM⁻¹W was formed as YᵀY). G is of rank one, so the stick
-// mode's Schur complement g is rounding noise, and the mode enumeration found beside the exact
-// answer (an elastic reversal; p = 1.004 makes φ_N a near-step) a second one with P_N = −4.9e4,
-// P_T = 1.1e4 that cancel to the velocity's last bits. Its P·z (eq. 9) is rounding noise of
-// 2.6e-6 beside the exact answer's 1e-17, and picking the "most dissipative" by that noise
-// returned it: 2.7e-7 of the velocity scale off the quad reference. Energies within their
-// rounding are now a tie, won by the better resolved answer.
+// One contact with Coulomb on one degree of freedom: G is of rank one, and beside the exact answer
+// (an elastic reversal; p = 1.004 makes φ_N a near-step) a mode gives P_N = −4.9e4, P_T = 1.1e4
+// that cancel to the velocity's last bits, its P·z rounding noise. Energies within their rounding
+// are a tie, won by the better resolved answer: the quad reference's.
 TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
   namespace ref = fremond_reference;
   ImpactProblem pb = make(Eigen::MatrixXd::Constant(1, 1, 1.141077505025105),
@@ -643,7 +676,7 @@ TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
   const double k = 59382.205337100742, p = 1.0039401041457969, mu = 6.6907886637691369;
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu);
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   const auto sols = ref::fremond_one_contact(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A),
                                              {k, p}, ref::TangentialLaw::coulomb(mu));
   ASSERT_FALSE(sols.empty());
@@ -656,11 +689,11 @@ TEST(RegressionFremond, ModeEnumerationBreaksEnergyTiesByResolution) {
 }
 
 // Two contacts on one normal row (a repeated row), touching below rounding (D_NA = -1.3e-14) beside
-// sliding at 25 and -48 m/s, with mu = 1e8 and cond(M) = 3e9 (fremond_coulomb #10340 of the stress
-// seed). P_N = -5.9e-20 and P_T = 6e-12 change the velocities by 6e-14, below their rounding: the
-// percussions are noise, known to ds = 2e-9 (the stopping test's resolution, tolerance · v /
-// (G_max/2)). The certificate held P_T to the cone |P_T| <= mu|P_N| to 1e-12 relative and refused
-// an excess of 1.3e-14: mu|P_N| is known only to mu · ds = 0.2. The law holds to what is known.
+// sliding at 25 and -48 m/s, with mu = 1e8 and cond(M) = 3e9. P_N = -5.9e-20 and P_T = 6e-12 change
+// the velocities by 6e-14, below their rounding: the percussions are noise, known to ds = 2e-9 (the
+// stopping test's resolution, tolerance · v / (G_max/2)). The certificate held P_T to the cone
+// |P_T| <= mu|P_N| to 1e-12 relative and refused an excess of 1.3e-14: mu|P_N| is known only to mu
+// · ds = 0.2. The law holds to what is known.
 TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   const auto file = io::parse_problem_file(R"({
     "M": [[167788258156.5007, 57049729490.485641, 105780350143.83472],
@@ -695,7 +728,7 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   const ImpactLaw coulomb = ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 0.01);
   const SolverOptions opt;
   const auto ok = solve_impact(bar, coulomb, opt);
-  ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << ok.solver.message;
+  ASSERT_TRUE(ok.ok() && ok.admissibility.admissible) << why(ok);
   ASSERT_NEAR(std::fabs(ok.P_T(0)), 0.01 * std::fabs(ok.P_N(0)), 1e-14 * std::fabs(ok.P_N(0)))
       << "no longer sliding: the case this test is about";
   SmallImpactResult wrong = ok;
@@ -705,11 +738,9 @@ TEST(RegressionFremond, CoulombConeIsCheckedToHowWellThePercussionsAreKnown) {
   EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
-// Two contacts on one degree of freedom at 5e-10 m/s (T_A = 7.6e-18 J), solved by NLopt to its
-// tolerance 1e-9 (fremond_coulomb #42250 of seed 7). Contact 1's dissipation P·z came out at
-// -2.9e-26 J, and (15) per contact was judged against 1e-9·T_A = 7.6e-27 J: but P·z is itself
-// known only to NLopt's 1e-9 of the velocities, 1e-9·|P|·|D_A| = 3e-26 J. The answer is the law's
-// to what was asked; the semismooth Newton answer (tolerance 1e-13) is admissible as it was.
+// Two contacts on one degree of freedom at 5e-10 m/s (T_A = 7.6e-18 J): P·z per contact is known
+// only to the solver's tolerance times |P||D_A| (3e-26 J for NLopt's 1e-9), and the certificate
+// judges inequality (15) per contact to that, for NLopt and for Newton.
 TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
   ImpactProblem pb;
   pb.M = Eigen::Matrix<double, 1, 1>(69.651757227898671);
@@ -724,7 +755,7 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
     SolverOptions opt;
     opt.method = m;
     const auto r = solve_impact(pb, law, opt);
-    ASSERT_TRUE(r.ok()) << to_string(m) << ": " << r.solver.message;
+    ASSERT_TRUE(r.ok()) << to_string(m) << ": " << why(r);
     EXPECT_TRUE(r.admissibility.admissible)
         << to_string(m) << ": " << to_string(r.admissibility.failed) << " by "
         << r.admissibility.violation;
@@ -733,7 +764,7 @@ TEST(RegressionFremond, PerContactDissipationIsJudgedToTheSolversTolerance) {
 }
 
 // Four contacts on two degrees of freedom (cond(M) = 2.6e7) at 1e-6 m/s, p = 1.0008, tangential
-// dead zones up to q = 14 (fremond_viscous #14485 of the stress seed). Contact 2's tangential row
+// dead zones up to q = 14. Contact 2's tangential row
 // has G_TT = 1.8e-7 beside G_max = 5.7e-3: its percussion moves no velocity the solver can see, and
 // the stopping test passed it at its rounding floor with P_T = -2.4e-15 where the law gives
 // -3e-73. The certificate held P_T to the tolerance-based 2.6e-16 and, as φ*(s) ~ s^1.08 there,
@@ -757,7 +788,7 @@ TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau)
   const ImpactProblem& pb = file.problem;
   const SolverOptions opt;
   const auto r = solve_impact(pb, file.law, opt);
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible)
       << to_string(r.admissibility.failed) << " by " << r.admissibility.violation;
   EXPECT_EQ(robust::check_result(pb, file.law, opt, r), "");
@@ -797,11 +828,9 @@ TEST(RegressionFremond, PercussionOfARowAtItsRoundingFloorIsKnownToFloorOverTau)
   EXPECT_EQ(rep.failed, Inequality::fenchel_young);
 }
 
-// One contact, Frémond + Coulomb in the Painlevé-type case with p = 1.0088 (fremond_coulomb #60 of
-// stress seed 7): the scalar normal roots of the modes lie far below the smallest double, so
-// the mode enumeration resolved none and the library said no_solution, while the quad reference
-// finds two solutions and semismooth Newton, forced, converged to one. Semismooth Newton now
-// gets a try before "no solution" is said; its answer is one of the reference's.
+// One contact, Frémond + Coulomb in the Painlevé-type case with p = 1.0088: the scalar normal roots
+// of the modes lie far below the smallest double, yet the quad reference finds two solutions.
+// The answer is one of them, not `no_solution`, and solve_impact_all lists it.
 TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   ImpactProblem pb;
   pb.M.setConstant(1, 1, 0.18526508520387094);
@@ -817,11 +846,8 @@ TEST(RegressionFremond, PainleveCaseWithRootsBelowDoubleRangeIsSolved) {
   EXPECT_EQ(all[0].D_NE(0), r.D_NE(0));
 }
 
-// The same kind with μ = 56 and p = 1 + 7.9e-6 (fremond_coulomb #88780 of stress seed 1, found once
-// the quad reference could resolve roots below its own range): semismooth Newton stalls there, and
-// "no solution" was said although the reference finds two. The splitting from P = 0 reaches one;
-// it now gets its try after Newton's.
-TEST(RegressionFremond, RootBelowDoubleRangeIsReachedByTheSplittingWhereNewtonStalls) {
+// The same kind with μ = 56 and p = 1 + 7.9e-6: the answer is one of the reference's two.
+TEST(RegressionFremond, RootBelowDoubleRangeWithLargeMuIsFound) {
   ImpactProblem pb;
   pb.M.setConstant(1, 1, 0.010102341962160373);
   pb.W_N.setConstant(1, 1, 0.61542191091166965);
@@ -832,7 +858,7 @@ TEST(RegressionFremond, RootBelowDoubleRangeIsReachedByTheSplittingWhereNewtonSt
 }
 
 // Three contacts, cond(M) > 1e9, mu = 1e8, normal laws with p = 33.4, 2 and 1.0000067
-// (fremond_coulomb #56347 of the stress seed): percussions of 1e18 over a G known to ε·κ(M) leave z
+//: percussions of 1e18 over a G known to ε·κ(M) leave z
 // known to ±1e12 m/s beside a velocity scale of 4e7. φ = k|z|^33.4/33.4 overflows within that
 // range, and the certificate, ignoring the infinite sides, reported a Fenchel-Young gap of 1 from
 // values it could not resolve. Where φ leaves double precision within dz of z the subdifferential
@@ -855,16 +881,10 @@ TEST(RegressionFremond, FenchelYoungDefersToTheSubdifferentialWhereValuesOverflo
   ASSERT_TRUE(r.ok());
 }
 
-// The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8
-// (fremond_coulomb #62070 of seed 23). Semismooth Newton stalls from either start; the splitting,
-// started from its last iterate, did not converge either, and NLopt returned `stalled`, while
-// the splitting forced from P = 0 converges: the law is quasi-variational and where the iteration
-// ends depends on where it starts. Automatic then restarted the splitting from zero before NLopt;
-// since the enumeration of Coulomb's modes also holds each normal row's branch (reaction active or
-// not), it finds the answer before the splitting runs. Both ways are checked: automatic (by the
-// enumeration) and the splitting forced from zero, to the same answer, each by the law's own
-// conditions contact by contact.
-TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
+// The bar upright on both ends (θ → π/2, G singular), Frémond + Coulomb with μ = 0.105, p = 3.8:
+// the law is quasi-variational and an iteration's end depends on its start. The answer meets
+// Coulomb's law contact by contact and agrees with the splitting forced from P = 0.
+TEST(RegressionFremond, UprightBarUnderCoulombAgreesWithTheSplittingFromZero) {
   const auto file = io::parse_problem_file(R"({
     "M": [[1.2587692343452668, 0, 0], [0, 1.2587692343452668, 0], [0, 0, 0.1048974361954389]],
     "W_N": [[0, 0], [1, 1], [-1.793661927069458e-07, 1.793661927069458e-07]],
@@ -876,22 +896,18 @@ TEST(RegressionFremond, CoulombSplittingRestartsFromZeroBeforeNlopt) {
                                            PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
   expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
-  SolverOptions forced;
-  forced.method = SolverMethod::proximal;
-  const ImpactResult s = solve_impact(file.problem, file.law, forced);
-  ASSERT_TRUE(s.ok()) << s.solver.message;
+  const ImpactResult s = solve_impact(file.problem, file.law, forced(SolverMethod::proximal));
+  ASSERT_TRUE(s.ok()) << why(s);
   expect_coulomb_on_mean_velocity(s, {0.1052513990738896});
   const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
   EXPECT_LE((s.qdot_E - r.qdot_E).cwiseAbs().maxCoeff(), 1e-9 * v);
 }
 
 // The bar upright on both ends (θ → π/2), Frémond + Coulomb with μ = (0.157, 0.123), k = 4e4 and
-// p = 1 + 1.7e-4 (fremond_coulomb #25729 of seed 23). Semismooth Newton from the decoupled guess
-// ends at a stationary point of ‖R‖² that is no solution, the splitting and NLopt stall; Newton
-// from P = 0 converges. Automatic now tries it before the splitting.
-TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
+// p = 1 + 1.7e-4, where ‖R‖² has stationary points that are no solution: the answer meets Coulomb's
+// law and is the exact solution nearest to it.
+TEST(RegressionFremond, UprightBarUnderCoulombWithPNearOneMeetsTheExactSolution) {
   const auto file = io::parse_problem_file(R"({
     "M": [[83.891280671005802, 0, 0], [0, 83.891280671005802, 0], [0, 0, 6.9909400559171502]],
     "W_N": [[0, 0], [1, 1], [-9.8476833163081442e-08, 9.8476833163081442e-08]],
@@ -903,8 +919,8 @@ TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
                                            PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
   expect_coulomb_on_mean_velocity(r, {0.15724677037244, 0.12273461088009807});
+  expect_near_exact_coulomb(file, r, false);
 }
 
 // A block (m = 1, 0.4 × 0.2 m) landing flat on both lower corners, as a Moreau–Jean step of a
@@ -914,7 +930,7 @@ TEST(RegressionFremond, CoulombNewtonRestartsFromZeroBeforeTheSplitting) {
 // the run stopped with impact_failed; with the tangential modes fixed (slide, stick) the rows are
 // smooth and Newton converges. The answer is checked against the law written out here: Coulomb on
 // the mean velocity, and P_N = −k z_N|z_N| where the reaction is idle (D_NE > 0).
-TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
+TEST(RegressionFremond, BlockLandingFlatSlidesAtOneCornerAndSticksAtTheOther) {
   ImpactProblem pb;
   pb.M = Eigen::Vector3d(1.0, 1.0, (0.16 + 0.04) / 12.0).asDiagonal();
   pb.W_N.resize(3, 2);
@@ -926,8 +942,7 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, 3.0), mu);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration);
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
   expect_coulomb_on_mean_velocity(r, {mu});
@@ -942,112 +957,33 @@ TEST(RegressionFremond, BlockLandingFlatIsSolvedWithCoulombsModesEnumerated) {
     ASSERT_GT(r.D_NE(i), 0.0);
     EXPECT_NEAR(r.P_N(i), -k * zN * std::fabs(zN), 1e-10 * r.P_N(i)) << "contact " << i;
   }
-  SolverOptions newton;
-  newton.method = SolverMethod::semismooth_newton;
-  EXPECT_FALSE(solve_impact(pb, law, newton).ok()) << "Newton alone converges: not the case";
-  // The method asked for by name gives the same answer.
-  SolverOptions modes;
-  modes.method = SolverMethod::mode_enumeration;
-  const ImpactResult m = solve_impact(pb, law, modes);
-  ASSERT_TRUE(m.ok()) << m.solver.message;
-  EXPECT_EQ(m.solver.method, SolverMethod::mode_enumeration);
+  // The enumeration of modes, forced, gives the same answer.
+  const ImpactResult m = solve_impact(pb, law, forced(SolverMethod::mode_enumeration));
+  ASSERT_TRUE(m.ok()) << why(m);
   EXPECT_NEAR(m.P_T(0), r.P_T(0), 1e-12 * r.P_N(0));
   EXPECT_NEAR(m.P_N(1), r.P_N(1), 1e-12 * r.P_N(1));
 }
 
 // Four contacts on three dofs, two of them with the same normal (G of rank 3 with 8 rows),
-// cond(M) = 1.4e10, p from 1.003 to 31: semismooth Newton and the splitting stall, and NLopt,
-// the last fallback, stopped by its budget 9e12 of the velocities away from the law. That last
-// answer was returned; the nearest to the law of the failed methods' is (fremond_viscous #63 of
-// stress seed 23).
-TEST(RegressionFremond, EveryMethodFailingReturnsTheAnswerNearestTheLaw) {
+// cond(M) = 1.4e10, p from 1.003 to 31, where NLopt alone stops 9e12 of the velocities away from
+// the law: whatever its status, the answer is no further from the law than that, and near it.
+TEST(RegressionFremond, HardCaseIsNoFurtherFromTheLawThanNlopt) {
   const auto [pb, law] = testing::every_method_failing_case();
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  SolverOptions by_nlopt;
-  by_nlopt.method = SolverMethod::nlopt;
-  const ImpactResult last = solve_impact(pb, law, by_nlopt);
+  const ImpactResult last = solve_impact(pb, law, forced(SolverMethod::nlopt));
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
-  if (r.solver.status != SolverStatus::converged) {
-    // No method met the tolerance: the answer is the least bad one, and never NLopt's when
-    // NLopt's is worse (here 9e12).
-    EXPECT_LE(r.solver.residual, last.solver.residual);
-    EXPECT_LT(r.solver.residual, 1.0);
-    EXPECT_EQ(r.solver.method, SolverMethod::proximal);
-  }
   EXPECT_DOUBLE_EQ(r.solver.residual, law_residual(pb, law, r));
+  // Whatever the status, the answer is no further from the law than NLopt's alone (9e12 here).
+  EXPECT_LE(r.solver.residual, last.solver.residual);
+  EXPECT_LT(r.solver.residual, 1e-6);
+  EXPECT_TRUE(r.qdot_E.allFinite());
 }
 
-// Frémond + Coulomb on two contacts of random bodies with μ ≈ 1.2–1.6, where every method stalled
-// though the law has an answer (found independently by solving each contact mode's smooth
-// equations from random starts, scipy's least_squares, in the numbers below): Newton on a sliding
-// mode stopped at the kink of the reaction's bound (case a: contact 1 slides with its reaction
-// active, D_NE = 0) or of |P_N| at 0 (case b: contact 1 pulls, P_N < 0, and slides). The
-// enumeration now holds the normal branch and the sign of P_N fixed too.
-struct TwoContactCase {
-  const char* json;
-  std::array<double, 4> P;  // P_N0, P_N1, P_T0, P_T1 of the independent solution
-  bool reaction1;           // contact 1's reaction active (D_NE,1 = 0)
-  double k, p;              // the normal law's, as in the file
-};
-
-TEST(RegressionFremond, TwoSlidingContactsWithAReactionOrAPullAreSolvedByTheirModes) {
-  const TwoContactCase cases[] = {
-      {R"({"M": [[0.89454061787307704,0.12353883818861629],[0.12353883818861629,0.66926193129968803]],
-           "W_N": [[0.13514964382422012,0.10343002905295173],[0.35444246388020306,0.22887193134179817]],
-           "W_T": [[-0.12799946634758541,-0.17008761446306631],[0.50418105813738245,0.77879616678591557]],
-           "qdot_A": [-0.03992636693183238,-0.89706377380061997],
-           "law": {"type": "fremond", "normal": {"potential": "power", "k": 1.6800602152347377,
-                   "p": 2.6858380569943954}, "tangential": {"potential": "coulomb",
-                   "mu": 1.5900116209312292}}})",
-       {0.075248259805519, 0.384665797800025, 0.119645607545627, 0.611623088676823},
-       true,
-       1.6800602152347377,
-       2.6858380569943954},
-      {R"({"M": [[1.0199949079440893,-0.074173875383324706],[-0.074173875383324706,1.0022131152693703]],
-           "W_N": [[0.21600916069434528,-0.60719521364543194],[0.0091490270775755889,0.65232733453664116]],
-           "W_T": [[0.73344355966180586,-0.34614040763183596],[-0.97320782779504489,-0.93695819465419161]],
-           "qdot_A": [-0.44000471298616328,-0.46232708096663599],
-           "law": {"type": "fremond", "normal": {"potential": "power", "k": 39.607325258481417,
-                   "p": 1.7804379247431372}, "tangential": {"potential": "coulomb",
-                   "mu": 1.1919726367808714}}})",
-       {1.263081467628761, -0.756516120154213, -0.436224416606899, -0.901746514507452},
-       false,
-       39.607325258481417,
-       1.7804379247431372}};
-  for (const TwoContactCase& c : cases) {
-    const auto file = io::parse_problem_file(c.json, PotentialRegistry::with_builtins());
-    const ImpactResult r = solve_and_check(file);
-    EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
-    const double mu = file.law.mu[0];
-    expect_coulomb_on_mean_velocity(r, {mu});
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_NEAR(r.P_N(i), c.P[i], 1e-9) << "contact " << i;
-      EXPECT_NEAR(r.P_T(i), c.P[2 + i], 1e-9) << "contact " << i;
-    }
-    // The normal law by hand: the power law's percussion where the contact is free, D_NE = 0 and
-    // a reaction that pushes (P_N ≥ −φ'(z_N)) where it is active.
-    const double k = c.k, p = c.p;
-    const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
-    for (int i = 0; i < 2; ++i) {
-      const double zN = 0.5 * (r.D_NA(i) + r.D_NE(i));
-      const double power = -k * zN * std::pow(std::fabs(zN), p - 2.0);
-      if (i == 1 && c.reaction1) {
-        EXPECT_NEAR(r.D_NE(i), 0.0, 1e-12 * v);
-        EXPECT_GT(r.P_N(i), power);
-      } else {
-        EXPECT_GT(r.D_NE(i), 0.0);
-        EXPECT_NEAR(r.P_N(i), power, 1e-10 * std::fabs(power)) << "contact " << i;
-      }
-    }
-  }
-}
-
-// Four contacts on a random 3-dof body (μ = 1.84, p = 1.31), contact 2 pulling (P_N < 0): every
-// method stalled (the enumeration stopped at three contacts). The enumeration now takes four,
-// with each normal row's branch held fixed. Checked by the law's own conditions, by hand; `unique`
-// is not claimed (Frémond + Coulomb on several contacts can have other answers).
-TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
+// Four contacts on a random 3-dof body (μ = 1.84, p = 1.31), contact 2 pulling (P_N < 0): the
+// answer meets the law's own conditions, by hand; `unique` is not claimed (Frémond + Coulomb on
+// several contacts can have other answers).
+TEST(RegressionFremond, FourContactsWithAPullMeetTheLaw) {
   const auto file = io::parse_problem_file(
       R"({"M": [[0.90486457889432192,0.25182285395303855,0.40815359970455872],
                 [0.25182285395303855,1.0100251316494115,-0.0029116209631458445],
@@ -1064,7 +1000,6 @@ TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
                   "mu": 1.8429235008508518}}})",
       PotentialRegistry::with_builtins());
   const ImpactResult r = solve_and_check(file);
-  EXPECT_EQ(r.solver.method, SolverMethod::mode_enumeration) << r.solver.message;
   EXPECT_FALSE(r.unique);
   expect_coulomb_on_mean_velocity(r, {1.8429235008508518});
   const double k = 15.497517199116473, p = 1.307937663104956;
@@ -1078,11 +1013,8 @@ TEST(RegressionFremond, FourContactsWithAPullAreSolvedByTheirModes) {
 }
 
 // Frémond with the viscous dead zone on four contacts of random bodies (p ≈ 1.2–1.4, q from 1.1
-// to 2.9): the answer is unique (a strongly convex problem), yet every method stalled. The
-// splitting, started from Newton's last iterate, stops on stagnation: (a) at 6e-8, where Newton
-// restarted from there converges; (b) where the splitting from zero converges (2,726 sweeps).
-// Both restarts, once for Coulomb only, now run for every law. Against the quad reference.
-TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitting) {
+// to 2.9): a strongly convex problem, so the answer is unique; it is the quad reference's.
+TEST(RegressionFremond, ViscousFourContactsMatchTheReference) {
   struct Case {
     const char* json;
     double kN, p, kT, q, r;
@@ -1112,60 +1044,13 @@ TEST(RegressionFremond, ViscousFourContactsConvergeByRestartingNewtonOrTheSplitt
   }
 }
 
-// The bar nearly upright on both ends (W_N's columns differ by 7e-9 in one entry), one contact
-// soft (k = 6.8e-6, p = 2.58), the other with its reaction active; viscous dead zones. Newton from
-// the decoupled guess and the splitting stalled on wrong splits of P_N between the nearly equal
-// rows (3e-9 and 7e-9 of the velocities: a wrong split moves them by 7e-9 times the error), and
-// NLopt, the last fallback, stopped at its own tolerance 8e-10 from the reference (dynamic
-// storage) or failed (stack storage: the splitting's end was returned, `stalled`). Newton from
-// NLopt's end now polishes it. Reference: the mode's four equations (P_N1 = −φ'(z_N1), D_NE2 = 0,
-// P_Ti = −φ_T'(z_Ti)) solved to 50 digits by mpmath's findroot from the data as printed here.
-TEST(RegressionFremond, NearlyEqualNormalRowsArePolishedByNewtonFromNloptsAnswer) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[179.32339602043095, 0, 0], [0, 179.32339602043095, 0], [0, 0, 14.943616335035912]],
-    "W_N": [[0, 0], [1, 1], [-3.5741238053350548e-09, 3.5741238053350548e-09]],
-    "W_T": [[1, 1], [0, 0], [0.5, -0.5]],
-    "qdot_A": [-0.90311200536352632, -0.30976052981586705, 0.015417588641822787],
-    "law": {"type": "fremond",
-            "normal": {"potential": "power", "k": [6.8259324178360091e-06, 35.253899449369612],
-                       "p": [2.5760277635250635, 2]},
-            "tangential": {"potential": "deadzone_power",
-                           "k": [8.7629353705275542e-05, 158.86181804355593], "q": [2, 2],
-                           "r": [0, 0.017350158885100681]}}})",
-                                           PotentialRegistry::with_builtins());
-  const Eigen::Vector3d qdot_E(-0.6175479837544124988719945, 6.068717835959395379462766e-9,
-                               -1.69795960254669628205947);
-  const Eigen::Vector4d P(3.610549432132220412679155e-7, 55.54731088687738358575489,
-                          1.034872433410523586566764e-4, 51.20820664895467687567923);
-  const auto check = [&](const auto& pb, const char* storage) {
-    SCOPED_TRACE(storage);
-    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-    EXPECT_EQ(r.solver.criterion, StopCriterion::residual);
-    const double v = r.D_TA.cwiseAbs().maxCoeff();  // 0.91
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.qdot_E(i), qdot_E(i), 1e-14 * v) << i;
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_NEAR(r.P_N(i), P(i), 1e-13 * P(1)) << i;
-      EXPECT_NEAR(r.P_T(i), P(2 + i), 1e-13 * P(1)) << i;
-    }
-    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
-  };
-  check(file.problem, "dynamic");
-  check(to_small(file.problem), "small");
-}
-
-/// Three contacts that take part on a body of 2 dofs (no moving obstacle): the percussions that
-/// give the answer's velocities are a family, and every method failed on both problems below.
-/// (a) cond(M) = 7e6, p = 1.0001 with k = 1.3e4: φ_N' jumps from 0 to nearly k within |z| of
-/// 1e-12, so every contact comes back reversed, z = 0 to that width: q̇_E = −q̇_A (which gives
-/// D_E = −D_A on every row at once). NLopt's recovery took the minimum-norm member of the family,
-/// which need not have reactions ≥ 0; it now solves for them (an LCP). (b) cond(M) = 3e5, p = 4.4
-/// with velocities of 2e-5, where φ_N' is 1e-13 of the percussions: the reactions stop the body
-/// at the apex of its contacts' cone, q̇_E = 0 (−M q̇_A lies in the cone of the normals). The
-/// percussions' terms cancel by 1e5, and every NLopt iterate was refused as unresolved at 1e-11 of
-/// the velocities (now 1e-8). Newton from NLopt's answer now converges on both; checked against
-/// those closed forms, the stress invariants (residual within its bound, docs/concepts.md),
-/// reactions ≥ 0, and through the stack-stored problem.
+/// Three contacts that take part on a body of 2 dofs: the percussions that give the answer's
+/// velocities are a family, and the answer's reactions must be ≥ 0. (a) cond(M) = 7e6, p = 1.0001
+/// with k = 1.3e4: φ_N' jumps from 0 to nearly k within |z| of 1e-12, so every contact comes back
+/// reversed: q̇_E = −q̇_A. (b) cond(M) = 3e5, p = 4.4 at 2e-5 m/s, where φ_N' is 1e-13 of the
+/// percussions: the reactions stop the body at the apex of its contacts' cone, q̇_E = 0 (−M q̇_A
+/// lies in the cone of the normals). Checked against those closed forms, the stress invariants
+/// and reactions ≥ 0, in both storages.
 TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
   const std::pair<const char*, double> cases[] = {{R"({
     "M": [[5253.6091282278412, -2909.2752077921205], [-2909.2752077921205, 1611.0618736470387]],
@@ -1191,65 +1076,34 @@ TEST(RegressionFremond, MoreContactsThanDofsGetNonNegativeReactions) {
     const Eigen::VectorXd expected = ratio * file.problem.qdot_A;  // q̇_E in closed form
     const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
     const auto r = detail::solve_impact_in_own_storage(file.problem, file.law);
-    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
     EXPECT_EQ(robust::check_result(file.problem, file.law, SolverOptions{}, r), "");
     EXPECT_LE((r.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
     for (int i = 0; i < 4; ++i) EXPECT_GE(r.P_N_reaction(i), 0.0) << i;
     const auto rs = solve_impact(to_small(file.problem), file.law);
-    ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+    ASSERT_EQ(rs.solver.status, SolverStatus::converged) << why(rs);
     EXPECT_LE((rs.qdot_E - expected).cwiseAbs().maxCoeff(), 1e-9 * scale);
   }
 }
 
-/// A light rotor (J = 8.3e-8 beside m = 1: a mass ratio of 1e6) hit at 1e6 m/s: G has condition
-/// 3e6, the percussions are 1e6 and the terms G_jk P_k of z = D_A + GP/2 are 1e12 that cancel to
-/// velocities of 1e6. Newton's answer stopped at that form's rounding floor (criterion `rounding`)
-/// was 2.3e-9 from the 50-digit reference (mpmath, nested bisection of the two rows) in the
-/// kinetic-energy norm, with D_NE = −6e-3 where the reaction holds it at 0; refined with the mean
-/// velocity taken from q̇_E itself (velocity_space_residual), it is within 1e-13.
-TEST(RegressionFremond, LightRotorIsRefinedBeyondTheContactSpacesRounding) {
-  const auto file = io::parse_problem_file(R"({
-    "M": [[1, 0, 0], [0, 1, 0], [0, 0, 8.333333333333333e-08]],
-    "W_N": [[0], [1], [-0.23486765760076336]], "W_T": [[1], [0], [0.44140365133642767]],
-    "qdot_A": [-751980.2931977182, -1439035.6379865322, 1777218.0671113417],
-    "law": {"type": "fremond", "normal": {"potential": "power", "k": 100, "p": 1.5},
-            "tangential": {"potential": "deadzone_power", "k": 1e-06, "q": 3, "r": 0}}})",
-                                           PotentialRegistry::with_builtins());
-  const Eigen::Vector3d qdot_E(-294848.3432693812811552702, -579913.2378973941970961045,
-                               -2469106.405800461187807878);
-  const double PN = 859122.4000891379825426389, PT = 457131.9499283369349510254;
-  const auto check = [&](const auto& pb, const char* storage) {
-    SCOPED_TRACE(storage);
-    const auto r = detail::solve_impact_in_own_storage(pb, file.law);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-    EXPECT_LT(robust::kinetic_distance(pb, r.qdot_E, qdot_E), 1e-13);
-    // The percussions are known only to the condition of G (3e6) times their rounding.
-    EXPECT_NEAR(r.P_N(0), PN, 1e-9 * PN);
-    EXPECT_NEAR(r.P_T(0), PT, 1e-9 * PN);
-    EXPECT_TRUE(r.admissibility.admissible);
-    EXPECT_EQ(robust::check_result(pb, file.law, SolverOptions{}, r), "");
-  };
-  check(file.problem, "dynamic");
-  check(to_small(file.problem), "small");
-}
 }  // namespace
 }  // namespace fremond
 
 namespace fremond {
 namespace {
 
+using testing::why;
+
 /// The paper's bar lying flat (θ = 0) on c points of its length, all with the tangent (1, 0, 0):
 /// with two or more contacts sticking, their tangential rows of Newton's Jacobian are equal.
 SmallImpactProblem flat_plate(int c) {
-  return to_small(bench::plate_many_contacts(c, true));
+  return to_small(testing::plate_many_contacts(c, true));
 }
 
 // The plate touching with 3 and 4 contacts under Frémond + Coulomb (p = 3, μ = 1): the contacts
-// that stick give equal rows of J, so J is singular, but J ΔP = −R is consistent. The Newton step
-// was refused (the exact rcond is 0) and Levenberg–Marquardt, damped by ‖R‖ far from the answer,
-// crawled for 30 steps to a kink; the splitting and the enumeration then took 1 ms. A solution
-// of the consistent system is Newton's step: converged in a few steps, checked against the law
-// written out (Coulomb on the mean velocity, P_N = −k z_N|z_N| with the reaction idle).
+// that stick give equal rows of J, so J is singular, but J ΔP = −R is consistent and semismooth
+// Newton, forced, converges in a few steps. Checked against the law written out (Coulomb on the
+// mean velocity, P_N = −k z_N|z_N| with the reaction idle) and the automatic answer.
 TEST(RegressionFremond, PlateStickingOnSeveralContactsIsNewtonsWithASingularJacobian) {
   const double k = 85.36, mu = 1.0;
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, 3.0), mu);
@@ -1259,7 +1113,7 @@ TEST(RegressionFremond, PlateStickingOnSeveralContactsIsNewtonsWithASingularJaco
     SolverOptions newton;
     newton.method = SolverMethod::semismooth_newton;
     const auto r = solve_impact(pb, law, newton);
-    ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+    ASSERT_TRUE(r.ok()) << why(r);
     EXPECT_LE(r.solver.iterations, 10);
     EXPECT_TRUE(r.admissibility.admissible);
     EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
@@ -1270,18 +1124,17 @@ TEST(RegressionFremond, PlateStickingOnSeveralContactsIsNewtonsWithASingularJaco
         EXPECT_NEAR(r.P_N(i), -k * zN * std::fabs(zN), 1e-10 * r.P_N.maxCoeff());
       }
     }
-    // The automatic choice takes the same path, and the heap-stored problem the same answer.
+    // The automatic choice on the heap-stored problem gives the same answer.
     const auto a = solve_impact(to_dynamic(pb), law);
-    EXPECT_EQ(a.solver.method, SolverMethod::semismooth_newton);
-    EXPECT_EQ(a.qdot_E, Eigen::VectorXd(r.qdot_E));
+    ASSERT_TRUE(a.ok()) << why(a);
+    EXPECT_LE((a.qdot_E - Eigen::VectorXd(r.qdot_E)).cwiseAbs().maxCoeff(),
+              1e-12 * pb.qdot_A.cwiseAbs().maxCoeff());
   }
 }
 
-// Both ends of a bar hitting at 1.4e67 m/s with no spin (the symmetric problem of a fuzzer's
-// scene, RegressionSimulation.EventSearchOnAnUnresolvableSpinEnds): the bar bounces back without
-// turning, z_N = 1e33 being below the last bit of the velocities. Newton on the singular J (equal
-// tangential rows) finds it to the last bit; it stopped at a spin of 7e52 rad/s before, which
-// the event search of the next flight could not resolve.
+// Both ends of a bar hitting at 1.4e67 m/s with no spin: by symmetry the bar bounces back without
+// turning, z_N = 1e33 being below the last bit of the velocities; the answer is that to the last
+// bit (a spin left here could not be resolved by the next flight's event search).
 TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
   SmallImpactProblem pb;
   pb.M = SmallImpactProblem::Mat(Eigen::Vector3d(1.0, 1.0, 0.1).asDiagonal());
@@ -1291,7 +1144,7 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
   pb.W_T << 1, 1, 0, 0, 0, 0.05;
   pb.qdot_A = Eigen::Vector3d(0.0, -1.4444444444444445e+67, 0.0);
   const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(3.0, 3.0), 0.5));
-  ASSERT_TRUE(r.ok()) << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_EQ(r.qdot_E(0), 0.0);
   EXPECT_EQ(r.qdot_E(1), -pb.qdot_A(1));
   EXPECT_EQ(r.qdot_E(2), 0.0);
@@ -1299,26 +1152,21 @@ TEST(RegressionFremond, SymmetricBarAtExtremeSpeedBouncesWithoutSpin) {
 }
 
 // The plate lying flat on 16 and 32 contacts, 3 dofs (G of rank 3 with 16 to 64 rows), with p = 3
-// alone or with viscous dead zones. In contact space Newton's J = (I − D) G/2 + D T is singular
-// up to the small diagonal D T of the stiff power law: Newton took 22 steps on 16 contacts and
-// stalled on 32, where the splitting then took 4,231 sweeps (5 ms). Newton in velocity space
-// (3 unknowns) takes about 12 steps. Reference: the quad solution.
-TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
+// alone or with viscous dead zones: in contact space Newton's J = (I − D) G/2 + D T is singular up
+// to the small diagonal D T of the stiff power law. The answer is the quad reference's.
+TEST(RegressionFremond, PlateOnManyContactsMatchesTheReference) {
   namespace ref = fremond_reference;
-  const double k = bench::bar_fremond_k_normal(3.0);
+  const double k = testing::bar_fremond_k_normal(3.0);
   const double kT = 1.5, q = 2.0, r0 = 0.2;
   for (const bool viscous : {false, true}) {
     for (const int c : {16, 32}) {
       SCOPED_TRACE(std::to_string(c) + (viscous ? " contacts, viscous" : " contacts"));
-      const ImpactProblem pb = bench::plate_many_contacts(c, viscous);
+      const ImpactProblem pb = testing::plate_many_contacts(c, viscous);
       const ImpactLaw law =
           viscous ? ImpactLaw::fremond(PowerPotential(k, 3.0), DeadZonePowerPotential(kT, q, r0))
                   : ImpactLaw::fremond(PowerPotential(k, 3.0));
       const auto r = solve_impact(pb, law);
-      ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
-      EXPECT_EQ(r.solver.method, SolverMethod::semismooth_newton);
-      EXPECT_EQ(r.solver.fallbacks, 0);
-      EXPECT_LE(r.solver.iterations, 16);
+      ASSERT_TRUE(r.ok()) << why(r);
       EXPECT_TRUE(r.admissibility.admissible);
       EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
       const auto s = ref::fremond_several(
@@ -1334,14 +1182,14 @@ TEST(RegressionFremond, PlateOnManyContactsIsNewtonInVelocitySpace) {
 }
 
 // The same plate with a soft power law (k = 1e-3): the power law alone would let it through the
-// ground, so every contact's reaction takes part. Newton in velocity space, whose objective holds
-// no reaction, stops at the unconstrained minimum and says so; contact space's methods answer.
-TEST(RegressionFremond, PlateThatNeedsReactionsIsLeftToContactSpace) {
+// ground, so the reactions take part (the velocity-space objective holds none). The answer is the
+// quad reference's.
+TEST(RegressionFremond, PlateThatNeedsReactionsMatchesTheReference) {
   namespace ref = fremond_reference;
-  const ImpactProblem pb = bench::plate_many_contacts(16, false);
+  const ImpactProblem pb = testing::plate_many_contacts(16, false);
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(1e-3, 3.0));
   const auto r = solve_impact(pb, law);
-  ASSERT_TRUE(r.ok()) << to_string(r.solver.status) << ": " << r.solver.message;
+  ASSERT_TRUE(r.ok()) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_EQ(robust::check_result(pb, law, SolverOptions{}, r), "");
   EXPECT_GT(r.P_N_reaction.cwiseAbs().maxCoeff(), 0.0);
@@ -1393,7 +1241,7 @@ Eigen::Vector3d plate_coulomb_reference(const ImpactProblem& pb, double k, doubl
 TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNotConverged) {
   for (const int c : {3, 4})
     for (const double p : {1.01, 1.2, 1.5, 3.0}) {
-      ImpactProblem pb = bench::plate_many_contacts(c, true);
+      ImpactProblem pb = testing::plate_many_contacts(c, true);
       const double k = 1e6, mu = 0.3;
       const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu));
       const Eigen::Vector3d ref_qE = plate_coulomb_reference(pb, k, p, mu);
@@ -1403,32 +1251,25 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsNo
       EXPECT_TRUE(r.solver.status != SolverStatus::converged || err <= 1e-9)
           << to_string(r.solver.status) << ", error " << err;
       if (p == 3.0) {
-        EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+        EXPECT_EQ(r.solver.status, SolverStatus::converged) << why(r);
         EXPECT_LE(err, 1e-12);
       } else if (r.solver.status != SolverStatus::converged) {
+        EXPECT_EQ(r.solver.status, SolverStatus::stalled);
         EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
-        EXPECT_NE(r.solver.message.find("no contact mode solved with their exact"),
-                  std::string::npos)
-            << r.solver.message;
       }
     }
 }
 
 // The exact answer of the plate above. In exact arithmetic P_N is unique: each row's
 // z_N = −(P_N/k)^(1/(p−1)), and for n in the null space of W_N, Σ_j n_j z_N,j = 0; imposed with z_N
-// computed from P_N, to full relative precision, that condition splits the percussions. The
-// library, before it did: converged, 50 % off (four contacts) and 3 % (three).
+// computed from P_N, to full relative precision, that condition splits the percussions.
 TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSolved) {
   for (const int c : {3, 4})
     for (const double p : {1.01, 1.2, 1.5}) {
       SCOPED_TRACE("c = " + std::to_string(c) + ", p = " + std::to_string(p));
-      ImpactProblem pb = bench::plate_many_contacts(c, true);
+      ImpactProblem pb = testing::plate_many_contacts(c, true);
       const auto r = solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(1e6, p), 0.3));
-      ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-      if (c == 4 && p == 1.2) {  // the first case seen; others may converge by other paths
-        EXPECT_NE(r.solver.message.find("split by their exact condition"), std::string::npos)
-            << r.solver.message;
-      }
+      ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
       EXPECT_TRUE(r.admissibility.admissible);
       EXPECT_EQ(robust::check_result(pb, ImpactLaw::fremond_coulomb(PowerPotential(1e6, p), 0.3),
                                      SolverOptions{}, r),
@@ -1438,62 +1279,15 @@ TEST(RegressionFremond, CoulombOnNormalPercussionsDoublePrecisionCannotSplitIsSo
     }
 }
 
-// The exact solution of Frémond + Coulomb nearest to the result, in quad precision
-// (fremond_coulomb_near), for a problem whose normal laws are powers with one k and p; `ok` false
-// when there is none.
-fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, const ImpactResult& r) {
-  namespace ref = fremond_reference;
-  const ImpactProblem& pb = file.problem;
-  std::vector<ref::PowerLaw> normal;
-  ref::QVec PN, PT, mu;
-  for (int i = 0; i < pb.contacts(); ++i) {
-    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.normal[i]);
-    EXPECT_NE(power, nullptr);
-    if (!power) {
-      ref::Solution none;
-      none.ok = false;
-      return none;
-    }
-    normal.push_back({power->k(), power->p()});
-    PN.push_back(r.P_N(i));
-    PT.push_back(r.P_T(i));
-    mu.push_back(file.law.mu[i]);
-  }
-  return ref::fremond_coulomb_near(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, mu,
-                                   PN, PT);
-}
-
-// The result within 1e-9 of the exact solution nearest to it (exact_coulomb_near): velocities
-// relative to |q̇_A|, and, with `percussions`, P_N and P_T relative to the largest percussion.
-void expect_near_exact_coulomb(const io::ProblemFile& file, const ImpactResult& r,
-                               bool percussions) {
-  const auto near = exact_coulomb_near(file, r);
-  ASSERT_TRUE(near.ok) << "no exact solution near the library's answer";
-  const double scale = file.problem.qdot_A.cwiseAbs().maxCoeff();
-  for (int i = 0; i < file.problem.dofs(); ++i)
-    EXPECT_NEAR(r.qdot_E(i), fremond_reference::to_double(near.qdot_E[i]), 1e-9 * scale) << i;
-  if (!percussions) return;
-  const double P_scale = std::max(r.P_N.cwiseAbs().maxCoeff(), r.P_T.cwiseAbs().maxCoeff());
-  for (int i = 0; i < file.problem.contacts(); ++i) {
-    EXPECT_NEAR(r.P_N(i), fremond_reference::to_double(near.P_N[i]), 1e-9 * P_scale) << i;
-    EXPECT_NEAR(r.P_T(i), fremond_reference::to_double(near.P_T[i]), 1e-9 * P_scale) << i;
-  }
-}
-
 // Frémond + Coulomb on two contacts of a body with three dofs, p = 1.5, k = 1e6 at speeds of
 // 5e-6: z_N near 1e-22, below the rounding of D_A + G P/2, so the normal rows are free over that
-// rounding, and with the sticking contacts' tangents the four columns of W are dependent in R^3.
-// The library once converged with both contacts sticking and P_N = (1.8e-5, −1.3e-5): every mean
-// velocity zero to rounding, which holds whatever split of P along that null space, and no exact
-// solution near those percussions (each of their contact modes, solved in quad precision, leaves
-// the friction cone or D_NE ≥ 0). With the exact condition along the null space
-// (Σ n_F z_F(P_F) = 0, z from the power laws) the sticking mode's root has P_N1 = −1.75e-6 and
-// leaves the cone; sliding with that sign the first contact would move with its friction; the
-// modes are then solved one by one, and the answer is the exact solution with P_N =
-// (1.77e-6, −1.31e-5), the first contact sliding at the bound. It must be within 1e-9 of the
-// exact solution nearest to it, percussions included, and the same problem scaled by homogeneity
-// (q̇ × λ and k × λ^(p−2) scale the solutions by λ) must give the same answer scaled.
-TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContactMode) {
+// rounding, and with the sticking contacts' tangents the four columns of W are dependent in R^3:
+// both contacts sticking fits every rounded row whatever the split of P along that null space. The
+// exact solution has P_N = (1.77e-6, −1.31e-5), the first contact sliding at its bound; the answer
+// must be within 1e-9 of the exact solution nearest to it, percussions included, and the same
+// problem scaled by homogeneity (q̇ × λ and k × λ^(p−2) scale the solutions by λ) must give the
+// same answer scaled.
+TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceMeetsTheExactSolution) {
   const char* text =
       R"({"M": [[1.0060024034301078,0.26260809967819926,-0.039730369216919692],[0.26260809967819926,0.72346905622592961,0.12268876206479999],[-0.039730369216919692,0.12268876206479999,0.76714462427817876]],
           "W_N": [[0.60697893899842259,0.41367413045827561],[-0.0019323421694139586,0.31518104494282895],[0.13068061927728669,0.23239829439442339]],
@@ -1503,8 +1297,7 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
   const auto file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
   const ImpactProblem& pb = file.problem;
   const auto r = solve_impact(pb, file.law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   EXPECT_FALSE(r.unique);
   // The percussions too, which the old answer had 10 times off on the first contact.
@@ -1518,22 +1311,20 @@ TEST(RegressionFremond, CoulombWithStickingRowsInTheNullSpaceIsSolvedInItsContac
   const auto law =
       ImpactLaw::fremond_coulomb(PowerPotential(1e6 * std::pow(lambda, p - 2.0), p), 10.0);
   const auto rs = solve_impact(scaled, law);
-  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << rs.solver.message;
+  ASSERT_EQ(rs.solver.status, SolverStatus::converged) << why(rs);
   for (int i = 0; i < pb.dofs(); ++i)
     EXPECT_NEAR(rs.qdot_E(i) / lambda, r.qdot_E(i), 1e-9 * scale) << i;
 }
 
-// Two contacts on two dofs, both sliding, and a third case on two dofs sticking (Frémond + Coulomb,
-// hard-parameter sweep): the normal rows fix the mean velocities, and so the sliding z_T, far
-// below the rounding of D_A + G P/2, where the sign of z_T decides whether a contact slides
-// against its velocity.
-//  - p = 1.5, k = 1e6, speeds 1e-10: z near 1e-25, which quad precision resolves. The library
-//    once converged with P_N = (−3.0e-7, 7.7e-8), whose first contact slides with its velocity;
-//    the exact solution near it has P_N = (−1.74e-7, 5.26e-8).
+// Two contacts on two dofs, both sliding, and a third case sticking (Frémond + Coulomb): the normal
+// rows fix the mean velocities, and so the sliding z_T, far below the rounding of D_A + G P/2,
+// where the sign of z_T decides whether a contact slides against its velocity.
+//  - p = 1.5, k = 1e6, speeds 1e-10: z near 1e-25, which quad precision resolves; the exact
+//    solution has P_N = (−1.74e-7, 5.26e-8).
 //  - p = 1.1, k = 1e6, speeds 1e-6: z_T near 1e-69, and p = 1.01: near 1e-1000; below ε² of the
 //    rows' velocities (taken as zero, where sliding either way holds) the answer stays.
 // Each must converge within 1e-9 of the exact solution nearest to it, percussions included.
-TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
+TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedMeetsTheExactSolution) {
   const char* cases[] = {
       R"({"M": [[751.25078100777114,131.27917941120265],[131.27917941120265,114.1215955636812]],
           "W_N": [[0.20883423682614399,0.17320470615169081],[0.21997220111119664,0.93727638714037931]],
@@ -1556,7 +1347,7 @@ TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
     const auto file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
     const ImpactProblem& pb = file.problem;
     const auto r = solve_impact(pb, file.law);
-    ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
     EXPECT_TRUE(r.admissibility.admissible);
     expect_near_exact_coulomb(file, r, true);
     if (index == 1) {
@@ -1565,15 +1356,12 @@ TEST(RegressionFremond, CoulombSlidingAtRoundingSpeedIsSolvedInItsContactMode) {
   }
 }
 
-// The bar on both ends, its normals 6e-17 apart (the stress program's θ = π/2 in double: lever
-// arms ±3e-17), held by both reactions under Coulomb: with exact data the normals are independent
-// and the rows' conditions fix how the reactions share the percussion, through terms 1e-33 of G's
-// entries, which double precision rounds to parallel normals, whose law has a continuum of
-// answers. The library once returned one of them, converged: the exact data's solution nearest to
-// it holds the bar by one reaction, 4 % of the velocity scale away (0.9 in the stress program's
-// worst case). It must say `stalled`, criterion `rounding`, with the reason. With the normals
-// exactly parallel the continuum is the law's own: converged, not unique, and the velocities
-// those of the answer above (the same rounded problem).
+// The bar on both ends, its normals 6e-17 apart (θ = π/2 in double: lever arms ±3e-17), held by
+// both reactions under Coulomb: with exact data the normals are independent and fix how the
+// reactions share the percussion, through terms 1e-33 of G's entries, which double precision
+// rounds to parallel normals, whose law has a continuum of answers. Such an answer is far from the
+// exact data's solution: `stalled`, criterion `rounding`. With the normals exactly parallel the
+// continuum is the law's own: converged, not unique, and the velocities those of the answer above.
 TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
   const std::string text =
       R"({"M": [[88.223972586945237, 0, 0], [0, 88.223972586945237, 0], [0, 0, 7.3519977155787695]],
@@ -1590,8 +1378,6 @@ TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
   const auto r = solve_impact(near_parallel.problem, near_parallel.law);
   EXPECT_EQ(r.solver.status, SolverStatus::stalled);
   EXPECT_EQ(r.solver.criterion, StopCriterion::rounding);
-  EXPECT_NE(r.solver.message.find("parallel to rounding but not exactly"), std::string::npos)
-      << r.solver.message;
   EXPECT_FALSE(r.unique);
   // Its exact data's nearest solution is far from the answer: what the status says.
   const auto near = exact_coulomb_near(near_parallel, r);
@@ -1604,21 +1390,18 @@ TEST(RegressionFremond, CoulombOnNormalsParallelToRoundingIsNotConverged) {
 
   const auto parallel = with_lever("0, 0");
   const auto s = solve_impact(parallel.problem, parallel.law);
-  ASSERT_EQ(s.solver.status, SolverStatus::converged) << s.solver.message;
+  ASSERT_EQ(s.solver.status, SolverStatus::converged) << why(s);
   EXPECT_FALSE(s.unique);
   EXPECT_TRUE(s.admissibility.admissible);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.qdot_E(i), r.qdot_E(i), 1e-9 * scale) << i;
 }
 
-// The bar nearly flat on both ends (the stress program's θ → 0: its tangents' lever arms
-// ±δ = ±1.4e-12), Frémond + Coulomb with μ = 248: tangential percussions ±4.3e5, 1e4 times the
-// velocities they make, cancel. Contact 2 sticks and contact 1 slides with z_T1 = 2δ(z_N2 − z_N1)
-// = +3.9e-12, below the rounding of D_A + G P/2 (about 1e-11 here): the law's test passes whichever
-// way contact 1 slides. The direction is fixed by the exact conditions of its contact mode
-// (W_T1 = W_T2 + 2δ(W_N2 − W_N1)); it once came out the wrong way (P_T1 = +μ P_N1), from two
-// faults of that solve: a term's sign dropped in the exact z_T (a copysign on c_t t_t), and the
-// null direction tying the two sticking tangents to the normals through its entries 2δ read as
-// none. The answer must be within 1e-9 of the exact solution nearest to it (quad precision).
+// The bar nearly flat on both ends (tangents' lever arms ±δ = ±1.4e-12), Frémond + Coulomb with
+// μ = 248: tangential percussions ±4.3e5, 1e4 times the velocities they make, cancel. Contact 2
+// sticks and contact 1 slides with z_T1 = 2δ(z_N2 − z_N1) = +3.9e-12, below the rounding of
+// D_A + G P/2: the law's rounded test passes whichever way contact 1 slides, and the exact
+// conditions of its contact mode (W_T1 = W_T2 + 2δ(W_N2 − W_N1)) decide: P_T1 = −μ P_N1. The answer
+// must be within 1e-9 of the exact solution nearest to it (quad precision).
 TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelocity) {
   const auto file = io::parse_problem_file(
       R"({"M": [[106.89071879502048, 0, 0], [0, 106.89071879502048, 0], [0, 0, 8.9075598995850402]],
@@ -1628,8 +1411,7 @@ TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelo
           "law": {"type": "fremond", "normal": {"potential": "power", "k": [0.00053724984259547783, 0.00011053940040775476], "p": [1.8187647649489351, 12.033338866260745]}, "tangential": {"potential": "coulomb", "mu": 248.02296846440314}}})",
       PotentialRegistry::with_builtins());
   const auto r = solve_impact(file.problem, file.law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   // Contact 1 at its bound against z_T1 > 0 (the mean angular velocity, z_N2 − z_N1 = 1.44,
   // times 2δ), contact 2 inside its cone; their sum is the x momentum, −2 m ẋ_A.
   const double mu = 248.02296846440314;
@@ -1646,8 +1428,7 @@ TEST(RegressionFremond, CoulombOnTangentsParallelTo1e12SlidesAgainstItsExactVelo
 /// ±2δ q̄_θ), and the answer near the exact solution nearest to it (percussions too if asked).
 void expect_bar_slides_one_end(const io::ProblemFile& file, const ImpactResult& r, int sliding,
                                double delta, bool percussions) {
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("contact mode"), std::string::npos) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   const int sticking = 1 - sliding;
   const double b_slide = file.law.mu[sliding] * r.P_N(sliding);
   EXPECT_NEAR(std::fabs(r.P_T(sliding)), b_slide, 1e-9 * b_slide);
@@ -1678,13 +1459,11 @@ TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo1e11SlidesOneCont
                             false);
 }
 
-// The same bar tilted by 6.7e-7 rad (lever arms ±δ = ±3.4e-7), μ = 311 and 48, speeds 1.3e6.
-// Semismooth Newton answered with both ends sticking: both stick exactly only where 2δ q̄_θ = 0,
-// and the answer's 2δ q̄_θ = −3.3e-8 hides in the tolerance of the tangential rows (1e-13 of the
-// speeds), while stopping that rotation would take tangential percussions of 1.6e9, far beyond
-// either bound. So contact 2 slides at its bound: its percussion moves from −8.5e4 to −μ P_N2 =
-// −4.0e5, the velocities by 3e-11 of their scale. The tie was looked at only for lever arms up to
-// 1e-8. The answer must be within 1e-9 of the exact solution nearest to it, percussions included.
+// The same bar tilted by 6.7e-7 rad (lever arms ±δ = ±3.4e-7), μ = 311 and 48, speeds 1.3e6: both
+// ends stick exactly only where 2δ q̄_θ = 0, and stopping the rotation would take tangential
+// percussions of 1.6e9, far beyond either bound. So contact 2 slides at its bound (−μ P_N2 =
+// −4.0e5), the velocities 3e-11 of their scale from both sticking. The answer must be within 1e-9
+// of the exact solution nearest to it, percussions included.
 TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo7e7SlidesOneContact) {
   const auto file = io::parse_problem_file(
       R"({"M": [[0.032364158405898402, 0, 0], [0, 0.032364158405898402, 0], [0, 0, 0.0026970132004915334]],
@@ -1699,10 +1478,8 @@ TEST(RegressionFremond, CoulombBothStickingOnTangentsParallelTo7e7SlidesOneConta
 
 // The bar tilted by 3.6e-12 rad on both ends (lever arms ±δ), μ = 711, speeds 1e-12, both
 // contacts held by their reactions. Both ends sticking with both reactions fixes every velocity
-// of W_E's four columns on three dofs, and along their dependence (T1 − T2 = 2δ(N2 − N1)) that
-// asks 2δ(D_NA,1 − D_NA,2)/2 = 0 of the data, which break it by 1e-26: the mode has no root. It
-// was accepted, the null direction reading as free since it holds no free row, and the answer
-// was off every exact solution by 3e-13 of the velocities (the quad reference's modes). Contact 1
+// of W_E's four columns on three dofs, and along their dependence (T1 − T2 = 2δ(N2 − N1)) asks
+// 2δ(D_NA,1 − D_NA,2)/2 = 0 of the data, which break it by 1e-26: that mode has no root. Contact 1
 // slides at its bound, contact 2 sticks inside its own.
 TEST(RegressionFremond, CoulombBothStickingBreaksItsConditionOnTheDataSlidesOneContact) {
   const auto file = io::parse_problem_file(
@@ -1733,8 +1510,7 @@ TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
   // A contact leaves; the case was found with it detached, as it is solved here.
   const ImpactProblem pb = testing::detach_separating(file.problem);
   const auto r = solve_impact(pb, file.law);
-  EXPECT_EQ(r.solver.status, SolverStatus::stalled) << r.solver.message;
-  EXPECT_NE(r.solver.message.find("certificate"), std::string::npos) << r.solver.message;
+  EXPECT_EQ(r.solver.status, SolverStatus::stalled) << why(r);
   EXPECT_FALSE(r.unique);
   ASSERT_FALSE(r.admissibility.admissible);
   EXPECT_EQ(r.admissibility.failed, Inequality::total_15);
@@ -1760,23 +1536,21 @@ TEST(RegressionFremond, ConvergedAnswerItsCertificateRefusesIsStalled) {
 }
 
 /// The flat bar on both ends (4 rows on 3 dofs) with a rotor of inertia 1e-6 of the paper's, p = 3
-/// and the viscous dead zone, k = 1e6 on both laws (issue 2's hard-case grid). G's normal rows are
-/// 3e6 and nearly opposite, its tangential ones [1 1; 1 1]: contact space's Newton and the
-/// splitting stalled, and the answer returned, q̇_E = (−1.60, −2.98, −12.97), penetrated at
-/// contact 1 (D_NE = −9.47), marked max_iterations. The exact answer, no reaction active, from the
-/// velocity-space gradient 2M(v − q̇_A) + W φ'(Wᵀv) = 0 solved by 50-digit mpmath findroot:
+/// and the viscous dead zone, k = 1e6 on both laws. G's normal rows are 3e6 and nearly opposite,
+/// its tangential ones [1 1; 1 1]. The exact answer, no reaction active, from the velocity-space
+/// gradient 2M(v − q̇_A) + W φ'(Wᵀv) = 0 solved by 50-digit mpmath findroot:
 ///   q̇_E = (−1.5999964000035999964, 2.9965368982405246825, −0.99999999980749434671),
 ///   P_N = (2.998268282453595690605, 2.998268615786928991854), P_T = −1.7999982000018 on both.
 /// θ̇_E is known in double only to about 3e-9: P_N1 − P_N2 = 3.3e-7 against P_N = 3, so each ulp
 /// of P_N moves θ̇ by 2.7e-9. In the kinetic-energy norm that is 1e-13 of the velocities.
 TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
-  SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+  SmallImpactProblem pb = testing::flat_bar_two_contacts(true);
   pb.M(2, 2) *= 1e-6;
   ASSERT_EQ(Eigen::Vector3d(pb.qdot_A), Eigen::Vector3d(2, -3, 1));
   const ImpactLaw law =
       ImpactLaw::fremond(PowerPotential(1e6, 3), DeadZonePowerPotential(1e6, 2, 0.2));
   const SmallImpactResult r = solve_impact(pb, law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_TRUE(r.admissibility.admissible);
   const Eigen::Vector3d exact(-1.5999964000035999964, 2.9965368982405246825,
                               -0.99999999980749434671);
@@ -1795,12 +1569,11 @@ TEST(RegressionFremond, FlatBarWithALightRotorAndSteepDeadZoneConverges) {
   EXPECT_GT(r.D_NE.minCoeff(), 2.4);  // no contact penetrates, none held by its reaction
 }
 
-/// The flat bar (G_NT = 0) on a rotor of inertia ×1e-6 under k = 1e6 with the dead zone: G's
-/// normal rows are 3e6, its tangential ones 1 and singular. These came back max_iterations and
-/// penetrating (every method on all four rows failed); the normal rows solved alone, then Newton
-/// on all rows from there, converge. Against the quad reference of the same equations
-/// (fremond_several), in the kinetic-energy norm relative to q̇_A.
-TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
+/// The flat bar (G_NT = 0) on a rotor of inertia ×1e-6 (or ×1e6) under k = 1e6 with the dead zone,
+/// at 1e6 and 1e-10 m/s: G's normal rows are 3e6, its tangential ones 1 and singular. No contact
+/// may penetrate, and the answer is the quad reference's of the same equations (fremond_several),
+/// in the kinetic-energy norm relative to q̇_A.
+TEST(RegressionFremond, FlatBarWithALightRotorMatchesTheReference) {
   namespace ref = fremond_reference;
   struct Case {
     double speed, p, k, q, r;
@@ -1810,14 +1583,14 @@ TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
         Case{1e-10, 1.01, 1e6, 2, 0.2}, Case{1e-10, 1.01, 1, 1.01, 0.2}}) {
     SCOPED_TRACE(::testing::Message() << "speed " << c.speed << ", p = " << c.p << ", k = " << c.k
                                       << ", q = " << c.q << ", r = " << c.r);
-    SmallImpactProblem pb = bench::flat_bar_two_contacts(true);
+    SmallImpactProblem pb = testing::flat_bar_two_contacts(true);
     pb.qdot_A *= c.speed;
     pb.M(2, 2) *= c.k == 1 ? 1e6 : 1e-6;
     const double r = c.r * c.speed;
     const ImpactLaw law =
         ImpactLaw::fremond(PowerPotential(c.k, c.p), DeadZonePowerPotential(c.k, c.q, r));
     const SmallImpactResult out = solve_impact(pb, law);
-    ASSERT_EQ(out.solver.status, SolverStatus::converged) << out.solver.message;
+    ASSERT_EQ(out.solver.status, SolverStatus::converged) << why(out);
     EXPECT_TRUE(out.admissibility.admissible);
     EXPECT_GE(out.D_NE.minCoeff(), -1e-9 * c.speed);  // none penetrates beyond rounding
     const Eigen::MatrixXd M = pb.M, WN = pb.W_N, WT = pb.W_T;
@@ -1835,13 +1608,12 @@ TEST(RegressionFremond, FlatBarWithALightRotorConvergesFromItsNormalRowsAlone) {
 }
 
 // A bar lying flat on both ends, whose levers cos(π/2)·L round to ∓3.06e-17, at velocities of 1e-9
-// under Frémond + Coulomb with k = 0 (the reaction alone) and μ = 11.5 / 0.008 (stress
-// fremond_coulomb #1460 of seed 43). In exact arithmetic on these doubles both contacts must close,
-// and no exact solution lies near the library's answer, which leaves contact 0 open at
-// D_NE = −7e-26: 7e-17 of the velocities, below the rounding of the terms it is summed from. That
-// answer is backward stable: it is the exact solution, to 2e-16, of the same data with those two
-// sub-ε entries of W_N set to zero (a perturbation of 3e-17 of a unit column), checked in quad
-// precision. The percussions are not unique there, and the result says so.
+// under Frémond + Coulomb with k = 0 (the reaction alone) and μ = 11.5 / 0.008. In exact arithmetic
+// on these doubles both contacts must close, and no exact solution lies near an answer that leaves
+// contact 0 open at D_NE = −7e-26, 7e-17 of the velocities, below the rounding of its terms. The
+// answer must be backward stable: the exact solution, to 2e-16, of the same data with those two
+// sub-ε entries of W_N set to zero (checked in quad precision); the percussions are not unique
+// there, and the result says so.
 TEST(RegressionFremond, FlatBarWithSubRoundingLeversIsSolvedBackwardStably) {
   Eigen::MatrixXd M =
       Eigen::Vector3d(52.936958572929967, 52.936958572929967, 4.4114132144108309).asDiagonal();
@@ -1853,7 +1625,7 @@ TEST(RegressionFremond, FlatBarWithSubRoundingLeversIsSolvedBackwardStably) {
   const std::vector<double> mu{11.473597989593529, 0.0083648661053411632};
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(0.0, 5.4084173249583056), mu);
   const auto r = solve_impact(pb, law);
-  ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
+  ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   EXPECT_FALSE(r.unique);
   EXPECT_TRUE(r.admissibility.admissible);
   // No penetration beyond the rounding of the contact velocities' terms (ε |W_N|ᵀ|q̇_E|).

@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "../bench/problems.hpp"
 #include "contact_space/contact_space.hpp"
 #include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
 
 namespace fremond {
 namespace {
 
-using namespace fremond::bench;
+using namespace fremond::fixtures;
 
 /// The bar at θ = π/4 touching with D_NA = 0 and sliding back: for μ ≥ 5/3 both the open contact
 /// and sticking solve Newton + Coulomb (classical_coulomb_test.cpp works it by hand).
@@ -36,7 +36,7 @@ SmallImpactProblem grazing_bar() {
 
 /// A body whose only contact is already separating: nothing takes part.
 SmallImpactProblem separating_point_mass() {
-  SmallImpactProblem p = point_mass(1.0, true);
+  SmallImpactProblem p = planar_point_mass(1.0, true);
   p.qdot_A(1) = 0.5;
   return p;
 }

@@ -129,7 +129,7 @@ TEST(TutorialCustomPotential, ValueAndSubgradientOnlyGoesThroughNlopt) {
   parts.value = [&full](double y) { return full.value(y); };
   parts.subgradient = [&full](double y) { return full.subgradient(y); };
   const CallablePotential lite(parts);
-  const ImpactProblem bar = fremond::testing::bar_problem(0.3, Eigen::Vector3d(1.0, -3.0, 2.0));
+  const ImpactProblem bar = fremond::fixtures::bar(0.3, Eigen::Vector3d(1.0, -3.0, 2.0));
   const PowerPotential normal(20.0, 3.0);
   const auto r_lite = solve_impact(bar, ImpactLaw::fremond(normal, lite));
   const auto r_full = solve_impact(bar, ImpactLaw::fremond(normal, full));
