@@ -20,6 +20,7 @@
 #include <limits>
 
 #include "laws/detail/residuals.hpp"
+#include "solvers/detail/chain.hpp"
 #include "solvers/detail/classical_law.hpp"
 #include "solvers/detail/classical_refine.hpp"
 #include "solvers/detail/classical_velocity_mode.hpp"
@@ -154,111 +155,93 @@ bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   return true;
 }
 
-// Writes one solution of the law into `out` (velocities, percussions, phases, solver report).
-// `velocities` (and Poisson's `compression_velocities`), where given, are the solution's q̇_E
-// (q̇_C), solved for with its percussions (classical_velocity_mode.hpp): kept as they are, the
-// percussions allowed their rounding.
+// One solution of the law as it is settled into an answer: its residual, how far that is beyond
+// the rounding of its terms, the percussions kept, and whether they form a continuum.
 template <int N, int C>
-void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                 const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
-                 int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr,
-                 const VecT<N>* compression_velocities = nullptr) {
-  const LawSolution<C>& s = lo.solutions[pick];
-  write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
-  double residual = classical_residual(pb, law, out);
-  // Within the tolerance, or within the rounding of the contact velocities' own terms (criterion
-  // `rounding`: a grazing contact of a spinning body, whose D_NA = −6e-4 is summed from terms of
-  // 1.2, cannot be resolved to 1e-13 of D_NA; the paper's bar rocking under Poisson + Coulomb
-  // met one every 20 runs).
+struct Settling {
+  double residual = 0.0;
   double beyond_rounding = 0.0;
-  if (!(residual <= options.tolerance))  // the floors, on this failure path only
-    classical_residual(pb, law, out, &beyond_rounding, velocities != nullptr);
-  // Beyond rounding: the percussions may carry cond(G)·ε (W_T nearly parallel to W_N). Refined in
-  // their mode, the better of the two answers (by the law's residual) is kept. A refined answer
-  // that solves its mode to rounding is also allowed the rounding of the percussions themselves,
-  // and is kept when within it, even where its residual is not smaller (the exact mode solution
-  // rounded, 1.4e-13 beside the original's 1.1e-13); a mode misread at a stick-slip boundary
-  // leaves the law's residual beyond that allowance.
-  // The percussions of the answer in `out`.
-  typename ContactSpaceT<N, C>::Rows best = s.P, best_C = s.P_C;
-  if (!(beyond_rounding <= options.tolerance) && !velocities) {
-    typename ContactSpaceT<N, C>::Rows P = s.P, P_C = s.P_C;
-    const auto refined = refine_answer(pb, cs, law, P, P_C);
-    if (refined != classical::Refinement::singular) {
-      const bool rounded = refined == classical::Refinement::converged;
-      ImpactResultT<N, C> trial;
-      write_classical_answer(pb, cs, law, P, P_C, trial);
-      double trial_beyond = 0.0;
-      const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, rounded);
-      bool keep = trial_residual < residual || (rounded && trial_beyond <= options.tolerance);
-      // Still beyond, on a diagonal M: the refined answer is allowed the rounding of its
-      // percussions up to 1e-8 of the velocities (kRoundedPercussionCap) instead of 1e-10. A light
-      // rotor (mass ratio 1e6) sticking under Newton + Coulomb has torques of 1e-6 that cancel to
-      // 1e-13: the last bit of P moves D_TE by 1e-10 of the velocities, so no double P meets the
-      // 1e-10 cap, and the refined answer, 8e-14 from a 60-digit reference in the kinetic norm,
-      // was `stalled`. A diagonal M (a body in its principal axes) is solved to the last bit of
-      // each component, so the percussions' rounding is all that is left; with M not diagonal
-      // (cond(M) > 1e9) answers within this allowance were up to 2.3e-8 from the quad reference
-      // (stress seed 23), and `stalled` is the honest word there. The refinement's trigger keeps
-      // the 1e-10 cap (accepted unrefined, one answer stayed 6e-9 from the reference). Neither
-      // the law's residual nor the refinement's own verdict ranks the answers here: the
-      // unrefined one of the stack-stored solve had 9.7e-12 beside the refined 1.0e-10 and was
-      // 1.4e-11 from the reference against 8e-14; under Poisson + Coulomb the refinement stops
-      // on corrections that no longer shrink, at the percussions' last bits, 1e-16 from it.
-      if (!(trial_beyond <= options.tolerance) && is_diagonal(pb.M)) {
-        double loose = 0.0;
-        classical_residual(pb, law, trial, &loose, true, kRoundedPercussionCap);
-        if (loose <= options.tolerance) {
-          keep = true;
-          trial_beyond = loose;
-        }
-      }
-      if (keep) {
-        write_classical_answer(pb, cs, law, P, P_C, out);
-        residual = trial_residual;
-        beyond_rounding = trial_beyond;
-        best = P;
-        best_C = P_C;
-      }
+  typename ContactSpaceT<N, C>::Rows P, P_C;
+  bool continuum = false;
+};
+
+// Repair 1, beyond rounding: the percussions may carry cond(G)·ε (W_T nearly parallel to W_N).
+// Refined in their mode (classical_refine.hpp), the better answer by the law's residual is kept;
+// a refinement that solves its mode to rounding is also allowed the rounding of the percussions
+// themselves, since a mode misread at a stick-slip boundary stays beyond that allowance.
+template <int N, int C>
+void refine_in_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                    const ImpactLaw& law, const SolverOptions& options, Settling<N, C>& st,
+                    ImpactResultT<N, C>& out) {
+  typename ContactSpaceT<N, C>::Rows P = st.P, P_C = st.P_C;
+  const auto refined = refine_answer(pb, cs, law, P, P_C);
+  if (refined == classical::Refinement::singular) return;
+  const bool rounded = refined == classical::Refinement::converged;
+  ImpactResultT<N, C> trial;
+  write_classical_answer(pb, cs, law, P, P_C, trial);
+  double trial_beyond = 0.0;
+  const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, rounded);
+  bool keep = trial_residual < st.residual || (rounded && trial_beyond <= options.tolerance);
+  // On a diagonal M (a body in its principal axes) each component is solved to its last bit, so
+  // the percussions' rounding is all that is left: it is allowed up to kRoundedPercussionCap of
+  // the velocities. With M not diagonal such answers can be 1e-8 from the exact one, and
+  // `stalled` is the honest word.
+  if (!(trial_beyond <= options.tolerance) && is_diagonal(pb.M)) {
+    double loose = 0.0;
+    classical_residual(pb, law, trial, &loose, true, kRoundedPercussionCap);
+    if (loose <= options.tolerance) {
+      keep = true;
+      trial_beyond = loose;
     }
   }
-  // Still above the tolerance (beyond rounding, or within it only by the allowance for the
-  // percussions' rounding): the answer's mode is solved for the velocities and the percussions
-  // together, M only multiplied (Poisson's: each phase); kept when the law's residual then reads
-  // smaller and within rounding. (Two contacts closing on a two-dof body with cond(M) = 1e9, stress
-  // newton #1280 of seed 41: accepted at 5.9e-11 within that allowance and 4e-10 of the velocity
-  // scale from the quad reference; solved for the velocities, 1e-16. At stress seeds 23 and 41 it
-  // turns 432 and 332 `stalled` Newton answers of 51,000 solves into converged ones.)
+  if (!keep) return;
+  write_classical_answer(pb, cs, law, P, P_C, out);
+  st.residual = trial_residual;
+  st.beyond_rounding = trial_beyond;
+  st.P = P;
+  st.P_C = P_C;
+}
+
+// Repair 2, still above the tolerance: the answer's mode solved for the velocities and the
+// percussions together, M only multiplied (Poisson's: each phase), kept when the law's residual
+// then reads smaller and within rounding. G = WᵀM⁻¹W carries cond(M)·ε that this solve avoids.
+template <int N, int C>
+void mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                        const ImpactLaw& law, const SolverOptions& options, Settling<N, C>& st,
+                        ImpactResultT<N, C>& out) {
   VecT<N> q, qC;
-  typename ContactSpaceT<N, C>::Rows P = best, P_C = best_C;
-  bool continuum = false;  // the answer kept solved so, its percussions a continuum
+  typename ContactSpaceT<N, C>::Rows P = st.P, P_C = st.P_C;
   bool dependent = false;
-  if (!(residual <= options.tolerance) && !velocities &&
-      solve_in_velocities(pb, cs, law, P, P_C, q, qC, dependent)) {
-    ImpactResultT<N, C> trial;
-    write_classical_answer(pb, cs, law, P, P_C, trial, &q, &qC);
-    double trial_beyond = 0.0;
-    const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
-    if (trial_beyond <= options.tolerance &&
-        (!(beyond_rounding <= options.tolerance) || trial_residual < residual)) {
-      write_classical_answer(pb, cs, law, P, P_C, out, &q, &qC);
-      residual = trial_residual;
-      beyond_rounding = trial_beyond;
-      continuum = dependent;
-    }
-  }
+  if (!solve_in_velocities(pb, cs, law, P, P_C, q, qC, dependent)) return;
+  ImpactResultT<N, C> trial;
+  write_classical_answer(pb, cs, law, P, P_C, trial, &q, &qC);
+  double trial_beyond = 0.0;
+  const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
+  if (!(trial_beyond <= options.tolerance) ||
+      (st.beyond_rounding <= options.tolerance && !(trial_residual < st.residual)))
+    return;
+  write_classical_answer(pb, cs, law, P, P_C, out, &q, &qC);
+  st.residual = trial_residual;
+  st.beyond_rounding = trial_beyond;
+  st.continuum = dependent;
+}
+
+// The report of a settled solution: method, uniqueness, message and status.
+template <int N, int C>
+void report_solution(const SolverOptions& options, const LawOutcome<C>& lo, const LawSolution<C>& s,
+                     const Settling<N, C>& st, ImpactResultT<N, C>& out) {
   const int found = lo.solutions.size;
-  out.unique = lo.exhaustive && found == 1 && !lo.continuum && !continuum && lo.percussion_unique &&
-               lo.compression_unique;
+  out.unique = lo.exhaustive && found == 1 && !lo.continuum && !st.continuum &&
+               lo.percussion_unique && lo.compression_unique;
   out.solutions_found = lo.exhaustive ? found : 0;
   out.solver.method = s.method;
   out.solver.criterion = StopCriterion::exact;
   out.solver.iterations = lo.pivots;
   out.solver.fallbacks = lo.fallbacks;
-  out.solver.residual = residual;
+  out.solver.residual = st.residual;
   if (lo.continuum)
     out.solver.message = "a continuum of solutions (singular contact modes)";
-  else if (continuum)
+  else if (st.continuum)
     out.solver.message =
         "the percussions are not unique: more contact rows hold than they have independent "
         "directions; the velocities are, and the mode was solved for them and the percussions "
@@ -289,13 +272,39 @@ void fill_result(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.solver.message = "one solution; uniqueness not checked";
   else
     out.solver.message = "the unique solution";
-  if (residual <= options.tolerance || beyond_rounding <= options.tolerance) {
+  if (st.residual <= options.tolerance || st.beyond_rounding <= options.tolerance) {
     out.solver.status = SolverStatus::converged;
-    if (!(residual <= options.tolerance)) out.solver.criterion = StopCriterion::rounding;
+    if (!(st.residual <= options.tolerance)) out.solver.criterion = StopCriterion::rounding;
   } else {
     out.solver.status = SolverStatus::stalled;
     out.solver.message = "exact method, but rounding leaves the law's residual above tolerance";
   }
+}
+
+// One solution of the law written into `out` and settled: within the tolerance, or within the
+// rounding of the contact velocities' own terms (criterion `rounding`: a grazing contact of a
+// spinning body cannot be resolved below the rounding of the terms its D_NA is summed from); else
+// repaired in its mode, then in velocities. `velocities` (and Poisson's `compression_velocities`),
+// where given, are the solution's q̇_E (q̇_C) solved with its percussions
+// (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
+template <int N, int C>
+void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                     const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
+                     int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr,
+                     const VecT<N>* compression_velocities = nullptr) {
+  const LawSolution<C>& s = lo.solutions[pick];
+  write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
+  Settling<N, C> st;
+  st.residual = classical_residual(pb, law, out);
+  st.P = s.P;
+  st.P_C = s.P_C;
+  if (!(st.residual <= options.tolerance))  // the floors, on this failure path only
+    classical_residual(pb, law, out, &st.beyond_rounding, velocities != nullptr);
+  if (!velocities) {
+    if (!(st.beyond_rounding <= options.tolerance)) refine_in_mode(pb, cs, law, options, st, out);
+    if (!(st.residual <= options.tolerance)) mode_in_velocities(pb, cs, law, options, st, out);
+  }
+  report_solution(options, lo, s, st, out);
 }
 
 template <int N, int C>
@@ -448,10 +457,10 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
   const int first = most_dissipative(lo, tried);
   for (int k = first; k >= 0; k = most_dissipative(lo, tried)) {
     tried[k] = true;
-    fill_result(pb, cs, law, options, lo, k, out);
+    settle_solution(pb, cs, law, options, lo, k, out);
     if (out.solver.status == SolverStatus::converged && all_finite(out)) return;
   }
-  fill_result(pb, cs, law, options, lo, first, out);
+  settle_solution(pb, cs, law, options, lo, first, out);
   if (!all_finite(out)) fill_failure(pb, cs, law, lo, out, true);
 }
 
@@ -483,7 +492,7 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
   if (is_poisson(law)) s->P_C = P_C;
   s->method = SolverMethod::mode_enumeration;
   ImpactResultT<N, C> r;
-  fill_result(pb, cs, law, options, lv, 0, r, &q, &qC);
+  settle_solution(pb, cs, law, options, lv, 0, r, &q, &qC);
   if (r.solver.status != SolverStatus::converged || !all_finite(r)) return false;
   out = std::move(r);
   return true;
@@ -512,62 +521,131 @@ bool stalled_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpac
   return true;
 }
 
+/// The classical laws' chain (docs/solvers.md): the stages of run()'s table, in order; the first
+/// that answers ends it, and each records what it ran in the result's attempt log.
+template <int N, int C>
+struct ClassicalChain {
+  const ImpactProblemT<N, C>& pb;
+  const ContactSpaceT<N, C>& cs;
+  const ImpactLaw& law;
+  const SolverOptions& opt;
+  ImpactResultT<N, C>& out;
+  LawOutcome<C> lo;
+
+  void run() {
+    using F = ClassicalChain;
+    run_stages<
+        Stage<&F::forced_other_law, &F::unsupported>,  // an iterative method of Frémond's law
+        Stage<&F::no_contact, &F::trivial>,            // no contact takes part: no percussion
+        Stage<&F::forced_trivial, &F::unsupported>,    // trivial forced, yet contacts take part
+        Stage<&F::always, &F::contact_modes>,          // per phase: closed form, Lemke, enumeration
+        Stage<&F::no_mode_found, &F::modes_in_velocities_or_none>,
+        Stage<&F::stalled_after_lemke, &F::enumeration_again>,  // Lemke's pivots' rounding
+        Stage<&F::stalled, &F::modes_in_velocities_after_stall>>(*this);
+  }
+
+  // ---- where each stage applies ---------------------------------------------------------------
+
+  bool always() const { return true; }
+  bool forced_other_law() const { return !method_applies(opt.method); }
+  bool no_contact() const { return cs.active == 0; }  // whichever exact method was asked for
+  bool forced_trivial() const { return opt.method == SolverMethod::trivial; }
+  bool no_mode_found() const { return lo.solutions.size == 0; }
+  bool stalled() const { return out.solver.status == SolverStatus::stalled; }
+  // Lemke's pivots accumulate rounding: where the enumeration applies, the same contact mode solved
+  // directly can meet the tolerance that Lemke's answer (in either of Poisson's phases) misses.
+  bool stalled_after_lemke() const {
+    return stalled() && opt.method == SolverMethod::automatic &&
+           (lo.method == SolverMethod::lemke || lo.pivots > 0) &&
+           cs.active <= classical::kMaxEnumerated;
+  }
+
+  // ---- what each stage runs --------------------------------------------------------------------
+
+  bool unsupported() {
+    fill_unsupported(pb, cs, law, opt, out);
+    return logged();
+  }
+  bool trivial() {
+    fill_trivial(pb, cs, law, out);
+    return logged();
+  }
+  // The law's modes in contact space; with several solutions the most dissipative that meets the
+  // law. Hands on a stalled answer, or none.
+  bool contact_modes() {
+    solve_law(pb, cs, law, opt.check_uniqueness ? classical::kMaxEnumeratedAlways : 0, lo,
+              opt.method);
+    if (lo.unsupported) return unsupported();
+    if (lo.solutions.size == 0) {
+      out.solver.record(lo.method, AttemptStart::none,
+                        lo.exhaustive ? SolverStatus::no_solution : SolverStatus::failed,
+                        std::numeric_limits<double>::infinity());
+      return false;
+    }
+    fill_best(pb, cs, law, opt, lo, out);
+    logged();
+    return !stalled();
+  }
+  // No mode in contact space (G carrying cond(M)): every mode solved in velocities, else the
+  // failure is reported.
+  bool modes_in_velocities_or_none() {
+    ImpactResultT<N, C> alt;
+    if (solve_in_velocity_modes(pb, cs, law, opt, lo, alt)) return adopt(alt);
+    fill_failure(pb, cs, law, lo, out);
+    return logged();
+  }
+  bool enumeration_again() {
+    LawOutcome<C> le;
+    solve_law(pb, cs, law, classical::kMaxEnumerated, le, SolverMethod::mode_enumeration);
+    if (le.solutions.size == 0) {
+      out.solver.record(SolverMethod::mode_enumeration, AttemptStart::none,
+                        SolverStatus::no_solution, std::numeric_limits<double>::infinity());
+      return false;
+    }
+    ImpactResultT<N, C> alt;
+    fill_best(pb, cs, law, opt, le, alt);
+    if (alt.solver.status != SolverStatus::converged) {
+      out.solver.record(alt.solver.method, AttemptStart::none, alt.solver.status,
+                        alt.solver.residual);
+      return false;
+    }
+    alt.solver.fallbacks = out.solver.fallbacks + 1;
+    alt.solver.message =
+        "Lemke's answer missed the tolerance by rounding; the enumeration of contact modes "
+        "meets it (unique says whether it is the only solution)";
+    return adopt(alt);
+  }
+  // Still stalled: every mode solved in velocities, as where contact space finds none; the
+  // stalled answer stays where that does not converge.
+  bool modes_in_velocities_after_stall() {
+    ImpactResultT<N, C> alt;
+    if (stalled_in_velocity_modes(pb, cs, law, opt, lo, out, alt)) return adopt(alt);
+    return true;
+  }
+
+  // ---- the attempt log -------------------------------------------------------------------------
+
+  // The answer in `out` is this stage's attempt.
+  bool logged() {
+    out.solver.record(out.solver.method, AttemptStart::none, out.solver.status,
+                      out.solver.residual);
+    return true;
+  }
+  // `alt` becomes the answer, with the attempts so far and its own.
+  bool adopt(ImpactResultT<N, C>& alt) {
+    alt.solver.attempts = out.solver.attempts;
+    alt.solver.attempt_count = out.solver.attempt_count;
+    out = std::move(alt);
+    return logged();
+  }
+};
+
 }  // namespace
 
 template <int N, int C>
 void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  if (!method_applies(options.method)) {
-    fill_unsupported(pb, cs, law, options, out);
-    return;
-  }
-  if (cs.active == 0) {  // nothing to solve, whichever exact method was asked for
-    fill_trivial(pb, cs, law, out);
-    return;
-  }
-  LawOutcome<C> lo;
-  if (options.method != SolverMethod::trivial)
-    solve_law(pb, cs, law, options.check_uniqueness ? classical::kMaxEnumeratedAlways : 0, lo,
-              options.method);
-  if (options.method == SolverMethod::trivial || lo.unsupported) {
-    fill_unsupported(pb, cs, law, options, out);
-    return;
-  }
-  if (lo.solutions.size == 0) {
-    if (solve_in_velocity_modes(pb, cs, law, options, lo, out)) return;
-    fill_failure(pb, cs, law, lo, out);
-    return;
-  }
-  fill_best(pb, cs, law, options, lo, out);
-  // Lemke's pivots accumulate rounding: on an ill-conditioned problem (cond(M) = 1e9 and μ = 300,
-  // say) its answer can miss the law's tolerance where the linear system of the same contact
-  // mode, solved directly, meets it. The enumeration's answer with the same velocities (to 1e-9)
-  // was merged into Lemke's, so where the enumeration applies it gets its own try. That holds for
-  // Lemke in either of Poisson's phases: a compression answer by Lemke, its expansion by the
-  // enumeration (the method then named) can stall where the enumeration of both phases meets the
-  // law (poisson_coulomb, three contacts on two dofs, cond(M) = 1.4e6 and μ = 1e8: 1.5e-4 against
-  // 1.4e-11). Only on this failure path, and taken only when it converges.
-  if (out.solver.status == SolverStatus::stalled && options.method == SolverMethod::automatic &&
-      (lo.method == SolverMethod::lemke || lo.pivots > 0) &&
-      cs.active <= classical::kMaxEnumerated) {
-    LawOutcome<C> le;
-    solve_law(pb, cs, law, classical::kMaxEnumerated, le, SolverMethod::mode_enumeration);
-    if (le.solutions.size > 0) {
-      ImpactResultT<N, C> alt;
-      fill_best(pb, cs, law, options, le, alt);
-      if (alt.solver.status == SolverStatus::converged) {
-        alt.solver.fallbacks = out.solver.fallbacks + 1;
-        alt.solver.message =
-            "Lemke's answer missed the tolerance by rounding; the enumeration of contact modes "
-            "meets it (unique says whether it is the only solution)";
-        out = std::move(alt);
-        return;
-      }
-    }
-  }
-  // Still stalled: every mode solved in velocities, as where contact space finds none.
-  ImpactResultT<N, C> alt;
-  if (stalled_in_velocity_modes(pb, cs, law, options, lo, out, alt)) out = std::move(alt);
+  ClassicalChain<N, C>{pb, cs, law, options, out, {}}.run();
 }
 
 template <int N, int C>
@@ -612,7 +690,7 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
   });
   for (int k : order) {
     ImpactResultT<N, C>& r = all.emplace_back();
-    fill_result(pb, cs, law, options, lo, k, r);
+    settle_solution(pb, cs, law, options, lo, k, r);
     if (!all_finite(r)) fill_failure(pb, cs, law, lo, r, true);
   }
   // A stalled solution that solve_impact would find converged by every mode in velocities is

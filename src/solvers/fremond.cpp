@@ -13,6 +13,7 @@
 #include "fremond/potentials/power.hpp"
 #include "laws/detail/residuals.hpp"
 #include "laws/detail/separating_contacts.hpp"
+#include "solvers/detail/chain.hpp"
 #include "solvers/detail/classical_law.hpp"
 #include "solvers/detail/fremond.hpp"
 
@@ -1027,22 +1028,6 @@ bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
   classical::LawOutcome<C> lo;
   classical::solve_law(pb, cs, ImpactLaw::newton(0.0), 0, lo);
   return lo.solutions.size == 0 && lo.exhaustive && !lo.beyond_precision && !lo.unsupported;
-}
-
-/// One row of a chain's table: where it applies, and what it runs (true: the answer is written).
-/// A compile-time row, so that trying a stage costs the test itself.
-template <auto Applies, auto Run>
-struct Stage {
-  template <class Chain>
-  static bool answers(Chain& chain) {
-    return (chain.*Applies)() && (chain.*Run)();
-  }
-};
-
-/// Tries the stages in order; the first that answers ends the chain.
-template <class... Stages, class Chain>
-void run_stages(Chain& chain) {
-  (void)(Stages::answers(chain) || ...);
 }
 
 /// Frémond's chain (docs/solvers.md): the stages of run()'s table, in order; the first that
