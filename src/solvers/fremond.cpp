@@ -1499,46 +1499,66 @@ struct FremondChain {
 
   // ---- writing the answer ---------------------------------------------------------------------
 
-  // The outcome `o` of method `m` into the result: the report (the law's residual), the
-  // velocities, the reaction, uniqueness, and the repairs an answer with Coulomb on several
-  // contacts may need. `o` by reference and not copied (see check_exact).
+  // The outcome `o` of method `m` into the result, then the repairs an answer may need, each
+  // named: refine_at_rounding, none_if_overflow, claim_uniqueness, settle_coulomb_mode. `o` by
+  // reference and not copied (see check_exact).
   void finish(const MethodOutcome& o, SolverMethod m) {
     out.solver.fallbacks = std::max(0, out.solver.attempt_count - 1);
     write_outcome(
         o, cs.rows() && P.allFinite() && !o.residual_is_plain ? rows.plain_residual(P) : o.residual,
         m, cs.v_scale, opt, out);  // the law's residual
+    refine_at_rounding(o, m);
+    write_velocities();
+    none_if_overflow();
+    claim_uniqueness();
+    settle_coulomb_mode(o, m);
+  }
+
+  // An answer accepted at its rows' rounding floors, refined in velocity space where every row has
+  // a prox: the floors then cost nothing.
+  void refine_at_rounding(const MethodOutcome& o, SolverMethod m) {
     if (out.solver.status == SolverStatus::converged &&
         out.solver.criterion == StopCriterion::rounding && rows.all_prox &&
         refine_in_velocity_space(pb, rows, P, opt.tolerance * cs.v_scale))
       write_outcome(o, rows.plain_residual(P), m, cs.v_scale, opt, out);
+  }
+
+  void write_velocities() {
     scatter_solution(pb, cs, P, out);
     rows.mean_velocity(P, z);
     split_reaction(rows, P, z, out);
-    // No NaN or infinity leaves the library, whatever the status: percussions a failed method
-    // left so large that the velocities or the energy overflow are no answer; return none
-    // (q̇_E = q̇_A) and say so.
-    // The reaction part too: φ_N'(z_N) of a far iterate (p = 13.7 at |z| = 1e8) overflows where
-    // P itself is finite, and ∞ − ∞ made P_N_reaction NaN beside a finite stalled answer.
-    if (!(out.qdot_E.allFinite() && std::isfinite(out.energy_change) && P.allFinite() &&
-          out.P_N_reaction.allFinite())) {
-      P.setZero();
-      scatter_solution(pb, cs, P, out);
-      rows.mean_velocity(P, z);
-      split_reaction(rows, P, z, out);
-      if (out.solver.status == SolverStatus::converged) out.solver.status = SolverStatus::failed;
-      out.solver.message =
-          "the method's answer overflows (velocities, energy or reaction not finite): no "
-          "percussion is returned";
-      if (cs.rows()) out.solver.residual = rows.plain_residual(P) / cs.v_scale;
-    }
-    // With Coulomb on several contacts the law is quasi-variational: other velocities may solve
-    // it too (four contacts on a random body: the enumeration and Newton from the splitting's end
-    // found two answers, P_N = (0.079, 0.22, …) and (0.12, 5e-6, …)), and nothing here looks for
-    // them. Unique is then not claimed, as for a classical law whose modes were not enumerated.
+  }
+
+  // No NaN or infinity leaves the library, whatever the status: percussions so large that the
+  // velocities, the energy or the reaction (φ_N' of a far iterate) overflow are no answer; none
+  // is returned (q̇_E = q̇_A), and the message says so.
+  void none_if_overflow() {
+    if (out.qdot_E.allFinite() && std::isfinite(out.energy_change) && P.allFinite() &&
+        out.P_N_reaction.allFinite())
+      return;
+    P.setZero();
+    write_velocities();
+    if (out.solver.status == SolverStatus::converged) out.solver.status = SolverStatus::failed;
+    out.solver.message =
+        "the method's answer overflows (velocities, energy or reaction not finite): no "
+        "percussion is returned";
+    if (cs.rows()) out.solver.residual = rows.plain_residual(P) / cs.v_scale;
+  }
+
+  // With Coulomb on several contacts the law is quasi-variational: other velocities may solve it
+  // too, and nothing here looks for them, so uniqueness is not claimed (as for a classical law
+  // whose modes were not enumerated).
+  void claim_uniqueness() {
     if (out.solver.status == SolverStatus::converged && out.solutions_found == 0)
       out.unique = !(rows.coulomb && cs.active >= 2) && percussion_unique(rows, P, z, out);
-    // The limit, 1e-6 of the velocity scale, is the cap of every row's rounding floor
-    // (row_rounding_floor): an answer not resolved to that is none in double precision.
+  }
+
+  // Frémond + Coulomb on several contacts: where rounding, not the law, would fix how dependent
+  // contacts share their percussions or which way a contact slides, the contact mode is solved
+  // with its exact conditions; where no mode gives an answer, the answer is kept and called
+  // stalled. The limit, 1e-6 of the velocity scale, is the cap of every row's rounding floor
+  // (row_rounding_floor): an answer not resolved to that is none in double precision.
+  void settle_coulomb_mode(const MethodOutcome& o, SolverMethod m) {
     if (out.solver.status != SolverStatus::converged || !rows.coulomb || cs.active < 2) return;
     auto stall = [&](const char* message) {  // the answer is kept, and said to be no more
       out.solver.status = SolverStatus::stalled;
@@ -1559,13 +1579,10 @@ struct FremondChain {
     int free_rows = 0;
     bool bound_sensitive = false;
     free_rows_moving_bounds(rows, P, z, out, limit, Wf, free_rows, bound_sensitive);
-    // Whatever the normal rows, the tangential mode may be rounding's: on the bar nearly flat on
-    // both ends (tangents' lever arms ±δ, 1e-12 … 1e-11) a sliding contact's z_T = 2δ(z_N2 − z_N1)
-    // can lie below the rounding of tangential percussions that cancel (its direction then
-    // rounding's), or both contacts stick where the exact answer slides one (see the two tests);
-    // the exact conditions of the contact modes decide. A reversal that moves velocities by
-    // less than 1e-9 of their scale is not looked for (the mode solve may find no mode where
-    // such a contact bears percussions near rounding, and the answer holds to that either way).
+    // Whatever the normal rows, the tangential mode may be rounding's: a sliding contact's z_T
+    // below the rounding of tangential percussions that cancel, or both contacts sticking where
+    // the exact answer slides one. A reversal that moves velocities by less than 1e-9 of their
+    // scale is not looked for: the answer holds to that either way.
     const bool sliding_undetermined = sliding_at_rounding(rows, P, z, 1e-9 * cs.v_scale) ||
                                       sticking_tied_below_rounding(rows, P, z);
     if (free_rows == 0 && !sliding_undetermined) return;
@@ -1577,13 +1594,11 @@ struct FremondChain {
     auto take_exact = [&](const char* message) {
       write_outcome(o, rows.plain_residual(P), m, cs.v_scale, opt, out);
       out.solver.message = message;
-      scatter_solution(pb, cs, P, out);
-      rows.mean_velocity(P, z);
-      split_reaction(rows, P, z, out);
+      write_velocities();
       out.unique = false;
     };
-    // The split first (the plate: its normals alone are dependent); its answer may still leave
-    // the mode to rounding, through sticking tangents or a sliding z_T, and is checked for that.
+    // The split first (normals alone dependent); its answer may still leave the mode to rounding,
+    // through sticking tangents or a sliding z_T, and is checked for that.
     if (normals_dependent && split_normal_percussions(rows, P, out, opt)) {
       take_exact(
           "converged, with the normal percussions of contacts whose normals are dependent, which "
@@ -1669,22 +1684,13 @@ void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
 }
 }  // namespace
 
+namespace {
+/// Where the normal rows alone have no solution (their obstacles close in on the body), no method
+/// could have found one: the state before the impact, as the classical laws report it, with the
+/// proof's verdict.
 template <int N, int C>
-void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                   const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
-  solve_fremond_chain(pb, cs, law, opt, out);
-  // Where every method failed, the reason may be that no answer exists: the contacts' obstacles
-  // close in on the body (fremond #13 of stress seed 7: one dof between two obstacles closing in
-  // at 5e-11 m/s, "stalled" after every method). Only on this failure path, so that a solve that
-  // converges pays nothing for it.
-  const SolverStatus s = out.solver.status;
-  if (s != SolverStatus::stalled && s != SolverStatus::failed && s != SolverStatus::max_iterations)
-    return;
-  if (!normal_rows_infeasible(pb, held_by(cs))) {
-    solve_one_dof_instead(pb, cs, law, opt, out);
-    return;
-  }
-  // No answer: the state before the impact (no percussion), as the classical laws report it.
+void report_no_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                        const ImpactLaw& law, ImpactResultT<N, C>& out) {
   typename ContactSpaceT<N, C>::Rows none = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
   scatter_solution(pb, cs, none, out);
   out.P_N_reaction.setZero(cs.contacts);
@@ -1701,6 +1707,23 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
       "no solution: no velocity after the impact keeps every contact that takes part from "
       "penetrating (D_NE >= 0 on all of them is infeasible: their obstacles close in on the "
       "body); the state before the impact (no percussion) is returned";
+}
+}  // namespace
+
+template <int N, int C>
+void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                   const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+  solve_fremond_chain(pb, cs, law, opt, out);
+  // The repairs where every method failed, only on that path, so that a solve that converges pays
+  // nothing for them: no answer exists (proved on the normal rows), or one degree of freedom
+  // solved exactly in velocity space.
+  const SolverStatus s = out.solver.status;
+  if (s != SolverStatus::stalled && s != SolverStatus::failed && s != SolverStatus::max_iterations)
+    return;
+  if (normal_rows_infeasible(pb, held_by(cs)))
+    report_no_solution(pb, cs, law, out);
+  else
+    solve_one_dof_instead(pb, cs, law, opt, out);
 }
 
 template <int N, int C>
