@@ -27,4 +27,5 @@
 #include "fremond/simulation/persistent_contact.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulation_options.hpp"
+#include "fremond/solvers/solve_batch.hpp"
 #include "fremond/solvers/solve_impact.hpp"

@@ -89,6 +89,10 @@ void bind_impacts(py::module_& m) {
           "tangential_potential",
           [](const ImpactLaw& l) { return potentials_list(l.tangential_potential); })
       .def("has_friction", &ImpactLaw::has_friction)
+      .def("is_fremond", &ImpactLaw::is_fremond)
+      .def("has_phases", &ImpactLaw::has_phases)
+      .def("uses_coulomb", &ImpactLaw::uses_coulomb)
+      .def("has_tangential_potential", &ImpactLaw::has_tangential_potential)
       .def("validate", &ImpactLaw::validate, py::arg("contacts"), doc::kLawValidate)
       .def("describe", &ImpactLaw::describe)
       .def("__repr__", [](const ImpactLaw& l) { return "<fremond law " + l.describe() + ">"; });

@@ -12,4 +12,5 @@ PYBIND11_MODULE(_fremond, m) {
   fp::bind_scenes(m);
   fp::bind_simulation(m);
   fp::bind_curves(m);
+  fp::bind_batch(m);
 }

@@ -1,0 +1,64 @@
+#pragma once
+/// @file Many independent impacts solved on every core (docs/solvers.md#batches): an atlas sweep,
+/// a parameter fit, Monte Carlo over initial conditions.
+#include <span>
+#include <vector>
+
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/laws/impact_problem.hpp"
+#include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond {
+
+/// How a batch is shared out; the solver's own options (SolverOptions) apply to every problem.
+struct BatchOptions {
+  /// Worker threads: 0 for one per core (std::thread::hardware_concurrency), else at least 1.
+  /// Never more threads than problems.
+  int threads = 0;
+  /// Throws InvalidArgument naming `threads` when it is negative.
+  void validate() const;
+};
+
+/// Solves every problem under one law. Result i is solve_impact(problems[i], law, options) to the
+/// last bit, whatever the number of threads: each problem is solved by one thread, alone.
+/// Problems in the small form (SmallImpactProblem: up to 6 degrees of freedom and 4 contacts) give
+/// results in the small form, which hold no heap memory: a batch of them allocates only its list.
+///
+/// An invalid law or options, or any invalid problem, throws InvalidArgument and returns nothing:
+/// the first invalid problem by index is named (`problems[17].M: ...`), a law that does not fit
+/// one names its key and that problem. A solver that does not converge says so in its result, as
+/// solve_impact does.
+///
+/// A law with potentials written in Python is called under the interpreter's lock, one thread at
+/// a time; the built-in potentials run in parallel.
+template <int MaxDofs, int MaxContacts>
+std::vector<ImpactResultT<MaxDofs, MaxContacts>> solve_batch(
+    std::span<const ImpactProblemT<MaxDofs, MaxContacts>> problems, const ImpactLaw& law,
+    const SolverOptions& options = {}, const BatchOptions& batch = {});
+
+/// solve_batch into the caller's `results` (as many entries as problems), which a sweep reuses
+/// from one batch to the next: no memory is then allocated or first touched on the calling thread.
+/// Throws InvalidArgument naming `results` when the sizes differ; on any InvalidArgument the
+/// entries of `results` are unspecified.
+template <int MaxDofs, int MaxContacts>
+void solve_batch(std::span<const ImpactProblemT<MaxDofs, MaxContacts>> problems,
+                 const ImpactLaw& law, std::span<ImpactResultT<MaxDofs, MaxContacts>> results,
+                 const SolverOptions& options = {}, const BatchOptions& batch = {});
+
+/// solve_batch for a list of heap-stored problems.
+inline std::vector<ImpactResult> solve_batch(const std::vector<ImpactProblem>& problems,
+                                             const ImpactLaw& law,
+                                             const SolverOptions& options = {},
+                                             const BatchOptions& batch = {}) {
+  return solve_batch(std::span<const ImpactProblem>(problems), law, options, batch);
+}
+/// solve_batch for a list of small problems.
+inline std::vector<SmallImpactResult> solve_batch(const std::vector<SmallImpactProblem>& problems,
+                                                  const ImpactLaw& law,
+                                                  const SolverOptions& options = {},
+                                                  const BatchOptions& batch = {}) {
+  return solve_batch(std::span<const SmallImpactProblem>(problems), law, options, batch);
+}
+
+}  // namespace fremond

@@ -1,0 +1,166 @@
+// Many impacts at once (solve_batch): a list of problems, or NumPy arrays of shape (N, ...) in and
+// out, solved on every core with the interpreter's lock released.
+#include <pybind11/numpy.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fremond/core/error.hpp"
+#include "fremond/solvers/solve_batch.hpp"
+#include "python/bind_helpers.hpp"
+
+namespace fremond::python {
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A per-problem operand of shape `one` (shared by every problem) or (N, *one).
+struct Operand {
+  const char* name;
+  Array a;
+  bool shared = true;
+
+  // Checks the shape against `one` (the trailing dimensions) and the count N; throws naming it.
+  void check(std::vector<py::ssize_t> one, py::ssize_t& count) {
+    const auto nd = static_cast<std::size_t>(a.ndim());
+    auto shape_text = [&] {
+      std::string s = "(";
+      for (py::ssize_t k = 0; k < a.ndim(); ++k) s += (k ? ", " : "") + std::to_string(a.shape(k));
+      return s + (a.ndim() == 1 ? ",)" : ")");
+    };
+    bool ok = nd == one.size() || nd == one.size() + 1;
+    shared = nd == one.size();
+    for (std::size_t k = 0; ok && k < one.size(); ++k)
+      ok = a.shape(static_cast<py::ssize_t>(nd - one.size() + k)) == one[k];
+    if (!ok) {
+      std::string want = "(";
+      for (std::size_t k = 0; k < one.size(); ++k) want += (k ? ", " : "") + std::to_string(one[k]);
+      throw InvalidArgument(name, "needs shape " + want + (one.size() == 1 ? ",)" : ")") +
+                                      " or (N, ...) of it, got " + shape_text());
+    }
+    if (shared) return;
+    if (count >= 0 && a.shape(0) != count)
+      throw InvalidArgument(name, "has " + std::to_string(a.shape(0)) +
+                                      " problems, another operand " + std::to_string(count));
+    count = a.shape(0);
+  }
+  // The i-th problem's data, row-major.
+  const double* at(py::ssize_t i) const {
+    return a.data() + (shared ? 0 : i * (a.size() / a.shape(0)));
+  }
+};
+
+// Row-major data into an Eigen (column-major) matrix.
+MatrixX matrix(const double* p, int rows, int cols) {
+  MatrixX m(rows, cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) m(r, c) = p[r * cols + c];
+  return m;
+}
+
+py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, const ImpactLaw& law,
+                      const std::optional<Array>& W_T, const std::optional<Array>& w_N,
+                      const std::optional<Array>& w_T, const SolverOptions& options, int threads) {
+  if (qdot_A.ndim() != 2)
+    throw InvalidArgument("qdot_A", "needs shape (N, n): one velocity per problem, got " +
+                                        std::to_string(qdot_A.ndim()) + " dimensions");
+  const py::ssize_t n = qdot_A.shape(1);
+  Operand m{"M", M}, wn{"W_N", W_N};
+  py::ssize_t count = qdot_A.shape(0);
+  m.check({n, n}, count);
+  const py::ssize_t c = W_N.ndim() >= 2 ? W_N.shape(W_N.ndim() - 1) : -1;
+  wn.check({n, c}, count);
+  std::optional<Operand> wt, vn, vt;
+  if (W_T) (wt = Operand{"W_T", *W_T})->check({n, c}, count);
+  if (w_N) (vn = Operand{"w_N", *w_N})->check({c}, count);
+  if (w_T) (vt = Operand{"w_T", *w_T})->check({c}, count);
+  const int ni = static_cast<int>(n), ci = static_cast<int>(c);
+  auto out2 = [&](py::ssize_t cols) { return Array({count, cols}); };
+  Array qdot_E = out2(n), P_N = out2(c), P_T = out2(c), D_NE = out2(c), D_TE = out2(c);
+  Array energy({count}), residual({count});
+  py::array_t<std::uint8_t> status({count});
+  py::array_t<bool> admissible({count}), unique({count});
+  // Solved in the small form where the shape fits it (no heap memory per problem or result), as
+  // solve_impact would: the answers are the same to the last bit.
+  auto run = [&](auto problem_type) {
+    using Problem = decltype(problem_type);
+    std::vector<Problem> problems(static_cast<std::size_t>(count));
+    for (py::ssize_t i = 0; i < count; ++i) {
+      Problem& p = problems[static_cast<std::size_t>(i)];
+      p.M = matrix(m.at(i), ni, ni);
+      p.W_N = matrix(wn.at(i), ni, ci);
+      p.W_T = wt ? matrix(wt->at(i), ni, ci) : MatrixX(ni, 0);
+      p.w_N = vn ? VectorX(Eigen::Map<const VectorX>(vn->at(i), ci)) : VectorX::Zero(ci);
+      p.w_T = vt ? VectorX(Eigen::Map<const VectorX>(vt->at(i), ci)) : VectorX::Zero(p.W_T.cols());
+      p.qdot_A = Eigen::Map<const VectorX>(qdot_A.data() + i * n, ni);
+    }
+    BatchOptions batch;
+    batch.threads = threads;
+    const auto results = solve_batch(std::span<const Problem>(problems), law, options, batch);
+    auto row = [](Array& a, py::ssize_t i) { return a.mutable_data() + i * a.shape(1); };
+    for (py::ssize_t i = 0; i < count; ++i) {
+      const auto& r = results[static_cast<std::size_t>(i)];
+      Eigen::Map<VectorX>(row(qdot_E, i), ni) = r.qdot_E;
+      Eigen::Map<VectorX>(row(P_N, i), ci) = r.P_N;
+      Eigen::Map<VectorX>(row(P_T, i), ci) = r.P_T;
+      Eigen::Map<VectorX>(row(D_NE, i), ci) = r.D_NE;
+      Eigen::Map<VectorX>(row(D_TE, i), ci) = r.D_TE;
+      energy.mutable_data()[i] = r.energy_change;
+      residual.mutable_data()[i] = r.solver.residual;
+      status.mutable_data()[i] = static_cast<std::uint8_t>(r.solver.status);
+      admissible.mutable_data()[i] = r.admissibility.admissible;
+      unique.mutable_data()[i] = r.unique;
+    }
+  };
+  {
+    py::gil_scoped_release release;  // the output arrays' buffers are written, not resized
+    if (ni <= kSmallDofs && ci <= kSmallContacts)
+      run(SmallImpactProblem{});
+    else
+      run(ImpactProblem{});
+  }
+  py::dict d;
+  d["qdot_E"] = qdot_E;
+  d["P_N"] = P_N;
+  d["P_T"] = P_T;
+  d["D_NE"] = D_NE;
+  d["D_TE"] = D_TE;
+  d["energy_change"] = energy;
+  d["residual"] = residual;
+  d["status"] = status;
+  d["admissible"] = admissible;
+  d["unique"] = unique;
+  return d;
+}
+
+}  // namespace
+
+void bind_batch(py::module_& m) {
+  m.def(
+      "solve_batch",
+      [](const std::vector<ImpactProblem>& problems, const ImpactLaw& law,
+         const SolverOptions& options, int threads) {
+        BatchOptions batch;
+        batch.threads = threads;
+        return solve_batch(problems, law, options, batch);
+      },
+      py::arg("problems"), py::arg("law"), py::arg("options") = SolverOptions{},
+      py::arg("threads") = 0, py::call_guard<py::gil_scoped_release>(),
+      R"(Solves a list of problems under one law on every core (threads=0: one per core); returns
+the list of results, result i equal to solve_impact(problems[i], law, options) to the last bit.
+An invalid problem raises ValueError naming it by index (problems[17].M: ...) and nothing is
+returned.)");
+  m.def("solve_batch_arrays", &solve_arrays, py::arg("M"), py::arg("W_N"), py::arg("qdot_A"),
+        py::arg("law"), py::arg("W_T") = py::none(), py::arg("w_N") = py::none(),
+        py::arg("w_T") = py::none(), py::arg("options") = SolverOptions{}, py::arg("threads") = 0,
+        R"(Many problems of one shape from NumPy arrays: qdot_A of shape (N, n); M of shape (n, n)
+shared by every problem or (N, n, n); W_N and W_T of shape (n, c) or (N, n, c); w_N and w_T of
+shape (c,) or (N, c). Solved on every core with the interpreter's lock released (threads=0: one
+per core). Returns a dict of arrays: qdot_E (N, n); P_N, P_T, D_NE, D_TE (N, c); energy_change,
+residual (N,); status (N,) as SolverStatus codes (fremond.SolverStatus(int(code)));
+admissible, unique (N,) booleans. Entry i equals solve_impact on problem i to the last bit.)");
+}
+
+}  // namespace fremond::python

@@ -1,0 +1,113 @@
+#include "fremond/solvers/solve_batch.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include "fremond/core/error.hpp"
+#include "fremond/solvers/solve_impact.hpp"
+
+namespace fremond {
+
+void BatchOptions::validate() const {
+  if (threads < 0)
+    throw InvalidArgument("threads",
+                          "must be 0 (one per core) or at least 1, got " + std::to_string(threads));
+}
+
+namespace {
+// The number of workers for `count` problems: never more than problems, at least one.
+int workers_for(std::size_t count, int threads) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t wanted = threads == 0 ? cores : static_cast<std::size_t>(threads);
+  return static_cast<int>(std::max<std::size_t>(1, std::min(wanted, count)));
+}
+
+// The error solve_impact gives for problem i, named by its index: `problems[i].M: ...` for the
+// problem's members, the law's key with the problem's index for a law that does not fit it.
+[[noreturn]] void refuse(std::size_t i, const InvalidArgument& e) {
+  const std::string index = "problems[" + std::to_string(i) + "]";
+  const std::string reason = std::string(e.what()).substr(e.name().size() + 2);
+  if (e.name().rfind("law", 0) == 0) throw InvalidArgument(e.name(), reason + " (" + index + ")");
+  throw InvalidArgument(index + "." + e.name(), reason);
+}
+}  // namespace
+
+template <int N, int C>
+void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw& law,
+                 std::span<ImpactResultT<N, C>> results, const SolverOptions& options,
+                 const BatchOptions& batch) {
+  batch.validate();
+  options.validate();
+  const std::size_t count = problems.size();
+  if (results.size() != count)
+    throw InvalidArgument("results", "needs one entry per problem (" + std::to_string(count) +
+                                         "), got " + std::to_string(results.size()));
+  // Contiguous blocks dealt round-robin: block b to worker b mod n, in order. A run of hard
+  // problems (NLopt) is shared among the workers, and each result is written by the same worker
+  // from one batch to the next, so a reused heap-stored result is freed by the thread that made
+  // it (no allocator lock taken across threads). solve_impact validates each problem; the first
+  // invalid one by index is reported once every problem before it has been tried.
+  const std::size_t block = std::clamp<std::size_t>(count / 512, 1, 64);
+  const int n = workers_for(count, batch.threads);
+  std::atomic<std::size_t> first_bad{count};
+  std::exception_ptr unexpected;
+  std::atomic<bool> broken{false};
+  auto work = [&](int worker) {
+    const std::size_t stride = block * static_cast<std::size_t>(n);
+    for (std::size_t begin = block * static_cast<std::size_t>(worker); begin < count;
+         begin += stride) {
+      if (begin > first_bad.load(std::memory_order_relaxed) || broken.load()) return;
+      const std::size_t end = std::min(begin + block, count);
+      for (std::size_t i = begin; i < end; ++i) {
+        try {
+          results[i] = solve_impact(problems[i], law, options);
+        } catch (const InvalidArgument&) {
+          std::size_t seen = first_bad.load();
+          while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
+          }
+          return;
+        } catch (...) {  // not expected; kept so that no worker ends the program
+          if (!broken.exchange(true)) unexpected = std::current_exception();
+          return;
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(static_cast<std::size_t>(n - 1));
+  for (int t = 1; t < n; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& t : pool) t.join();
+  if (unexpected) std::rethrow_exception(unexpected);
+  if (const std::size_t i = first_bad.load(); i < count) {
+    try {
+      (void)solve_impact(problems[i], law, options);
+    } catch (const InvalidArgument& e) {
+      refuse(i, e);
+    }
+  }
+}
+
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_batch(std::span<const ImpactProblemT<N, C>> problems,
+                                             const ImpactLaw& law, const SolverOptions& options,
+                                             const BatchOptions& batch) {
+  std::vector<ImpactResultT<N, C>> results(problems.size());
+  solve_batch(problems, law, std::span<ImpactResultT<N, C>>(results), options, batch);
+  return results;
+}
+
+template std::vector<ImpactResult> solve_batch(std::span<const ImpactProblem>, const ImpactLaw&,
+                                               const SolverOptions&, const BatchOptions&);
+template std::vector<SmallImpactResult> solve_batch(std::span<const SmallImpactProblem>,
+                                                    const ImpactLaw&, const SolverOptions&,
+                                                    const BatchOptions&);
+template void solve_batch(std::span<const ImpactProblem>, const ImpactLaw&, std::span<ImpactResult>,
+                          const SolverOptions&, const BatchOptions&);
+template void solve_batch(std::span<const SmallImpactProblem>, const ImpactLaw&,
+                          std::span<SmallImpactResult>, const SolverOptions&, const BatchOptions&);
+
+}  // namespace fremond

@@ -1,0 +1,134 @@
+// solve_batch: each result is solve_impact's to the last bit, whatever the number of threads; the
+// momentum balance M (q̇_E − q̇_A) = W_N P_N + W_T P_T holds for every answer; an invalid problem
+// is named by its index and nothing is returned.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fremond/fremond.hpp"
+#include "support/fixtures.hpp"
+
+namespace fremond {
+namespace {
+
+// Bars at random angles and velocities, every one approaching at its lower end.
+std::vector<ImpactProblem> bars(int count, bool both_ends) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(0.05, 1.5), speed(-3.0, 3.0);
+  std::vector<ImpactProblem> out;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d qdot(speed(rng), -1.0 - std::fabs(speed(rng)), speed(rng));
+    out.push_back(fixtures::bar(angle(rng), qdot, both_ends));
+  }
+  return out;
+}
+
+void expect_identical(const ImpactResult& a, const ImpactResult& b, int i) {
+  SCOPED_TRACE("problem " + std::to_string(i));
+  EXPECT_EQ(a.solver.status, b.solver.status);
+  EXPECT_EQ(a.solver.residual, b.solver.residual);
+  EXPECT_EQ(a.solver.attempt_count, b.solver.attempt_count);
+  EXPECT_EQ(a.qdot_E, b.qdot_E);
+  EXPECT_EQ(a.P_N, b.P_N);
+  EXPECT_EQ(a.P_T, b.P_T);
+  EXPECT_EQ(a.energy_change, b.energy_change);
+  EXPECT_EQ(a.admissibility.admissible, b.admissibility.admissible);
+}
+
+TEST(SolveBatch, EachResultIsSolveImpactsToTheLastBitOnOneOrTwoThreads) {
+  const PowerPotential phi(4.0, 3.0);
+  for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.9, 1.0), ImpactLaw::poisson(0.5),
+                               ImpactLaw::fremond_coulomb(phi, 0.3)}) {
+    SCOPED_TRACE(law.describe());
+    const std::vector<ImpactProblem> problems = bars(300, true);
+    std::vector<ImpactResult> one_by_one;
+    for (const auto& p : problems) one_by_one.push_back(solve_impact(p, law));
+    for (int threads : {1, 2, 5}) {
+      const std::vector<ImpactResult> batch = solve_batch(problems, law, {}, {threads});
+      ASSERT_EQ(batch.size(), problems.size());
+      for (std::size_t i = 0; i < problems.size(); ++i)
+        expect_identical(batch[i], one_by_one[i], static_cast<int>(i));
+    }
+  }
+}
+
+TEST(SolveBatch, SmallProblemsGiveTheSameAnswersWithoutHeapResults) {
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 1.0);
+  const std::vector<ImpactProblem> problems = bars(200, true);
+  std::vector<SmallImpactProblem> small;
+  for (const auto& p : problems) small.push_back(to_small(p));
+  const std::vector<ImpactResult> heap = solve_batch(problems, law, {}, {2});
+  const std::vector<SmallImpactResult> stack = solve_batch(small, law, {}, {2});
+  ASSERT_EQ(stack.size(), heap.size());
+  for (std::size_t i = 0; i < heap.size(); ++i)
+    expect_identical(to_dynamic(stack[i]), heap[i], static_cast<int>(i));
+}
+
+TEST(SolveBatch, IntoTheCallersResultsWhichMustFit) {
+  const ImpactLaw law = ImpactLaw::poisson_coulomb(0.5, 0.4);
+  const std::vector<ImpactProblem> problems = bars(100, true);
+  std::vector<ImpactResult> results(problems.size());
+  for (int reuse = 0; reuse < 2; ++reuse) {  // the second batch overwrites the first's answers
+    solve_batch(std::span<const ImpactProblem>(problems), law, std::span(results), {}, {2});
+    for (std::size_t i = 0; i < problems.size(); ++i)
+      expect_identical(results[i], solve_impact(problems[i], law), static_cast<int>(i));
+  }
+  std::vector<ImpactResult> short_list(problems.size() - 1);
+  try {
+    solve_batch(std::span<const ImpactProblem>(problems), law, std::span(short_list));
+    FAIL() << "99 results were accepted for 100 problems";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "results") << e.what();
+  }
+}
+
+TEST(SolveBatch, EveryAnswerBalancesMomentum) {
+  const std::vector<ImpactProblem> problems = bars(500, false);
+  const std::vector<ImpactResult> batch =
+      solve_batch(problems, ImpactLaw::newton_coulomb(0.9, 1.0));
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    const ImpactProblem& p = problems[i];
+    const ImpactResult& r = batch[i];
+    ASSERT_EQ(r.solver.status, SolverStatus::converged) << i;
+    const Eigen::Vector3d lhs = p.M * (r.qdot_E - p.qdot_A);
+    const Eigen::Vector3d rhs = p.W_N * r.P_N + p.W_T * r.P_T;
+    EXPECT_LE((lhs - rhs).cwiseAbs().maxCoeff(), 1e-13 * (1.0 + rhs.cwiseAbs().maxCoeff())) << i;
+    EXPECT_GE(r.D_NE(0), -1e-12) << i;  // no penetration after the impact
+  }
+}
+
+TEST(SolveBatch, TheFirstInvalidProblemIsNamedByItsIndex) {
+  std::vector<ImpactProblem> problems = bars(400, false);
+  problems[7].M(2, 2) = -1.0;   // not positive definite
+  problems[300].M(0, 0) = NAN;  // a later one, not the first
+  try {
+    (void)solve_batch(problems, ImpactLaw::newton(0.5), {}, {2});
+    FAIL() << "an invalid problem was solved";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "problems[7].M") << e.what();
+  }
+}
+
+TEST(SolveBatch, ALawThatDoesNotFitAProblemNamesBoth) {
+  std::vector<ImpactProblem> problems = bars(3, false);
+  problems.push_back(bars(1, true).front());  // two contacts: the law fits this one only
+  try {
+    (void)solve_batch(problems, ImpactLaw::newton(PerContact{0.5, 0.6}), {}, {1});
+    FAIL() << "a law of two contacts was applied to one";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "law.e") << e.what();
+    EXPECT_NE(std::string(e.what()).find("problems[0]"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SolveBatch, RefusesANegativeThreadCountAndAcceptsNoProblems) {
+  EXPECT_THROW((void)solve_batch(bars(2, false), ImpactLaw::newton(0.5), {}, {-1}),
+               InvalidArgument);
+  EXPECT_TRUE(solve_batch(std::vector<ImpactProblem>{}, ImpactLaw::newton(0.5)).empty());
+}
+
+}  // namespace
+}  // namespace fremond
