@@ -70,13 +70,12 @@ namespace contact_space_detail {
 /// M⁻¹W and G for a diagonal M = diag(m) (a body in principal axes: the bar, a point mass, the
 /// plate): M⁻¹W is W_ij/m_i, one rounding per entry where L⁻ᵀL⁻¹W takes a square root's and two
 /// divisions', and G_jk = Σ_i (W_ij/m_i) W_ik, each pair summed once (exactly symmetric). The
-/// factor's square roots are then off the critical path: a third of the bar's contact space was
-/// waiting on them. Both paths and both storages use this one loop, so that a problem's G has the
+/// factor's square roots are then off the critical path (a third of the bar's contact space would
+/// wait on them). Both paths and both storages use this one loop, so that a problem's G has the
 /// same bits wherever it is stored: a singular G (two contacts on one dof) leaves the answer
-/// sensitive to them at the rounding floor, and the heap-stored two-body copy of a one-dof problem
-/// (6 contacts) was 1.9e-7 of the velocities from the stack-stored original (stress fremond seed
-/// 41). `column[j]` is row j's column of W (n entries), `M` the mass matrix's column-major data;
-/// N > 0 fixes n at compile time. Returns 0 unless an entry is ∞ or NaN (0·∞ = NaN).
+/// sensitive to them at the rounding floor (different bits can move the velocities by 1e-7 of
+/// their scale). `column[j]` is row j's column of W (n entries), `M` the mass matrix's column-major
+/// data; N > 0 fixes n at compile time. Returns 0 unless an entry is ∞ or NaN (0·∞ = NaN).
 template <int N, int MaxDofs, int MaxContacts>
 double diagonal_inverse_and_delassus(const double* const* column, const double* M, int n, int r,
                                      ContactSpaceT<MaxDofs, MaxContacts>& cs) {

@@ -37,7 +37,7 @@ double non_finite_probe(const Eigen::PlainObjectBase<Derived>& m) {
 
 /// True only when validate_shapes' tests below all pass, in one pass over the data without
 /// building any message: every solve validates its problem, and on a planar body the test by test
-/// path (each its own loop) cost as much as a third of the law's own solve. False sends the caller
+/// path (each its own loop) costs as much as a third of the law's own solve. False sends the caller
 /// through those tests, which then name the first failure; false where they would all pass costs
 /// only time.
 template <int N, int C>

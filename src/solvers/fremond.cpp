@@ -354,8 +354,8 @@ void free_rows_moving_bounds(const FremondRowsT<N, C>& rows, const Rows<N, C>& P
 /// contacts) the percussions can move along W's null space without moving any velocity or failing
 /// the stopping test. Without friction that changes no velocity; under Coulomb it moves the bounds
 /// and, where a contact slides or could, the tangential answer: on that plate (p = 1.2, k = 1e6,
-/// μ = 0.3) the answer passed the law's test with P_N of mixed signs and slid 50 % off the quad
-/// reference, whose P_N are all positive. True when such a row's freedom moves its contact's
+/// μ = 0.3) an answer with P_N of mixed signs passes the law's test and slides 50 % off the exact
+/// one, whose P_N are all positive. True when such a row's freedom moves its contact's
 /// tangential velocity (2τ_T μ u) by more than the limit (free_rows_moving_bounds, whose output
 /// this takes) and the free rows' normals are dependent. A reaction that acts, or a normal law
 /// set-valued at z_N (P_N free in exact arithmetic too), is the law's own non-uniqueness and is
@@ -387,11 +387,9 @@ Parallel parallelism(const X& x, const Y& y, double relative) {
 /// The largest normal entry of a unit null vector of the sticking mode's columns for which
 /// sticking_tied_below_rounding looks at the tie: nearly parallel tangents, whose lever arms
 /// differ by up to about that much. Ties of order one are the steep normal laws'
-/// (coulomb_mode_undetermined). It was 1e-8, the bar of the first such cases tilted by 1e-11 rad;
-/// the same bar tilted by 6.7e-7 rad (normal entries 4.8e-7) at speeds of 1.3e6 converged with both
-/// ends sticking where the exact answer slides one (percussions 3e5 off, velocities 3e-11 off:
-/// fremond_coulomb #4109 of stress seed 23). Whether the tie is below rounding is the test on its
-/// terms; on seeds 7, 23 and 41 (30,000 problems) 1e-3 changes no other answer's status.
+/// (coulomb_mode_undetermined). A bar tilted by 6.7e-7 rad (normal entries 4.8e-7) at speeds of
+/// 1.3e6 can pass with both ends sticking where the exact answer slides one, so the bar must lie
+/// well above such entries; whether the tie is below rounding is then the test on its own terms.
 constexpr double kTieLeverArm = 1e-3;
 
 /// Sticking contacts tied to the normal rows through a dependence of their columns whose normal
@@ -505,13 +503,13 @@ bool coulomb_mode_undetermined(const FremondRowsT<N, C>& rows, const Rows<N, C>&
 }
 
 /// Two contacts held by their reactions whose normals are parallel to rounding (every 2×2 minor
-/// below 1e-10 of |n_k||n_l|) but not exactly (some minor not exactly zero: the bar upright on
-/// both ends, θ = π/2 in double, normals 6e-17 apart). The exact data then fix how the two
-/// reactions share their percussion through terms 1e-33 of G's entries, which double precision
-/// rounds to parallel normals, whose law has a continuum of answers; under Coulomb the bounds
-/// μ|P_N|, so whether each contact sticks or slides and the tangential answer, depend on that
-/// share (0.9 of the velocity scale in the stress program's worst case). Exactly parallel normals
-/// are the law's own continuum, answered as converged and not unique.
+/// below 1e-10 of |n_k||n_l|) but not exactly (some minor not exactly zero: the bar upright on both
+/// ends, θ = π/2 in double, normals 6e-17 apart). The exact data then fix how the two reactions
+/// share their percussion through terms 1e-33 of G's entries, which double precision rounds to
+/// parallel normals, whose law has a continuum of answers; under Coulomb the bounds μ|P_N|, so
+/// whether each contact sticks or slides and the tangential answer, depend on that share (by up to
+/// the order of the velocity scale). Exactly parallel normals are the law's own continuum, answered
+/// as converged and not unique.
 template <int N, int C>
 bool reactions_on_normals_parallel_to_rounding(const FremondRowsT<N, C>& rows,
                                                const ImpactResultT<N, C>& out) {
@@ -540,10 +538,8 @@ bool reactions_on_normals_parallel_to_rounding(const FremondRowsT<N, C>& rows,
 /// rows do not move its normal ones; where they do, semismooth Newton on the whole law follows,
 /// alternating with the split until its answer keeps the condition. Only power laws, fixed
 /// obstacles (nᵀw_F = 0) and an answer that passes the law's test again: true then, with P
-/// replaced; else false and P untouched. The plate on four points, p = 1.2, k = 1e6: within
-/// 1e-10 of the quad reference where the plain answer was 50 % off; every plate of 3 and 4
-/// contacts with p from 1.01 to 3, k from 1e-6 to 1e6 and speeds from 1e-10 to 1e6 that the
-/// reference solves, within 1e-10.
+/// replaced; else false and P untouched. On the plate on four points (p = 1.2, k = 1e6) the split
+/// answer is within 1e-10 of the exact one where the plain answer is 50 % off.
 template <int N, int C>
 bool split_normal_percussions(const FremondRowsT<N, C>& rows, Rows<N, C>& P,
                               const ImpactResultT<N, C>& out, const SolverOptions& opt) {
@@ -736,13 +732,12 @@ bool split_normal_percussions(const FremondRowsT<N, C>& rows, Rows<N, C>& P,
   return false;
 }
 
-/// One Gauss–Seidel sweep after convergence: each row then satisfies its own law exactly given
-/// the others (a row in a dead zone or a stick zone gets exactly zero, not Newton's last rounding).
-/// Every row, smooth ones included: skipping those (0 < ∂prox/∂x < 1) moved the velocities of
-/// RegressionFremond.CoulombConeIsChecked… (μ = 1e8, M of entries 1e11) by 3e-7, where they
-/// must stay at q̇_A to 1e-13.
-/// Kept only if the answer still passes the stopping test; then `o` gets its plain residual, so
-/// that the driver need not evaluate the law once more.
+/// One Gauss–Seidel sweep after convergence: each row then satisfies its own law exactly given the
+/// others (a row in a dead zone or a stick zone gets exactly zero, not Newton's last rounding).
+/// Every row, smooth ones included: with μ = 1e8 and M of entries 1e11, skipping those (0 <
+/// ∂prox/∂x < 1) moves velocities by 3e-7 that must stay at q̇_A to 1e-13
+/// (RegressionFremond.CoulombConeIsChecked…). Kept only if the answer still passes the stopping
+/// test; then `o` gets its plain residual, so that the driver need not evaluate the law once more.
 template <int N, int C>
 void final_row_sweep(const FremondRowsT<N, C>& rows, Rows<N, C>& P, double target,
                      MethodOutcome& o) {
@@ -792,11 +787,10 @@ double velocity_space_residual(const ImpactProblemT<N, C>& pb, const FremondRows
 /// Iterative refinement of an answer that the stopping test accepted at the contact space's
 /// rounding floor (criterion `rounding`): Newton steps J ΔP = −R with R from the velocities
 /// themselves (velocity_space_residual) and J the law's generalized Jacobian in contact space,
-/// while that residual decreases (at most 4). Where the terms of GP cancel, the floor is
-/// ε|G||P| ≫ ε|z|, and the answer there was off by up to that floor (a light rotor, mass ratio
-/// 1e6: q̇_E 2.3e-9 from a 50-digit reference, D_NE = −6e-3 where the reaction holds it at 0);
-/// the refined one is at the rounding of the velocities. Kept only when the law's own stopping
-/// test still accepts it. Returns true when P was changed.
+/// while that residual decreases (at most 4). Where the terms of GP cancel, the floor is ε|G||P| ≫
+/// ε|z|, and an answer there is off by up to that floor (a light rotor, mass ratio 1e6: D_NE =
+/// −6e-3 where the reaction holds it at 0); the refined one is at the rounding of the velocities.
+/// Kept only when the law's own stopping test still accepts it. Returns true when P was changed.
 template <int N, int C>
 bool refine_in_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT<N, C>& rows,
                               Rows<N, C>& P, double target) {
@@ -838,21 +832,19 @@ bool refine_in_velocity_space(const ImpactProblemT<N, C>& pb, const FremondRowsT
 }
 
 /// Frémond + Coulomb on two to four contacts: Coulomb's tangential modes enumerated. Each mode
-/// (stick, sliding forwards, backwards per contact) makes the tangential rows smooth, and Newton
-/// on them converges where Newton on Coulomb's law itself stalls at a kink of ‖R‖²: a block
-/// landing flat on both corners, one sticking, the other sliding at 2e-7 of the velocity scale.
-/// The kinks a mode leaves are held fixed too: each normal row's branch (the law's own row
-/// first, then free or with its reaction active, FremondRowsT::fixed_normal) and the sign σ of
-/// P_N in a sliding contact's bound μσP_N (FremondRowsT::fixed_signs). Newton stopped at them
-/// short of answers that exist: random bodies with μ up to 2 left 1 % of two- and three-contact
-/// problems `stalled` (a contact sliding with its reaction active, or pulling with P_N < 0), and
-/// 2.6 % of four-contact ones. The modes and signs of `start` (its mean tangential velocities,
-/// stick where |z_T| ≤ 1e-8 v_scale; the signs of its P_N) come first, then the other modes by the
-/// number of contacts changed, then the flipped signs; Newton on a mode starts from `start`, then
-/// from zero (stress fremond_coulomb seed 23: 67 more of 30,000 converge). A mode's answer is
-/// taken when it passes the stopping test of the law itself (with |P_N|: an answer whose P_N has
-/// the other sign is no answer). Returns false, P untouched, when no mode does (ill-posed splits
-/// included: two stick rows with the same W_T give Newton one split of many).
+/// (stick, sliding forwards, backwards per contact) makes the tangential rows smooth, and Newton on
+/// them converges where Newton on Coulomb's law itself stalls at a kink of ‖R‖²: a block landing
+/// flat on both corners, one sticking, the other sliding at 2e-7 of the velocity scale. The kinks a
+/// mode leaves are held fixed too: each normal row's branch (the law's own row first, then free or
+/// with its reaction active, FremondRowsT::fixed_normal) and the sign σ of P_N in a sliding
+/// contact's bound μσP_N (FremondRowsT::fixed_signs): Newton stops at them short of answers that
+/// exist (a contact sliding with its reaction active, or pulling with P_N < 0). The modes and signs
+/// of `start` (its mean tangential velocities, stick where |z_T| ≤ 1e-8 v_scale; the signs of its
+/// P_N) come first, then the other modes by the number of contacts changed, then the flipped signs;
+/// Newton on a mode starts from `start`, then from zero, which reaches answers the start misses. A
+/// mode's answer is taken when it passes the stopping test of the law itself (with |P_N|: an answer
+/// whose P_N has the other sign is no answer). Returns false, P untouched, when no mode does
+/// (ill-posed splits included: two stick rows with the same W_T give Newton one split of many).
 template <int N, int C>
 bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& start, Rows<N, C>& P,
                              const SolverOptions& opt, MethodOutcome& out) {
@@ -883,8 +875,7 @@ bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& s
   // Normal branches: the law's own rows first (code −1), then each contact free or with its
   // reaction active (bit k of the code set: contact k's reaction active).
   // On four contacts the signs of P_N stay the start's: 81 modes × 17 branches already, and the
-  // flips found no more answers there (random bodies, 5,000 four-contact problems: 1 of 132
-  // stalled left either way, at a fifth of the cost).
+  // flips would multiply the cost by five without reaching more answers.
   const int max_flipped = a == 4 ? 0 : a;
   for (int branches = -1; branches < (1 << a); ++branches) {
     for (int k = 0; k < a; ++k)

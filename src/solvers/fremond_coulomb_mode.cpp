@@ -356,12 +356,11 @@ class CoulombModes {
   /// sticking tangent), and z_E = W_Eᵀq̄ + w_E gives, exactly for any vector n and the mode's exact
   /// q̄*, Σ n_t (t_t − w_t) = (W_E n)ᵀ q̄*. With W_E n at rounding (its columns' dependence), the
   /// left side must be that small too, or the mode has no root. The bar tilted by 3.6e-12 rad on
-  /// both ends (tangents' lever arms ±δ): both reactions and both tangents sticking ask
-  /// 2δ(D_NA,1 − D_NA,2)/2 = 0, which the data break by 1e-26 against |W_E n|·|q̄| = 3e-28, and the
-  /// mode's answer was 3e-13 of the velocities off every exact solution (fremond_coulomb #3582 of
-  /// stress seed 41). q̄* is not known before the mode is solved: |q̄*|₁ is taken as at most four
-  /// times the larger of |q̇_A|₁ and the start's |q̄|₁ (a dissipative impact does not speed the
-  /// body up, in M's norm); a mode refused here is left to the enumeration's other modes.
+  /// both ends (tangents' lever arms ±δ): both reactions and both tangents sticking ask 2δ(D_NA,1 −
+  /// D_NA,2)/2 = 0, which the data break by 1e-26 against |W_E n|·|q̄| = 3e-28: that mode's answer
+  /// is off every exact solution. q̄* is not known before the mode is solved: |q̄*|₁ is taken as at
+  /// most four times the larger of |q̇_A|₁ and the start's |q̄|₁ (a dissipative impact does not speed
+  /// the body up, in M's norm); a mode refused here is left to the enumeration's other modes.
   bool data_conditions_hold(const Mode& mode, const Rows& X) const {
     double q_size = -1.0;  // |q̄|₁ bound, computed for the first direction that needs it
     for (int c = 0; c < d_; ++c) {
@@ -506,7 +505,7 @@ class CoulombModes {
       // A z_T below ε² of the row's velocities (2^-104, 5e-32 relative) is taken as zero, where
       // sliding either way holds: beyond what a quad-precision reference resolves, and what the
       // law can mean (p = 1.01 puts these velocities near 1e-1000, where each direction of
-      // sliding is the exact answer of no contact mode, and every method stalled).
+      // sliding is the exact answer of no contact mode).
       const int row = a_ + j;
       double zt = z(row), floor = 0.0, log_scale = 0.0;
       const double row_scale = std::fabs(cs_.D_A(row)) + 0.5 * rows_.abs_GP(row, X);
@@ -575,8 +574,7 @@ bool solve_in_coulomb_mode(const ImpactProblemT<N, C>& pb, const FremondRowsT<N,
   const double P_size = std::max(P.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
   // Two starts: the answer, and the answer with its normal percussions made positive. A sliding
   // contact's bound μ|P_N| has a root of each sign of P_N, and Newton takes the one its start is
-  // nearer (q̇ × 1e3 of a problem where the first found the answer: P_N1 = −1.9e-3, which leaves
-  // the friction cone, where the answer has +1.8e-3).
+  // nearer: a start with P_N < 0 can end outside the friction cone where the answer has P_N > 0.
   Rows pushing = P;
   for (int j = 0; j < a; ++j) pushing(j) = std::fabs(P(j));
   const bool one_start = pushing == P;

@@ -100,12 +100,11 @@ MethodOutcome semismooth_newton(const FremondRowsT<N, C>& rows,
         have_newton = true;
       }
     }
-    // J singular but J ΔP = −R consistent (two contacts sticking with one tangent: equal rows
-    // with equal residuals): a solution from a rank-revealing LU is Newton's step on the rows J
-    // has, and keeps its quadratic convergence. Levenberg–Marquardt, damped by ‖R‖ far from the
-    // answer, crawled there: the plate touching with four contacts under Coulomb took 30 steps to
-    // a kink, then the fallbacks, 1 ms in all against 6 steps. An inconsistent system is left to
-    // Levenberg–Marquardt.
+    // J singular but J ΔP = −R consistent (two contacts sticking with one tangent: equal rows with
+    // equal residuals): a solution from a rank-revealing LU is Newton's step on the rows J has, and
+    // keeps its quadratic convergence. Levenberg–Marquardt, damped by ‖R‖ far from the answer,
+    // crawls there (the plate touching with four contacts under Coulomb: 30 steps to a kink, then
+    // the fallbacks, against 6 steps). An inconsistent system is left to Levenberg–Marquardt.
     if (!have_newton) {
       if constexpr (N != Dynamic) {
         small_full_lu.compute(J);

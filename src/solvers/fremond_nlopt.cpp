@@ -12,8 +12,8 @@
 // A library call must return, and return nothing that is not finite:
 //  - SLSQP only, also with Coulomb. MMA (and CCSAQ, which shares its inner loop) solve a dual
 //    subproblem per iteration whose inner loop has no bound of its own; on the Coulomb epigraph
-//    (objective linear in t, constraints ±z_T − t ≤ 0) it did not return on ~11% of random
-//    Frémond + Coulomb problems (tests/unit/regression_fremond_test.cpp). Every SLSQP iteration
+//    (objective linear in t, constraints ±z_T − t ≤ 0) it may never return
+//    (tests/unit/regression_fremond_test.cpp). Every SLSQP iteration
 //    evaluates the objective, and its LSQ subproblem stops after 3n iterations, so the evaluation
 //    budget bounds it.
 //  - The objective and the constraints stop NLopt (nlopt_force_stop) as soon as a value or a
@@ -242,7 +242,7 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   // follows from P beyond its rounding ε Σ|M⁻¹W||P| (0.2 of it there). Such an iterate is not
   // an answer. The bound is 1e-8 of the velocities, not tighter: a body with cond(M) = 3e5 stopped
   // by three contacts has percussions whose terms cancel by 1e5 (a rounding of 3e-11), and with
-  // 1e-11 no iterate of such a problem was usable; the law's residual decides the rest.
+  // 1e-11 no iterate of such a problem is usable; the law's residual decides the rest.
   auto resolved = [&](const VectorX& Pc) {
     if (Pc.size() != r || !Pc.allFinite()) return false;
     const VectorX dq = cs.MinvW * Pc;
@@ -305,12 +305,11 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     const double plain = law_residual(Pout);
     // More contacts at rest (D_NE = 0) than W's rank: the percussions that make 2Mu are a family,
     // and the law takes the one whose reactions are ≥ 0 (P_j ≥ −φ'(z_j)), which the minimum-norm
-    // one above need not be (three contacts on a body of 2 dofs with p = 1.0001: no iterate was
-    // usable and every method failed). Without Coulomb those rows are the only free ones, and that
-    // choice is a nonnegative least-squares problem in the metric of M⁻¹: with P_f = b_f + s,
-    // s ≥ 0 ⊥ G_ff s − W_fᵀM⁻¹(rhs − W·known − W_f b_f) ≥ 0, a symmetric positive semidefinite
-    // LCP, which Lemke solves (a ray: 2Mu is not reached with reactions ≥ 0). Kept where its
-    // residual is the lower.
+    // one above need not be (three contacts on a body of 2 dofs with p = 1.0001: no iterate is
+    // usable otherwise). Without Coulomb those rows are the only free ones, and that choice is a
+    // nonnegative least-squares problem in the metric of M⁻¹: with P_f = b_f + s, s ≥ 0 ⊥ G_ff s −
+    // W_fᵀM⁻¹(rhs − W·known − W_f b_f) ≥ 0, a symmetric positive semidefinite LCP, which Lemke
+    // solves (a ray: 2Mu is not reached with reactions ≥ 0). Kept where its residual is the lower.
     if (rows.coulomb || free_rows.size() < 2 || plain == 0.0) return plain;
     const int f = static_cast<int>(free_rows.size());
     MatrixX Wf(n, f);
@@ -412,9 +411,9 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
   o.criterion = StopCriterion::nlopt;
   typename FremondRowsT<N, C>::Rows zr, R;
   if (P_best.size() != r) {
-    // No finite (and resolved) iterate at all: the given percussion if it is one, else none
-    // (q̇_E = q̇_A). Either way q̇_E follows from P (q̇_E = q̇_A + M⁻¹WP, the stress invariant)
-    // and nothing non-finite leaves the library.
+    // No finite (and resolved) iterate at all: the given percussion if it is one, else none (q̇_E =
+    // q̇_A). Either way q̇_E follows from P (q̇_E = q̇_A + M⁻¹WP) and nothing non-finite leaves the
+    // library.
     if (given_usable)
       P = P_given;
     else

@@ -11,9 +11,8 @@
 // Why: in contact space one dof under several rows makes G of rank one, and a steep potential
 // makes percussions 1e11 times the velocities whose terms of G P cancel (one contact on a moving
 // obstacle, a dead zone of k = 1.3e5, q = 3.5 far outside its width): Newton, the splitting and
-// NLopt all stalled, and the best of them returned q̇_E = +3146 against the exact −3159 (stress
-// fremond_viscous #233 of seed 7). The velocities are what this solve gets right whatever the
-// percussions' scale; the percussions follow from them row by row.
+// NLopt can all stall there, with velocities of the wrong sign. The velocities are what this solve
+// gets right whatever the percussions' scale; the percussions follow from them row by row.
 #include <algorithm>
 #include <cmath>
 #include <limits>

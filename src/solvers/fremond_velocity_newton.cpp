@@ -9,9 +9,9 @@
 //
 // Why: in contact space the law has one unknown per row, and with more rows than degrees of
 // freedom G = WᵀM⁻¹W is singular. Semismooth Newton's matrix there, J = (I − D) G/2 + D T, is then
-// singular up to the diagonal D T, which a stiff potential makes small: the plate lying flat on 32
-// contacts (3 dofs, p = 3) stalled at a kink of ‖R‖ after 20 steps, and the splitting took 4,231
-// sweeps, 5 ms. In velocity space the same answer takes 12 steps of 3 × 3, 21 µs.
+// singular up to the diagonal D T, which a stiff potential makes small: on the plate lying flat on
+// 32 contacts (3 dofs, p = 3) Newton stalls at a kink of ‖R‖ and the splitting needs thousands of
+// sweeps (milliseconds), where velocity space takes 12 steps of 3 × 3 (tens of µs).
 //
 // φ'' is not part of a potential's interface; its prox derivative gives it: at x = z + τ φ'(z) the
 // prox returns z, and its derivative there is 1/(1 + τ φ''(z)). A derivative 0 (a kink: p < 2 at
@@ -56,9 +56,8 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
   const double target = opt.tolerance * cs.v_scale;
   // The law's curvature cap: a prox derivative below 1e-12 is read as 1e-12 (φ'' ≤ 1e12/τ).
   constexpr double kMinDerivative = 1e-12;
-  // A fast path, with the contact-space methods behind it: every answer it found on the stress
-  // problems (seed 41, 3,000 each of fremond and fremond_viscous: 88 of 526 tries) took at most
-  // 28 steps; past that it was spending time on an answer that needs a reaction, or on extreme
+  // A fast path, with the contact-space methods behind it: the answers it reaches take fewer than
+  // 30 steps; past that it is spending time on an answer that needs a reaction, or on extreme
   // data (p near 1, k from 1e-6 to 1e6).
   constexpr int kMaxIterations = 30;
   Rows z(r), s(r), h(r), zc(r), R(r), zt(r), st(r), zx(r), sx(r);
@@ -66,8 +65,8 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
   Mat H(n, n);
   // The start: u from the P given (u = M⁻¹ W P / 2) or u = 0 (no percussion), whichever has the
   // lower F. The decoupled guess, each row as if it held the body alone, overshoots by about the
-  // number of rows that share a direction: on the plate with 32 contacts F was 1e6 times its
-  // value at u = 0, and Newton spent 10 steps coming back.
+  // number of rows that share a direction: on the plate with 32 contacts F is 1e6 times its value
+  // at u = 0, which costs Newton 10 steps to come back.
   u = 0.5 * (cs.MinvW * P);
   // F at u, with z and φ'(z) into zz and ss; +∞ where a value is not finite.
   auto evaluate = [&](const Vec& uu, Rows& zz, Rows& ss) {
@@ -93,8 +92,7 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
   }
   // The first answer that passes the stopping test gets one more step (`polish`), kept if it
   // passes too: the test accepts 1e-13 of the velocities, and Newton's next step, quadratic
-  // there, leaves rounding. Without it, tried on the flat bar dropped on both ends (4 rows on 3
-  // dofs, before this path was kept to more than 2n rows), the bar spun at 3e-14 of its speed
+  // there, leaves rounding. Without it a flat bar dropped on both ends spins at 3e-14 of its speed
   // where contact space's Newton keeps it at 1e-15 (SimulationBar.AFlatDropHits…).
   bool polishing = false;
   Rows P_done;
@@ -156,11 +154,10 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
       const Potential& phi = row_potential(rows, j);
       double d = 1.0;
       phi.prox(z(j) + tau * s(j), tau, &d);
-      // A steep row (τφ'' beyond 1e12: the dead zone with k = 1e6 on a rotor of inertia 1e-6,
-      // τ = G_jj/2 = 1.5e6) gives a derivative below the cap, and the capped φ'' was 7.5 times
-      // too small: Newton then crept instead of converging. Read again with the step τd, at
-      // which τdφ'' ≈ 1 and the derivative is about ½, far from the cap. Only a kink (d = 0)
-      // keeps the cap.
+      // A steep row (τφ'' beyond 1e12: the dead zone with k = 1e6 on a rotor of inertia 1e-6, τ =
+      // G_jj/2 = 1.5e6) gives a derivative below the cap, and the capped φ'' is 7.5 times too
+      // small: Newton creeps instead of converging. Read again with the step τd, at which τdφ'' ≈ 1
+      // and the derivative is about ½, far from the cap. Only a kink (d = 0) keeps the cap.
       if (d > 0.0 && d < kMinDerivative) {
         const double t = tau * d;
         double d2 = 1.0;
@@ -188,8 +185,7 @@ MethodOutcome velocity_space_newton(const ImpactProblemT<N, C>& pb, const Fremon
                   "velocity-space Newton: no descent direction (rounding)");
     // The unconstrained minimum reached (Newton's decrement at 1e-12 of F) with a contact
     // penetrating (D_NE < 0 beyond 1e-10 of the velocity scale): the answer needs a reaction,
-    // which F does not hold, and the contact-space methods take over. 191 of the 526 tries on the
-    // stress problems end so.
+    // which F does not hold, and the contact-space methods take over.
     if (-slope <= 1e-12 * f)
       for (int j = 0; j < cs.active; ++j)
         if (z(j) - rows.lower_bound(j) < -0.5e-10 * cs.v_scale)

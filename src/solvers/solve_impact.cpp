@@ -31,10 +31,9 @@ void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
 /// that its certificate refuses is not resolved in double precision, whatever the law's residual
 /// test said: it is kept and called stalled. The test accepts rows at their own rounding floor, and
 /// where percussions are 1e8 times the velocities on cond(M) = 5e7 those floors let velocities 5e-9
-/// off the exact ones through, with an energy gain (1e-8 of T_A) 5e6 times what ε·cond(M) allows
-/// (fremond_coulomb #3655 of stress seed 7). The classical laws are not held to it: Newton's and
-/// Poisson's with Coulomb create energy, which is the certificate's finding, not the solver's
-/// failure.
+/// off the exact ones through, with an energy gain (1e-8 of T_A) 5e6 times what ε·cond(M) allows.
+/// The classical laws are not held to it: Newton's and Poisson's with Coulomb create energy, which
+/// is the certificate's finding, not the solver's failure.
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
   if (!law.is_fremond() || out.solver.status != SolverStatus::converged ||

@@ -123,7 +123,7 @@ class CholeskyT {
 
   // The sizes of a few contacts' Delassus matrix and of a planar body's M (1 to 4) with their trip
   // counts known to the compiler, for the factor and both substitutions: the same operations in
-  // the same order (the same bits), without the loop bookkeeping that was half of a 2×2 factor's
+  // the same order (the same bits), without the loop bookkeeping that is half of a 2×2 factor's
   // instructions. f receives std::integral_constant<int, n>, or Dynamic beyond 4.
   template <class F>
   static decltype(auto) with_size(Eigen::Index n, F&& f) {

@@ -10,9 +10,9 @@
 //
 // The factors live in a plain row-major array, and the sizes 1 … 8 run loops of compile-time
 // length (with_size): with run-time bounds on the dynamic-size, 8×8-capacity Eigen storage, a
-// Newton iteration's factorisation, exact rcond and solve cost 1,700 instructions on the 4×4
-// Jacobian of the flat bar with friction (now 900) and 600 on the 2×2 one of the frictionless flat
-// bar (now 200). The sums of the 1-norms run in index order.
+// Newton iteration's factorisation, exact rcond and solve take about twice to three times the
+// instructions (4×4 Jacobian of the flat bar with friction: 1,700 against 900; the 2×2 one of the
+// frictionless flat bar: 600 against 200). The sums of the 1-norms run in index order.
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -147,7 +147,7 @@ class SmallLU {
 
   // ‖A⁻¹‖₁ from the columns A⁻¹ e_j, all at once (X = U⁻¹ L⁻¹ P, the column loop innermost, where
   // it vectorises) with the pivots' reciprocals: a threshold on rcond does not need the last bit
-  // that division gives, and one column at a time was a chain of n dependent divisions per
+  // that division gives, and one column at a time is a chain of n dependent divisions per
   // column: 27 % of the law stage on the flat bar with the viscous dead zone (regular 4×4
   // Jacobians, rcond 0.1, three steps). The same operations in the
   // same order for both storages, so that both give the same bits.

@@ -63,7 +63,7 @@ struct FremondRowsT {
   /// own (the power law's prox, then the reaction's bound D_NE ≥ 0), 1 the power law alone (no
   /// reaction), 2 the reaction active (D_NE = 0, P_N free). Each branch is smooth where the law's
   /// own row has the kink of the bound, at which Newton can stop short of an answer (two contacts,
-  /// one sliding with its reaction active: stalled at P_N = 2e-8 where the answer has P_N = 0.38).
+  /// one sliding with its reaction active: stopped at P_N = 2e-8 where the answer has P_N = 0.38).
   /// nullptr: 0.
   const signed char* fixed_normal = nullptr;
   /// The last prox of the normal potential of each normal row at the row's own step, with its
@@ -92,8 +92,8 @@ struct FremondRowsT {
     double gmax = 0.0;
     for (int j = 0; j < r; ++j) gmax = std::max(gmax, space.G(j, j));
     // τ_j from G twice, first for the largest, then for τ and the weights together: the weights
-    // from τ just stored entry by entry were reloaded two at a time, a store-forwarding stall that
-    // cost 2 % of the bar's whole law stage.
+    // from τ just stored entry by entry would be reloaded two at a time, a store-forwarding stall
+    // of 2 % of the bar's whole law stage.
     double tmax = r ? 0.0 : 1.0;
     for (int j = 0; j < r; ++j) tmax = std::max(tmax, row_tau(space.G(j, j), gmax));
     weight.resize(r);

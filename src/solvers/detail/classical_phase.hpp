@@ -250,12 +250,11 @@ struct GuessNorm {
 
 namespace semidefinite {
 
-// The body for r = R rows, R known to the compiler: on these few rows the loops unroll, and loop
-// bookkeeping was most of the work (the flat bar's 4 rows: 1,500 instructions with r a runtime
-// bound). The factorisation is the pivoted one of psd_null_space (small_null_space.hpp: same
-// diagonal pivoting, same 1e-10 threshold), written again on purpose: that one works on Eigen
-// storage of runtime size, up to 64 rows, and in that form (runtime sizes) this guess cost 115-128
-// ns on the flat bar against 88 ns here, the kernel's target being 100 ns.
+// The body for r = R rows, R known to the compiler: on these few rows the loops unroll, and with a
+// runtime bound the loop bookkeeping is most of the work. The factorisation is the pivoted one of
+// psd_null_space (small_null_space.hpp: same diagonal pivoting, same 1e-10 threshold), written
+// again on purpose: that one works on Eigen storage of runtime size, up to 64 rows, which puts
+// this guess above the kernel's target of 100 ns on the flat bar (about 120 ns against 88 ns).
 template <int R, int MaxC>
 bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phase<MaxC>::Rows& u,
                      GuessNorm* norm) {
@@ -370,10 +369,9 @@ bool closed_sticking(const Phase<MaxC>& ph, const Tolerances& tol, typename Phas
     if (ph.friction && std::fabs(u(a + i)) > ph.mu(i) * u(i) + ph.b0(i) + tol.p) return false;
   }
   // The mode holds only where −q is in G's range: every velocity of the phase vanishes, to the
-  // rounding of its own terms (and never beyond tol.v; a NaN fails the test). A looser test
-  // (tol.v alone) let answers of an ill-conditioned G through that the law's residual then
-  // refused: stress newton_coulomb seed 23, 50 more `stalled` of 17,000 solves where Lemke's
-  // answers had converged.
+  // rounding of its own terms (and never beyond tol.v; a NaN fails the test). tol.v alone would
+  // let through answers of an ill-conditioned G that the law's residual then refuses, where
+  // Lemke's would converge.
   // Column by column (G is column-major), every row's sum still in the order j = 0, 1, …: the
   // same bits as row by row, with the rows side by side in vector registers.
   constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
@@ -454,10 +452,9 @@ bool frictionless(const Phase<MaxC>& ph) {
 /// data q_i, or what the others' percussions make of it), and P_i = s_i / G_ii, the size of its
 /// percussion. Lemke's tolerances are relative to the largest right-hand side, and its artificial
 /// variable z₀ adds that size to every row: a contact approaching at 1e-10 beside one sliding at
-/// 1e6 lost its velocity to that rounding (P_N = 0 returned, D_NE = −1e-10 left in the answer; at
-/// 1e-6 beside 1e3, 4e-8 of P_N and 2e-7 of P_T), and so did a contact's normal row beside its own
-/// tangential row sliding at 1e6 (8e-12 of P_N). Each row divided by its scale, and each unknown by
-/// its own, give the same LCP with data of size 1 (w' = D w, z = S z'); the answer is scaled back.
+/// 1e6 loses its velocity to that rounding (P_N = 0, D_NE = −1e-10 left in the answer), and so does
+/// a contact's normal row beside its own tangential row sliding at 1e6. Each row divided by its
+/// own, give the same LCP with data of size 1 (w' = D w, z = S z'); the answer is scaled back.
 /// False (nothing to do) when the scales are within a factor 16: the problem is solved as it is,
 /// its pivots bit for bit.
 ///
@@ -495,7 +492,7 @@ bool row_scales(const Phase<MaxC>& ph, typename Phase<MaxC>::Rows& s,
   }
   if (smallest * 16.0 >= largest) return false;
   // A tangential percussion is also bounded by its cone: a contact sliding at 1e6 has P_T = μP_N
-  // (0.225), not 1e6 / G_TT, and in units of the latter its last bits were 1e-10 of P_T.
+  // (0.225), not 1e6 / G_TT, and in units of the latter its last bits would be 1e-10 of P_T.
   for (int i = 0; i < r; ++i) {
     P(i) = s(i) / compliance(i);
     if (i >= a) {
@@ -581,11 +578,9 @@ LcpStatus lemke_phase_in(const Phase<MaxC>& ph, const LemkeOptions& opt, bool sc
 
 /// lemke_phase_in, in the rows' own units where their scales differ (row_scales). With friction the
 /// LCP is not copositive-plus and whether Lemke's path ends on a ray depends on the units: a ray in
-/// the scaled units is tried again in the problem's. Lemke forced on stress poisson_coulomb seed 23
-/// (3,000 problems), against the unscaled method alone: 15 rays fewer, 2 more; of the automatic
-/// choice, 3 answers `stalled` that had converged (μ = 1e8 or G singular: several answers, and the
-/// path now reaches a farther one), none the other way; one of them (#316) converges again through
-/// the enumeration's retry (classical.cpp).
+/// the scaled units is tried again in the problem's. Scaling ends on rays less often; where the
+/// phase has several answers (μ = 1e8 or G singular) its path may reach a farther one, which the
+/// law's test can refuse; the enumeration's retry (classical.cpp) covers those.
 template <int MaxC>
 LcpStatus lemke_phase(const Phase<MaxC>& ph, const LemkeOptions& opt, typename Phase<MaxC>::Rows& u,
                       int& pivots) {
@@ -714,7 +709,7 @@ bool solve_mode(const Phase<MaxC, S>& ph, const ModeSystem<MaxC, S>& s, const To
   auto row_tol = [&](int j) -> S { return tol.p * s.C.row(j).cwiseAbs().maxCoeff(); };
   // The mode's inequalities at u, each to its tolerance and to the rounding of its own product:
   // percussions 1e10 times the velocities they make (cond(M) = 1e11, μ = 1e8) leave ε|C_j||u| in
-  // C_j u, far above the tolerance (a contact open at D_NE = 0 by 5e-6 of rounding was refused).
+  // C_j u, far above the tolerance (a contact open at D_NE = 0 to rounding would be refused).
   auto meets_inequalities = [&](const Rows& x) {
     for (int j = 0; j < s.m; ++j) {
       const S noise = 64 * kEps * (s.C.row(j).cwiseAbs().dot(x.cwiseAbs()) + std::fabs(s.g(j)));
@@ -723,12 +718,12 @@ bool solve_mode(const Phase<MaxC, S>& ph, const ModeSystem<MaxC, S>& s, const To
     return true;
   };
   // The rank tests on K with each row scaled to a largest entry of 1: its rows are in different
-  // units (velocity rows of G, percussion rows of 1 and μ), and a relative threshold on K as
-  // formed took G's own small directions (cond(M) = 1e11: G's singular values 1e-13 of a row's
-  // 1) for rounding beside a percussion row, or a row (1, μ = 1e8) hid the pivots of every other.
-  // The scale is capped at 2^1000: a row whose largest entry is subnormal (G = W²/M = 3e-309 with
-  // M = 7.7e307) has no finite reciprocal, and a row of ∞ sent the SVD below reading out of
-  // bounds (solver fuzz, Poisson on one dof).
+  // units (velocity rows of G, percussion rows of 1 and μ), and a relative threshold on K as formed
+  // took G's own small directions (cond(M) = 1e11: G's singular values 1e-13 of a row's 1) for
+  // rounding beside a percussion row, or a row (1, μ = 1e8) hid the pivots of every other. The
+  // scale is capped at 2^1000: a row whose largest entry is subnormal (G = W²/M = 3e-309 with M =
+  // 7.7e307) has no finite reciprocal, and a row of ∞ would send the SVD below reading out of
+  // bounds.
   VecS<kMaxRows, S> row_scale(r);
   for (int j = 0; j < r; ++j) {
     const S m = s.K.row(j).cwiseAbs().maxCoeff();
@@ -752,8 +747,8 @@ bool solve_mode(const Phase<MaxC, S>& ph, const ModeSystem<MaxC, S>& s, const To
   // Consistent to the tolerance; on the last-resort path below also to the rounding of the
   // product K u0 itself: where a consistent singular mode needs percussions 1e10 times the
   // velocities they make (cond(M) = 1e11), ε|K||u0| is far above the tolerance. (Not on the first
-  // test: with μ = 1e8 in a sliding row, ε|K||u0| let a truncated u0 that solves nothing through,
-  // and its answer displaced the exact ones of the near-singular modes.)
+  // test: with μ = 1e8 in a sliding row, ε|K||u0| lets a truncated u0 that solves nothing through,
+  // and its answer would displace the exact ones of the near-singular modes.)
   auto consistent = [&](const Rows& x, bool rounding) {
     const S allowed = std::max<S>(tol.v, tol.p * s.K.cwiseAbs().maxCoeff());
     const Rows Kx = s.K * x;
@@ -768,15 +763,14 @@ bool solve_mode(const Phase<MaxC, S>& ph, const ModeSystem<MaxC, S>& s, const To
   svd.setThreshold(1e-10);
   Rows u0 = svd.solve(rhs_s);
   if (!consistent(u0, false)) {
-    // Inconsistent to the rank test, but the singular values from 1e-14 to 1e-10 of the largest
-    // may be the data's own: cond(M) = 1e11 spreads G over eleven decades, and the mode's answer
-    // (every contact closed by q̇_E = −e q̇_A, percussions 1e10) lies along them. Refused, a mode
-    // with an answer was taken for one without, and the law said `no_solution` (the quad
-    // reference's linear program finds the answer; stress newton_coulomb #18741 of seed 23). K
-    // regular to that finer test (cond(K) from 1e10 to 1e14: two contacts closed, one sticking,
-    // cond(G) = 3e11) has the regular solution of K as formed. Either is the answer of data that
-    // near, taken where it meets the mode's inequalities and only as a last resort
-    // (enumerate_modes); the law's residual judges it as any other.
+    // Inconsistent to the rank test, but the singular values from 1e-14 to 1e-10 of the largest may
+    // be the data's own: cond(M) = 1e11 spreads G over eleven decades, and the mode's answer (every
+    // contact closed by q̇_E = −e q̇_A, percussions 1e10) lies along them. Refusing it takes a mode
+    // with an answer for one without, and the law would say `no_solution`. K regular to that finer
+    // test (cond(K) from 1e10 to 1e14: two contacts closed, one sticking, cond(G) = 3e11) has the
+    // regular solution of K as formed. Either is the answer of data that near, taken where it meets
+    // the mode's inequalities and only as a last resort (enumerate_modes); the law's residual
+    // judges it as any other.
     int fine = rank;
     while (fine < sv.size() && sv(fine) > kFine * smax) ++fine;
     if (fine == rank) return false;
@@ -914,7 +908,7 @@ void enumerate_modes(const Phase<MaxC, S>& ph, const Tolerances& tol,
       for (int i = 0; i < a; ++i) u(i) = std::max<S>(0, u(i));
       // A mode singular to the rank test but not to rounding is a last resort, taken only where
       // no mode has an answer by the rank test: on 4 contacts of 2 dofs with cond(M) = 1e10 such
-      // a mode's answer, 1e-6 off, took the place of the enumeration's exact one.
+      // a mode's answer, 1e-6 off, would take the place of the enumeration's exact one.
       if (near_singular) {
         keep(fallback, fallback_residual, u);
       } else {
@@ -1030,8 +1024,7 @@ bool minimum_norm(const Phase<MaxC>& ph, const Tolerances& tol,
   // sticking, and the set reached from u is a continuum within the tolerance only. Its
   // minimum-norm point then misses the law that u meets exactly; u is the answer, and whether it
   // is a single point is asked at u (y = 0), not taken for granted: such a u can lie on a
-  // one-sided continuum (36 of 2,085 Poisson + Coulomb answers of the semidefinite guess, stress
-  // seed 23, were called unique there before the guess gave its own verdict).
+  // one-sided continuum.
   if (clearly_more_exact(residual_in, phase_residual(ph, u), tol)) {
     u = u_in;
     y.setZero();

@@ -2,15 +2,14 @@
 // Iterative refinement of a classical law's answer in the contact mode it found (docs/laws.md).
 //
 // The exact methods solve each mode's linear equations with G = WᵀM⁻¹W as formed in double
-// precision, so their percussions are off by about cond(G)·ε relative. Where W_T is nearly
-// parallel to W_N (cond(G) = 1e6 on a moderate two-dof body) the percussions are 1e4 times the
-// velocities they produce, and that error reaches the velocities: a sticking contact kept
-// D_TE = 7e-12 beside D_A = 0.17 (the exact answer, to 50 digits, differs by 2.6e-11 in q̇_E),
-// which the law's residual rightly calls "stalled". Refinement removes it the classical way
-// (Higham, "Accuracy and Stability of Numerical Algorithms", §12.1): the mode's equations are
-// evaluated at the velocities of the answer computed in twice the precision (force W P by Dot2, the
-// solve with M refined), and the correction solves the same equations with the double-precision
-// G. Each step gains a factor cond(G)·ε.
+// precision, so their percussions are off by about cond(G)·ε relative. Where W_T is nearly parallel
+// to W_N (cond(G) = 1e6 on a moderate two-dof body) the percussions are 1e4 times the velocities
+// they produce, and that error reaches the velocities: a sticking contact can keep D_TE = 7e-12
+// beside D_A = 0.17, which the law's residual rightly calls "stalled". Refinement removes it the
+// classical way (Higham, "Accuracy and Stability of Numerical Algorithms", §12.1): the mode's
+// equations are evaluated at the velocities of the answer computed in twice the precision (force W
+// P by Dot2, the solve with M refined), and the correction solves the same equations with the
+// double-precision G. Each step gains a factor cond(G)·ε.
 //
 // The mode is read from the answer: a normal row is closed where its percussion (beyond the fixed
 // part) is positive, else held at that part; a tangential row sticks where its percussion is

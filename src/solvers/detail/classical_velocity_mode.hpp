@@ -12,15 +12,12 @@
 // residual in twice the precision.
 //
 // Why: the exact methods and the refinement (classical_refine.hpp) work on the percussions
-// through G = WᵀM⁻¹W, and make the velocities from them through M⁻¹W. G carries cond(M): two
-// contacts closed on a two-dof body with cond(M) = 2e9 (stress, Newton, seed 41 #48) missed
-// D_NE = −e D_NA by 6e-7 of the velocity scale at the best double percussions; one contact of a
-// two-dof body with cond(M) = 1.3e10 and W_T 2e-4 from parallel to W_N has G singular to 3e-19
-// of its entries (newton_coulomb #27360 of seed 7); and on four dofs with cond(M) = 2.1e11 and
-// μ = 1e8 (newton_coulomb #7063 of seed 2) the one mode that has an answer is beyond extended
-// precision through G, while this system, equilibrated, has condition 1.2e5. Here M is only
-// multiplied. The law's residual (classical_residual) reads the velocities returned, since they
-// balance the percussions to rounding.
+// through G = WᵀM⁻¹W, and make the velocities from them through M⁻¹W. G carries cond(M): with
+// cond(M) = 2e9 the best double percussions can miss D_NE = −e D_NA by 6e-7 of the velocity scale,
+// and with cond(M) = 1e10 or more G can be singular beyond extended precision while this system,
+// equilibrated, keeps a condition near 1e5. Here M is only multiplied. The law's residual
+// (classical_residual) reads the velocities returned, since they balance the percussions to
+// rounding.
 //
 // Poisson's phases are each such a mode, around a fixed part (ModeOffsets): the compression as
 // Newton's with target 0, the expansion with P_N = (1 + e) P_NC + ΔP, P_T = P_TC + t and bound
@@ -305,11 +302,10 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   // would otherwise pass the law's residual within the allowance for rounded percussions
   // (RegressionClassical.RoundingAllowanceDoesNotAcceptAWrongModeAsConverged).
   const VecT<N> qE = q0 + y.head(n);
-  // A velocity is known to the rounding of its own terms and to what the equations' rounding
-  // moves q̇_E by (moved's head): a body stopping in both phases has q̇_C and q̇_E of 1e-20 made
-  // by percussions 1e4 times as large in M's units, and an expansion's open row read D_NE =
-  // −1.5e-20 against a floor of 1e-35 from those velocities (stress poisson_coulomb #454 of seed
-  // 23: no mode held, the answer stayed `stalled` at 1.5e-11).
+  // A velocity is known to the rounding of its own terms and to what the equations' rounding moves
+  // q̇_E by (moved's head): a body stopping in both phases has q̇_C and q̇_E of 1e-20 made by
+  // percussions 1e4 times as large in M's units, so a floor from the velocities alone (1e-35) would
+  // refuse an open row at D_NE = −1.5e-20 that is only rounding.
   const VecT<N> q_moved = moved.head(n);
   if (!q_moved.allFinite()) return false;  // a floor of ∞ would accept any mode
   RowFlags<N, C> loose = RowFlags<N, C>::Zero(r), edge = RowFlags<N, C>::Zero(r);
@@ -366,9 +362,9 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
 /// their unit directions; a row within 1e-8 of the span of those before it is dependent), the
 /// others keeping the increments of `P_guess` (the answer being solved again; zero without one).
 /// Both contacts of a three-dof body closed and sticking make four rows: q̇_E is fixed by three of
-/// them, the percussions form a line, and the answer's point of it is kept (stress
-/// poisson_coulomb #31 of seed 23, cond(M) = 7e8: through G its velocities missed the law by 2e-4
-/// of their scale). Returns false, with P and q untouched, where neither is accepted.
+/// them, the percussions form a line, and the answer's point of it is kept (through G, with
+/// cond(M) = 7e8, its velocities can miss the law by 2e-4 of their scale). Returns false, with P
+/// and q untouched, where neither is accepted.
 /// `continuum`, where given: set when accepted, as solve_mode_on_basis says (the percussions a
 /// continuum about the answer, the velocities unique).
 template <int N, int C>
@@ -425,10 +421,10 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
   RowFlags<N, C> chosen(rank);
   for (int k = 0; k < rank; ++k) chosen(k) = static_cast<int>(qr.colsPermutation().indices()(k));
   if (try_basis(chosen)) return accepted();
-  // Refused (the best-conditioned basis leaves a kept row outside its cone at the guess: the body
-  // stopping in both phases, eight rows at zero velocity on three dofs, stress poisson_coulomb
-  // #149 of seed 23): every other basis of rank rows, in lexicographic order, up to 12 rows, for
-  // an answer being solved again only (the all-modes fallback already multiplies modes).
+  // Refused (the best-conditioned basis leaves a kept row outside its cone at the guess, e.g. a
+  // body stopping in both phases, eight rows at zero velocity on three dofs): every other basis of
+  // rank rows, in lexicographic order, up to 12 rows, for an answer being solved again only (the
+  // all-modes fallback already multiplies modes).
   if (!P_guess || m > 12) return false;
   const RowFlags<N, C> first = chosen;
   for (int k = 0; k < rank; ++k) chosen(k) = k;
@@ -512,14 +508,11 @@ void for_each_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
 /// extended precision: every mode (for_each_mode; Poisson's: every expansion mode around every
 /// compression mode accepted) solved for the velocities and the percussions together
 /// (solve_mode_with_velocities), M only multiplied. G = WᵀM⁻¹W inherits cond(M) where that system
-/// does not: one contact of a two-dof body with cond(M) = 1.3e10 and W_T 2e-4 from parallel to W_N
-/// has G singular to 3e-19 of its entries, below even extended precision, while the exact answer
-/// sticks with velocities fixed by W alone and percussions 1e19 times them (stress newton_coulomb
-/// #27360 of seed 7); on four dofs with cond(M) = 2.1e11 the one mode with an answer
-/// (newton_coulomb #7063 of seed 2) is not fixed by W alone. Of the answers accepted, the most
-/// dissipative (T_E − T_A from the velocities). `off` is Newton's (newton_offsets); Poisson's
-/// phases are built from it. Returns the number of answers accepted; P, q and Poisson's P_C, q_C
-/// hold the one kept when it is not zero.
+/// does not: with cond(M) = 1e10 and W_T nearly parallel to W_N, G can be singular to 3e-19 of its
+/// entries, below even extended precision, while the exact answer sticks with percussions 1e19
+/// times its velocities. Of the answers accepted, the most dissipative (T_E − T_A from the
+/// velocities). `off` is Newton's (newton_offsets); Poisson's phases are built from it. Returns the
+/// number of answers accepted; P, q and Poisson's P_C, q_C hold the one kept when it is not zero.
 template <int N, int C>
 int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                               const ImpactLaw& law, bool poisson, const ModeOffsets<N, C>& off,

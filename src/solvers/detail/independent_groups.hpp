@@ -7,11 +7,11 @@
 /// phases and Coulomb's bounds are per contact. Solved together, the stopping tests, the closed
 /// forms' tolerances and Lemke's pivots are relative to the largest velocity of the whole problem,
 /// and a group whose velocities are 1e9 times smaller is answered to that scale only: a body
-/// approaching at 3.7e-10 m/s beside one at 1.5e5 got P_N = 0 and kept approaching (Newton +
-/// Coulomb, its velocities wrong by 4 % of their size), "converged". Each group is therefore solved
-/// on its own, with the contacts of the other groups lifted off (their D_NA made positive through
-/// w_N, so that the contact indices, and the law's per-contact parameters, stay those of the
-/// problem), and the percussions are gathered and written once for the whole problem.
+/// approaching at 3.7e-10 m/s beside one at 1.5e5 gets P_N = 0 and keeps approaching (Newton +
+/// Coulomb, its velocities wrong by 4 % of their size), yet "converged". Each group is therefore
+/// solved on its own, with the contacts of the other groups lifted off (their D_NA made positive
+/// through w_N, so that the contact indices, and the law's per-contact parameters, stay those of
+/// the problem), and the percussions are gathered and written once for the whole problem.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -34,7 +34,7 @@ struct TableauStorage {
   int* ints() { return ints_.data(); }
 };
 /// Heap-stored: left uninitialised like the stack arrays (every entry read is written first). A
-/// zero-filled vector of the n(n + 2) tableau entries cost as much as a third of the pivots on the
+/// zero-filled vector of the n(n + 2) tableau entries costs as much as a third of the pivots on the
 /// many-contact problems (n = 128 for 32 contacts with friction).
 template <>
 struct TableauStorage<Dynamic> {
