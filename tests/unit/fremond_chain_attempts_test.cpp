@@ -9,6 +9,7 @@
 #include "fremond/potentials/deadzone_power.hpp"
 #include "fremond/potentials/power.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "support/block_landing.hpp"
 #include "support/test_problems.hpp"
 
 namespace fremond {
@@ -124,15 +125,9 @@ TEST(FremondChainAttempts, NewtonRestartsFromZero) {
 // A block landing flat, one corner at the edge of sticking: Newton stalls from both starts at a
 // kink of the residual; with Coulomb's modes fixed the rows are smooth.
 TEST(FremondChainAttempts, CoulombModesAreEnumeratedWhereNewtonStallsFromBothStarts) {
-  ImpactProblem pb;
-  pb.M = Eigen::Vector3d(1.0, 1.0, (0.16 + 0.04) / 12.0).asDiagonal();
-  pb.W_N.resize(3, 2);
-  pb.W_N << 0.0, 0.0, 1.0, 1.0, -0.20000086717102675, 0.19999913281393331;
-  pb.W_T.resize(3, 2);
-  pb.W_T << 1.0, 1.0, 0.0, 0.0, 0.099998265639146544, 0.10000173435333348;
-  pb.qdot_A = Eigen::Vector3d(-2.3912283507627192, -3.2660445632676076, 0.0);
-  const ImpactResult r =
-      solve_impact(pb, ImpactLaw::fremond_coulomb(PowerPotential(63.183050987687373, 3.0), 1.0));
+  const ImpactProblem pb = fixtures::block_landing_flat();
+  const ImpactResult r = solve_impact(
+      pb, ImpactLaw::fremond_coulomb(PowerPotential(fixtures::block_landing_flat_k, 3.0), 1.0));
   expect_answered_by(r, SolverMethod::mode_enumeration, AttemptStart::decoupled_guess);
   const auto attempts = log_of(r.solver);
   ASSERT_EQ(attempts.size(), 3u);

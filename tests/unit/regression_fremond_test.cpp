@@ -24,6 +24,7 @@
 #include "fremond/io/problem_file.hpp"
 #include "reference/fremond_reference.hpp"
 #include "stress/invariants.hpp"
+#include "support/block_landing.hpp"
 #include "support/test_problems.hpp"
 #include "support/why.hpp"
 
@@ -931,14 +932,8 @@ TEST(RegressionFremond, UprightBarUnderCoulombWithPNearOneMeetsTheExactSolution)
 // smooth and Newton converges. The answer is checked against the law written out here: Coulomb on
 // the mean velocity, and P_N = −k z_N|z_N| where the reaction is idle (D_NE > 0).
 TEST(RegressionFremond, BlockLandingFlatSlidesAtOneCornerAndSticksAtTheOther) {
-  ImpactProblem pb;
-  pb.M = Eigen::Vector3d(1.0, 1.0, (0.16 + 0.04) / 12.0).asDiagonal();
-  pb.W_N.resize(3, 2);
-  pb.W_N << 0.0, 0.0, 1.0, 1.0, -0.20000086717102675, 0.19999913281393331;
-  pb.W_T.resize(3, 2);
-  pb.W_T << 1.0, 1.0, 0.0, 0.0, 0.099998265639146544, 0.10000173435333348;
-  pb.qdot_A = Eigen::Vector3d(-2.3912283507627192, -3.2660445632676076, 0.0);
-  const double k = 63.183050987687373, mu = 1.0;
+  const ImpactProblem pb = fixtures::block_landing_flat();
+  const double k = fixtures::block_landing_flat_k, mu = 1.0;
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(k, 3.0), mu);
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
