@@ -23,28 +23,23 @@ struct Operand {
   bool shared = true;
 
   // Checks the shape against `one` (the trailing dimensions) and the count N; throws naming it.
-  void check(std::vector<py::ssize_t> one, py::ssize_t& count) {
+  void check(const std::vector<py::ssize_t>& one, py::ssize_t count) {
     const auto nd = static_cast<std::size_t>(a.ndim());
-    auto shape_text = [&] {
-      std::string s = "(";
-      for (py::ssize_t k = 0; k < a.ndim(); ++k) s += (k ? ", " : "") + std::to_string(a.shape(k));
-      return s + (a.ndim() == 1 ? ",)" : ")");
-    };
-    bool ok = nd == one.size() || nd == one.size() + 1;
     shared = nd == one.size();
+    bool ok = shared || nd == one.size() + 1;
     for (std::size_t k = 0; ok && k < one.size(); ++k)
       ok = a.shape(static_cast<py::ssize_t>(nd - one.size() + k)) == one[k];
-    if (!ok) {
-      std::string want = "(";
-      for (std::size_t k = 0; k < one.size(); ++k) want += (k ? ", " : "") + std::to_string(one[k]);
-      throw InvalidArgument(name, "needs shape " + want + (one.size() == 1 ? ",)" : ")") +
-                                      " or (N, ...) of it, got " + shape_text());
-    }
-    if (shared) return;
-    if (count >= 0 && a.shape(0) != count)
-      throw InvalidArgument(name, "has " + std::to_string(a.shape(0)) +
-                                      " problems, another operand " + std::to_string(count));
-    count = a.shape(0);
+    if (!ok)
+      throw InvalidArgument(name, "needs shape " + shape_text(one) + " or (N, ...) of it, got " +
+                                      shape_text({a.shape(), a.shape() + a.ndim()}));
+    if (!shared && a.shape(0) != count)
+      throw InvalidArgument(
+          name, "has " + std::to_string(a.shape(0)) + " problems, qdot_A " + std::to_string(count));
+  }
+  static std::string shape_text(const std::vector<py::ssize_t>& shape) {
+    std::string s = "(";
+    for (std::size_t k = 0; k < shape.size(); ++k) s += (k ? ", " : "") + std::to_string(shape[k]);
+    return s + (shape.size() == 1 ? ",)" : ")");
   }
   // The i-th problem's data, row-major.
   const double* at(py::ssize_t i) const {
@@ -52,12 +47,10 @@ struct Operand {
   }
 };
 
-// Row-major data into an Eigen (column-major) matrix.
-MatrixX matrix(const double* p, int rows, int cols) {
-  MatrixX m(rows, cols);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) m(r, c) = p[r * cols + c];
-  return m;
+// Row-major data (NumPy's) as an Eigen matrix.
+auto matrix(const double* p, int rows, int cols) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  return Eigen::Map<const RowMajor>(p, rows, cols);
 }
 
 py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, const ImpactLaw& law,
@@ -68,7 +61,7 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
                                         std::to_string(qdot_A.ndim()) + " dimensions");
   const py::ssize_t n = qdot_A.shape(1);
   Operand m{"M", M}, wn{"W_N", W_N};
-  py::ssize_t count = qdot_A.shape(0);
+  const py::ssize_t count = qdot_A.shape(0);
   m.check({n, n}, count);
   const py::ssize_t c = W_N.ndim() >= 2 ? W_N.shape(W_N.ndim() - 1) : -1;
   wn.check({n, c}, count);
@@ -91,7 +84,10 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
       Problem& p = problems[static_cast<std::size_t>(i)];
       p.M = matrix(m.at(i), ni, ni);
       p.W_N = matrix(wn.at(i), ni, ci);
-      p.W_T = wt ? matrix(wt->at(i), ni, ci) : MatrixX(ni, 0);
+      if (wt)
+        p.W_T = matrix(wt->at(i), ni, ci);
+      else
+        p.W_T.resize(ni, 0);
       p.w_N = vn ? VectorX(Eigen::Map<const VectorX>(vn->at(i), ci)) : VectorX::Zero(ci);
       p.w_T = vt ? VectorX(Eigen::Map<const VectorX>(vt->at(i), ci)) : VectorX::Zero(p.W_T.cols());
       p.qdot_A = Eigen::Map<const VectorX>(qdot_A.data() + i * n, ni);

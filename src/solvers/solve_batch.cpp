@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -53,6 +55,8 @@ void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw
   const std::size_t block = std::clamp<std::size_t>(count / 512, 1, 64);
   const int n = workers_for(count, batch.threads);
   std::atomic<std::size_t> first_bad{count};
+  std::mutex refused_lock;  // the error of the first invalid problem, kept as solve_impact threw it
+  std::optional<InvalidArgument> refused;
   std::exception_ptr unexpected;
   std::atomic<bool> broken{false};
   auto work = [&](int worker) {
@@ -64,9 +68,11 @@ void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw
       for (std::size_t i = begin; i < end; ++i) {
         try {
           results[i] = solve_impact(problems[i], law, options);
-        } catch (const InvalidArgument&) {
-          std::size_t seen = first_bad.load();
-          while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
+        } catch (const InvalidArgument& e) {
+          std::lock_guard<std::mutex> lock(refused_lock);
+          if (i < first_bad.load()) {
+            first_bad.store(i);
+            refused = e;
           }
           return;
         } catch (...) {  // not expected; kept so that no worker ends the program
@@ -82,13 +88,7 @@ void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw
   work(0);
   for (auto& t : pool) t.join();
   if (unexpected) std::rethrow_exception(unexpected);
-  if (const std::size_t i = first_bad.load(); i < count) {
-    try {
-      (void)solve_impact(problems[i], law, options);
-    } catch (const InvalidArgument& e) {
-      refuse(i, e);
-    }
-  }
+  if (refused) refuse(first_bad.load(), *refused);
 }
 
 template <int N, int C>
