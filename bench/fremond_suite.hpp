@@ -231,33 +231,6 @@ inline double point_mass_k_normal(double p, double e, double m = 1.0, double dna
   return (1.0 + e) * m / (std::pow((1.0 - e) / 2.0, p - 1.0) * std::pow(dna, p - 2.0));
 }
 
-/// Random problem `index` with n dofs and c contacts (the generator of random_spd_problem, any
-/// size; for n = 6, c = 3 it is random_spd_problem itself). Dynamic storage.
-inline ImpactProblem random_problem_any(int n, int c, int index, bool with_friction) {
-  SplitMix64 rng(kRandomSeed + 0x1000ULL * static_cast<std::uint64_t>(index) +
-                 (n == 6 && c == 3 ? 0ULL : 0x9E37ULL * static_cast<std::uint64_t>(n * 64 + c)));
-  Eigen::MatrixXd A(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) A(i, j) = rng.uniform(-1.0, 1.0);
-  ImpactProblem p;
-  p.M = A * A.transpose() / n + 0.5 * Eigen::MatrixXd::Identity(n, n);
-  p.W_N.resize(n, c);
-  Eigen::MatrixXd WT(n, c);
-  for (int j = 0; j < c; ++j)
-    for (int i = 0; i < n; ++i) {
-      p.W_N(i, j) = rng.uniform(-1.0, 1.0);
-      WT(i, j) = rng.uniform(-1.0, 1.0);
-    }
-  p.qdot_A.resize(n);
-  for (int i = 0; i < n; ++i) p.qdot_A(i) = rng.uniform(-1.0, 1.0);
-  for (int j = 0; j < c; ++j)
-    if (p.W_N.col(j).dot(p.qdot_A) > 0) p.W_N.col(j) *= -1.0;
-  p.W_T = with_friction ? WT : Eigen::MatrixXd(n, 0);
-  p.w_N = Eigen::VectorXd::Zero(c);
-  p.w_T = Eigen::VectorXd::Zero(with_friction ? c : 0);
-  return p;
-}
-
 // ---------------------------------------------------------------------------------------------
 // The suite.
 

@@ -206,19 +206,19 @@ class SplitMix64 {
 inline constexpr std::uint64_t kRandomSeed = 20240611;  ///< the fixed seed of the random problems.
 inline constexpr int kRandomProblems = 16;              ///< how many the benchmarks cycle through.
 
-/// Random problem number `index` (0 ≤ index): n = 6 degrees of freedom, 3 contacts with friction
-/// rows, M = A Aᵀ/6 + I/2 (eigenvalues in [0.5, ~7]), W_N, W_T, q̇_A with entries uniform in
-/// [−1, 1); each W_N column is flipped if needed so that every contact takes part (D_NA < 0).
-inline SmallImpactProblem random_spd_problem(int index, bool with_friction = true) {
-  constexpr int n = 6, c = 3;
-  SplitMix64 rng(kRandomSeed + 0x1000ULL * static_cast<std::uint64_t>(index));
-  Eigen::Matrix<double, n, n> A;
+/// Random problem `index` (0 ≤ index) with n degrees of freedom and c contacts, heap-stored:
+/// M = A Aᵀ/n + I/2 (eigenvalues from 0.5), W_N, W_T, q̇_A with entries uniform in [−1, 1); each
+/// W_N column is flipped if needed so that every contact takes part (D_NA < 0).
+inline ImpactProblem random_problem_any(int n, int c, int index, bool with_friction) {
+  SplitMix64 rng(kRandomSeed + 0x1000ULL * static_cast<std::uint64_t>(index) +
+                 (n == 6 && c == 3 ? 0ULL : 0x9E37ULL * static_cast<std::uint64_t>(n * 64 + c)));
+  Eigen::MatrixXd A(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) A(i, j) = rng.uniform(-1.0, 1.0);
-  SmallImpactProblem p;
-  p.M = A * A.transpose() / n + 0.5 * Eigen::Matrix<double, n, n>::Identity();
+  ImpactProblem p;
+  p.M = A * A.transpose() / n + 0.5 * Eigen::MatrixXd::Identity(n, n);
   p.W_N.resize(n, c);
-  SmallImpactProblem::Jac WT(n, c);
+  Eigen::MatrixXd WT(n, c);
   for (int j = 0; j < c; ++j)
     for (int i = 0; i < n; ++i) {
       p.W_N(i, j) = rng.uniform(-1.0, 1.0);
@@ -228,10 +228,15 @@ inline SmallImpactProblem random_spd_problem(int index, bool with_friction = tru
   for (int i = 0; i < n; ++i) p.qdot_A(i) = rng.uniform(-1.0, 1.0);
   for (int j = 0; j < c; ++j)
     if (p.W_N.col(j).dot(p.qdot_A) > 0) p.W_N.col(j) *= -1.0;
-  p.W_T = with_friction ? WT : SmallImpactProblem::Jac(n, 0);
-  p.w_N = SmallImpactProblem::CVec::Zero(c);
-  p.w_T = SmallImpactProblem::CVec::Zero(with_friction ? c : 0);
+  p.W_T = with_friction ? WT : Eigen::MatrixXd(n, 0);
+  p.w_N = Eigen::VectorXd::Zero(c);
+  p.w_T = Eigen::VectorXd::Zero(with_friction ? c : 0);
   return p;
+}
+
+/// random_problem_any with n = 6 degrees of freedom and 3 contacts, in the small form.
+inline SmallImpactProblem random_spd_problem(int index, bool with_friction = true) {
+  return to_small(random_problem_any(6, 3, index, with_friction));
 }
 
 // ---------------------------------------------------------------------------------------------
