@@ -54,10 +54,11 @@ check "no limit" "$TMP/nolimit" 'assert len(rows) >= 30000, len(rows)'
 check "Coulomb stops the slide" "$TMP/nc" 'assert s["unresisted_slide"] is None, s["unresisted_slide"]'
 
 # Interrupted (SIGINT, as Ctrl-C sends; SIGTERM as timeout(1) does): exit status 128 + the signal,
-# and complete files up to where the run stopped.
+# and complete files up to where the run stopped. --foreground: one signal, to the command alone
+# (timeout otherwise signals its process group too, and a second signal ends the run at once).
 for sig in INT TERM; do
   rm -rf "$TMP/cut"
-  timeout --preserve-status -s "$sig" 1 "$FREMOND" simulate --preset paper-bar \
+  timeout --foreground --preserve-status -s "$sig" 1 "$FREMOND" simulate --preset paper-bar \
     --law fremond_viscous --t-end 1e7 --out "$TMP/cut" --no-progress >"$TMP/stdout" 2>"$TMP/stderr"
   rc=$?
   want=$([ "$sig" = INT ] && echo 130 || echo 143)
