@@ -99,12 +99,12 @@ void BM_FremondLaw(benchmark::State& state, const FremondCase* c) {
   const std::size_t n = c->problems.size();
   detail::ContactSpaceT<kSmallDofs, kSmallContacts> cs;
   SmallImpactResult out;
-  const bool tangential = c->law.tangential != TangentialLaw::none;
+  const bool tangential = c->law.get<FremondLaw>().tangential != TangentialLaw::none;
   for (auto _ : state) {
     const SmallImpactProblem& p = c->problems[k];
     k = k + 1 == n ? 0 : k + 1;
     detail::build_contact_space(p, tangential, cs);
-    detail::solve_fremond(p, cs, c->law, opt, out);
+    detail::solve_fremond(p, cs, c->law.get<FremondLaw>(), opt, out);
     benchmark::DoNotOptimize(out.qdot_E.data());
   }
   state.SetLabel(label(*c, "method=automatic stage=law"));
@@ -116,7 +116,7 @@ void BM_FremondKernel(benchmark::State& state, const FremondCase* c) {
   const SmallImpactProblem& p = c->problems[0];
   detail::ContactSpaceT<kSmallDofs, kSmallContacts> cs;
   detail::build_contact_space(p, false, cs);
-  const Potential& phi = c->law.normal[0];
+  const Potential& phi = c->law.get<FremondLaw>().normal[0];
   const double g = cs.G(0, 0), D = cs.D_A(0);
   double P = 0.0;
   for (auto _ : state) {

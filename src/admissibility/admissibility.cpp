@@ -4,8 +4,8 @@
 
 #include "admissibility/detail/admissibility.hpp"
 #include "core/detail/cholesky.hpp"
-#include "laws/detail/fremond_rows.hpp"
 #include "laws/detail/separating_contacts.hpp"
+#include "laws/fremond/rows.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -229,7 +229,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   for (int i = 0; i < c; ++i)
     p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
-  const bool fremond = law.is_fremond();
+  // Frémond's terms: the reaction apart, complementarity (16) and the Fenchel-Young gaps.
+  const FremondLaw* fremond = law.get_if<FremondLaw>();
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
   double worst_contact_value = 0.0;
@@ -289,17 +290,18 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
           {compl_viol, std::max(0.0, -Pr) / pscale,
            std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) / (pscale * v_scale)});
       if (!separating)
-        fy = std::max(fy, scaled_gap(law.normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
-      if (law.has_tangential_potential()) {
+        fy = std::max(fy, scaled_gap(fremond->normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
+      if (fremond->has_tangential_potential()) {
         if (!separating)
-          fy = std::max(fy, scaled_gap(law.tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
+          fy = std::max(
+              fy, scaled_gap(fremond->tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
         else  // φ_T = 0: its conjugate allows P_T = 0 alone
           fy = std::max(fy, std::max(0.0, std::fabs(r.P_T(i)) - ds) / (p_scale + 1e-300));
       }
-      if (law.uses_coulomb()) {
+      if (fremond->uses_coulomb()) {
         // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
         // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
-        const double b = law.mu[i] * std::fabs(r.P_N(i));
+        const double b = fremond->mu[i] * std::fabs(r.P_N(i));
         const double s = -r.P_T(i);
         const double scale = b * std::fabs(zT) + std::fabs(s * zT) + energy + 1e-300;
         const double over = std::fabs(s) - b;
@@ -307,14 +309,14 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
         // μ·ds: an excess within that, or within the rounding of the two, is not counted as one.
         // (A contact touching below rounding beside fast sliding with μ = 1e8 has P_N and P_T
         // of 1e-12 while ds is 2e-9: its percussions are noise the law cannot be held to.)
-        const double known = (1.0 + law.mu[i]) * ds + 1e-12 * (b + std::fabs(s));
+        const double known = (1.0 + fremond->mu[i]) * ds + 1e-12 * (b + std::fabs(s));
         if (over > known)
           fy = std::max(fy, (over - known) / (b + std::fabs(s) + p_scale));
         else
           // The gap b|z_T| + P_T z_T less what the errors of z_T (dz), of P_T (ds) and of b
           // (μ·ds) can make of it.
           fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT - (b + std::fabs(s)) * dz -
-                                              (1.0 + law.mu[i]) * ds * std::fabs(zT)) /
+                                              (1.0 + fremond->mu[i]) * ds * std::fabs(zT)) /
                                 scale);
       }
     }

@@ -2,7 +2,6 @@
 #include "fremond/core/enum_names.hpp"
 
 #include "fremond/admissibility/admissibility_report.hpp"
-#include "fremond/laws/impact_law.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_status.hpp"
 
@@ -10,14 +9,6 @@ namespace fremond {
 
 namespace {
 using detail::EnumNames;
-constexpr EnumNames<LawType, 5> kLawTypes{{{LawType::newton, "newton"},
-                                           {LawType::poisson, "poisson"},
-                                           {LawType::newton_coulomb, "newton_coulomb"},
-                                           {LawType::poisson_coulomb, "poisson_coulomb"},
-                                           {LawType::fremond, "fremond"}}};
-constexpr EnumNames<TangentialLaw, 3> kTangential{{{TangentialLaw::none, "none"},
-                                                   {TangentialLaw::potential, "potential"},
-                                                   {TangentialLaw::coulomb, "coulomb"}}};
 constexpr EnumNames<AttemptStart, 8> kStarts{
     {{AttemptStart::none, "none"},
      {AttemptStart::decoupled_guess, "decoupled_guess"},
@@ -62,18 +53,6 @@ constexpr EnumNames<Inequality, 8> kInequalities{
      {Inequality::non_penetration, "non_penetration"}}};
 }  // namespace
 
-std::string_view to_string(LawType t) {
-  return detail::enum_to_string(kLawTypes, t);
-}
-LawType law_type_from_string(std::string_view s) {
-  return detail::enum_from_string(kLawTypes, s, "law.type");
-}
-std::string_view to_string(TangentialLaw t) {
-  return detail::enum_to_string(kTangential, t);
-}
-TangentialLaw tangential_law_from_string(std::string_view s) {
-  return detail::enum_from_string(kTangential, s, "tangential law");
-}
 std::string_view to_string(SolverStatus s) {
   return detail::enum_to_string(kStatus, s);
 }

@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
+#include <variant>
 
 #include "fremond/core/error.hpp"
+#include "laws/detail/plugins.hpp"
 
 namespace fremond::io::detail {
 
@@ -34,7 +37,8 @@ std::string reason_of(const InvalidArgument& e) {
   throw InvalidArgument(e.name(), reason_of(e) + " (contact " + std::to_string(contact) + ")");
 }
 
-// One potential {"potential": NAME, parameters...}, every parameter a number or one per contact.
+}  // namespace
+
 PerContactPotential potential_from_json(const json& j, const std::string& where, int contacts,
                                         const PotentialRegistry& registry) {
   require_object(j, where);
@@ -87,18 +91,6 @@ PerContactPotential potential_from_json(const json& j, const std::string& where,
   return out;
 }
 
-LawType law_type_from_json(const json& j, const std::string& where) {
-  const std::string key = key_path(where, "type");
-  const std::string name = string_from_json(required_key(j, where, "type"), key);
-  try {
-    return law_type_from_string(name);
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument(key, reason_of(e));
-  }
-}
-
-// The library names the law's values `law.e`, `law.mu[1]`, `law.normal`; the file spells them under
-// `where`, Frémond's Coulomb μ under `where.tangential`, and a list of one value as `key[0]`.
 InvalidArgument with_file_key(const InvalidArgument& e, const json& j, const std::string& where) {
   const std::string& name = e.name();
   if (name.rfind("law", 0) != 0) return e;
@@ -115,87 +107,42 @@ InvalidArgument with_file_key(const InvalidArgument& e, const json& j, const std
   return InvalidArgument(file, reason_of(e));
 }
 
-// The law make() builds, validated for `contacts`. The factories and validate() refuse bad values
-// under the library's names; the refusal names the file's key instead.
-template <class Make>
-ImpactLaw built(const Make& make, int contacts, const json& j, const std::string& where) {
-  try {
-    ImpactLaw law = make();
-    law.validate(contacts);
-    return law;
-  } catch (const InvalidArgument& e) {
-    throw with_file_key(e, j, where);
-  }
-}
-
-// The values of obj[key] under the key path obj_key.key: a number or one per contact.
 std::vector<double> values(const json& obj, const std::string& obj_key, std::string_view key,
                            int contacts) {
   return number_or_list(required_key(obj, obj_key, key), key_path(obj_key, key), contacts);
 }
 
-ImpactLaw classical_law_from_json(LawType type, const json& j, int contacts,
-                                  const std::string& where, const std::string& context) {
-  if (type == LawType::newton || type == LawType::poisson) {
-    check_keys(j, where, {"type", "e"}, context);
-    const auto e = values(j, where, "e", contacts);
-    return built(
-        [&] { return type == LawType::newton ? ImpactLaw::newton(e) : ImpactLaw::poisson(e); },
-        contacts, j, where);
+namespace {
+// The law named `name` read by its own schema (its read_law), or nothing where no law of
+// law_list.hpp has that name.
+template <std::size_t I = 0>
+std::optional<ImpactLaw> read_named(std::string_view name, const json& j, int contacts,
+                                    const PotentialRegistry& registry, const std::string& where) {
+  if constexpr (I == std::variant_size_v<LawVariant>) {
+    return std::nullopt;
+  } else {
+    using Law = std::variant_alternative_t<I, LawVariant>;
+    for (std::string_view n : Law::names)
+      if (n == name)
+        return fremond::detail::read_law(std::type_identity<Law>{}, name, j, contacts, registry,
+                                         where);
+    return read_named<I + 1>(name, j, contacts, registry, where);
   }
-  check_keys(j, where, {"type", "e", "mu"}, context);
-  const auto e = values(j, where, "e", contacts);
-  const auto mu = values(j, where, "mu", contacts);
-  return built(
-      [&] {
-        return type == LawType::newton_coulomb ? ImpactLaw::newton_coulomb(e, mu)
-                                               : ImpactLaw::poisson_coulomb(e, mu);
-      },
-      contacts, j, where);
 }
-
-ImpactLaw fremond_law_from_json(const json& j, int contacts, const PotentialRegistry& registry,
-                                const std::string& where, const std::string& context) {
-  check_keys(j, where, {"type", "normal", "tangential"}, context);
-  const std::string normal_key = key_path(where, "normal");
-  const json& normal = required_key(j, where, "normal");
-  // Coulomb is a law on the tangential velocity, not a potential of the normal one (docs/laws.md).
-  if (normal.is_object() && normal.contains("potential") && normal["potential"] == "coulomb")
-    throw InvalidArgument(
-        key_path(normal_key, "potential"),
-        "'coulomb' is a tangential law only (use it under " + key_path(where, "tangential") + ")");
-  auto normal_potential = potential_from_json(normal, normal_key, contacts, registry);
-  const json* tangential = optional_key(j, "tangential");
-  if (!tangential)  // docs/problem-file.md: omitted means no tangential percussion
-    return built([&] { return ImpactLaw::fremond(std::move(normal_potential)); }, contacts, j,
-                 where);
-  const std::string tkey = key_path(where, "tangential");
-  require_object(*tangential, tkey);
-  const std::string tname =
-      string_from_json(required_key(*tangential, tkey, "potential"), key_path(tkey, "potential"));
-  if (tname == "coulomb") {
-    check_keys(*tangential, tkey, {"potential", "mu"}, "the tangential law 'coulomb'");
-    const auto mu = values(*tangential, tkey, "mu", contacts);
-    return built([&] { return ImpactLaw::fremond_coulomb(std::move(normal_potential), mu); },
-                 contacts, j, where);
-  }
-  auto tangential_potential = potential_from_json(*tangential, tkey, contacts, registry);
-  return built(
-      [&] {
-        return ImpactLaw::fremond(std::move(normal_potential), std::move(tangential_potential));
-      },
-      contacts, j, where);
-}
-
 }  // namespace
 
 ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& registry,
                         const std::string& where) {
   require_object(j, where);
-  const LawType type = law_type_from_json(j, where);
-  const std::string context = "a '" + std::string(to_string(type)) + "' law";
-  if (type == LawType::fremond) return fremond_law_from_json(j, contacts, registry, where, context);
-  return classical_law_from_json(type, j, contacts, where, context);
+  const std::string key = key_path(where, "type");
+  const std::string name = string_from_json(required_key(j, where, "type"), key);
+  if (auto law = read_named(name, j, contacts, registry, where)) return std::move(*law);
+  try {
+    check_law_name(name);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(key, reason_of(e));
+  }
+  throw InvalidArgument(key, "no schema for '" + name + "'");  // not reached: every law has one
 }
 
 }  // namespace fremond::io::detail

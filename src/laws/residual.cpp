@@ -6,7 +6,7 @@
 
 #include "fremond/core/error.hpp"
 #include "fremond/solvers/impact_result.hpp"
-#include "laws/detail/residuals.hpp"
+#include "laws/detail/plugins.hpp"
 
 namespace fremond {
 
@@ -27,8 +27,7 @@ double law_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     // the same to the last bit (solve_impact.cpp).
     if (fits_small(pb) && fits_small(r)) return law_residual(to_small(pb), law, to_small(r));
   }
-  if (!law.is_fremond()) return detail::classical_residual(pb, law, r);
-  return detail::fremond_residual(pb, law, r);
+  return law.visit([&](const auto& l) { return detail::residual_of(pb, l, r); });
 }
 
 template double law_residual(const ImpactProblemT<kSmallDofs, kSmallContacts>&, const ImpactLaw&,

@@ -27,7 +27,6 @@ and the plotting helpers in fremond.plots.
 inline constexpr const char* kEnumFromString =
     "The value named by its text (the same names as the problem file and the command line); "
     "raises ValueError naming the accepted values.";
-inline constexpr const char* kLawType = "The law family, named as in the problem file's law.type.";
 inline constexpr const char* kTangentialLaw =
     "Frémond's tangential law: none, potential (e.g. the viscous dead zone, eq. 25) or coulomb "
     "(on the mean tangential velocity, bound mu|P_N|).";

@@ -12,10 +12,6 @@
 namespace fremond::python {
 
 void bind_enums(py::module_& m) {
-  using L = LawType;
-  bind_enum<L>(m, "LawType", doc::kLawType,
-               {L::newton, L::poisson, L::newton_coulomb, L::poisson_coulomb, L::fremond},
-               &law_type_from_string);
   using T = TangentialLaw;
   bind_enum<T>(m, "TangentialLaw", doc::kTangentialLaw, {T::none, T::potential, T::coulomb},
                &tangential_law_from_string);

@@ -48,6 +48,14 @@ py::list potentials_list(const PerContactPotential& p) {
 }  // namespace
 
 void bind_impacts(py::module_& m) {
+  m.def(
+      "law_names",
+      [] {
+        std::vector<std::string> names;
+        for (std::string_view n : law_names()) names.emplace_back(n);
+        return names;
+      },
+      "The names of every impact law, as the problem file's law.type spells them.");
   py::class_<ImpactLaw>(m, "ImpactLaw", doc::kImpactLaw)
       .def_static(
           "newton", [](const Coefficient& e) { return ImpactLaw::newton(per_contact(e)); },
@@ -80,16 +88,39 @@ void bind_impacts(py::module_& m) {
             return ImpactLaw::fremond_coulomb(per_contact(normal), per_contact(mu));
           },
           py::arg("normal"), py::arg("mu"))
-      .def_readonly("type", &ImpactLaw::type)
-      .def_readonly("tangential", &ImpactLaw::tangential)
-      .def_property_readonly("e", [](const ImpactLaw& l) { return l.e.values; })
-      .def_property_readonly("mu", [](const ImpactLaw& l) { return l.mu.values; })
-      .def_property_readonly("normal", [](const ImpactLaw& l) { return potentials_list(l.normal); })
-      .def_property_readonly(
-          "tangential_potential",
-          [](const ImpactLaw& l) { return potentials_list(l.tangential_potential); })
+      // Each value is the law's own, None where the law has no such value (e for Frémond's).
+      .def_property_readonly("type", [](const ImpactLaw& l) { return std::string(l.name()); })
+      .def_property_readonly("tangential",
+                             [](const ImpactLaw& l) -> std::optional<TangentialLaw> {
+                               if (const auto* f = l.get_if<FremondLaw>()) return f->tangential;
+                               return std::nullopt;
+                             })
+      .def_property_readonly("e",
+                             [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
+                               if (const auto* r = l.get_if<RestitutionLaw>()) return r->e.values;
+                               return std::nullopt;
+                             })
+      .def_property_readonly("mu",
+                             [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
+                               if (!l.uses_coulomb()) return std::nullopt;
+                               return l.visit([](const auto& law) { return law.mu.values; });
+                             })
+      .def_property_readonly("normal",
+                             [](const ImpactLaw& l) -> std::optional<py::list> {
+                               if (const auto* f = l.get_if<FremondLaw>())
+                                 return potentials_list(f->normal);
+                               return std::nullopt;
+                             })
+      .def_property_readonly("tangential_potential",
+                             [](const ImpactLaw& l) -> std::optional<py::list> {
+                               const auto* f = l.get_if<FremondLaw>();
+                               if (f && f->has_tangential_potential())
+                                 return potentials_list(f->tangential_potential);
+                               return std::nullopt;
+                             })
+      .def("is_fremond", [](const ImpactLaw& l) { return l.is<FremondLaw>(); })
+      .def("dissipative", &ImpactLaw::dissipative)
       .def("has_friction", &ImpactLaw::has_friction)
-      .def("is_fremond", &ImpactLaw::is_fremond)
       .def("has_phases", &ImpactLaw::has_phases)
       .def("uses_coulomb", &ImpactLaw::uses_coulomb)
       .def("has_tangential_potential", &ImpactLaw::has_tangential_potential)

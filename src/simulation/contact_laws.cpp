@@ -6,28 +6,12 @@ namespace fremond::detail {
 namespace {
 
 bool is_uniform(const ImpactLaw& law) {
-  return law.e.values.size() == 1 && law.mu.values.size() == 1 &&
-         law.normal.potentials.size() <= 1 && law.tangential_potential.potentials.size() <= 1;
+  return law.visit([](const auto& l) { return l.longest_list() == 1; });
 }
 
 // The law of the contacts idx[0..n) of a law with per-contact parameters.
 ImpactLaw restrict_law(const ImpactLaw& law, const int* idx, int n) {
-  ImpactLaw r = law;
-  const auto pick = [&](const PerContact& p, PerContact& out) {
-    if (p.values.size() <= 1) return;
-    out.values.clear();
-    for (int i = 0; i < n; ++i) out.values.push_back(p[idx[i]]);
-  };
-  const auto pick_pot = [&](const PerContactPotential& p, PerContactPotential& out) {
-    if (p.potentials.size() <= 1) return;
-    out.potentials.clear();
-    for (int i = 0; i < n; ++i) out.potentials.emplace_back(p[idx[i]].clone());
-  };
-  pick(law.e, r.e);
-  pick(law.mu, r.mu);
-  pick_pot(law.normal, r.normal);
-  pick_pot(law.tangential_potential, r.tangential_potential);
-  return r;
+  return law.visit([&](const auto& l) { return ImpactLaw(l.restricted(idx, n)); });
 }
 
 }  // namespace

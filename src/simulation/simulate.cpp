@@ -17,12 +17,11 @@ Run::Run(const Scene& scene, const SimulationOptions& options, SimulationObserve
   minv_ = {1.0 / sc_.body.mass, 1.0 / sc_.body.mass, 1.0 / sc_.body.inertia};
   pp_.minv = minv_;
   laws_ = ContactLaws(sc_.law);
-  const bool coulomb = sc_.law.uses_coulomb();
   for (int k = 0; k < nc_; ++k) {
     point_[k] = &sc_.body.points[sc_.point_of(k)];
     plane_[k] = &sc_.obstacles[sc_.obstacle_of(k)];
     const ContactPoint& p = *point_[k];
-    mu_[k] = coulomb ? sc_.law.mu[k] : 0.0;
+    mu_[k] = sc_.law.mu(k);  // 0 without Coulomb
     reach_[k] = p.r.norm() + p.radius;
     mode_[k] = ContactMode::stick;
   }

@@ -13,9 +13,9 @@ namespace {
 bool resists_no_slide(const ImpactLaw& law, int k, double D_T) {
   // A tangential potential: the slide's mean velocity is D_T itself (before = after), so no
   // percussion where 0 ∈ ∂φ_T(D_T). Otherwise Coulomb's with μ = 0, or no friction at all.
-  if (law.has_tangential_potential())
-    return law.tangential_potential[k].subdifferential(D_T).contains(0.0);
-  return !law.has_friction() || law.mu[k] == 0.0;
+  if (const FremondLaw* f = law.get_if<FremondLaw>(); f && f->has_tangential_potential())
+    return f->tangential_potential[k].subdifferential(D_T).contains(0.0);
+  return !law.has_friction() || law.mu(k) == 0.0;
 }
 }  // namespace
 

@@ -31,7 +31,7 @@ namespace fremond::detail {
 // velocities, percussions, phases.
 template <int N, int C>
 void write_classical_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                            const ImpactLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
+                            const RestitutionLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
                             const typename ContactSpaceT<N, C>::Rows& P_C, ImpactResultT<N, C>& out,
                             const VecT<N>* velocities, const VecT<N>* compression_velocities) {
   const bool poisson = law.has_phases();
@@ -77,13 +77,14 @@ using classical::solve_law;
 /// account for (classical_residual's percussion_cap, for the answer's acceptance only).
 constexpr double kRoundedPercussionCap = 1e-8;
 
-bool is_poisson(const ImpactLaw& law) {
+bool is_poisson(const RestitutionLaw& law) {
   return law.has_phases();
 }
 
 // The mode offsets of Newton's laws: no fixed part, target e D_NA (eq. 5).
 template <int N, int C>
-classical::ModeOffsets<N, C> newton_offsets(const ContactSpaceT<N, C>& cs, const ImpactLaw& law) {
+classical::ModeOffsets<N, C> newton_offsets(const ContactSpaceT<N, C>& cs,
+                                            const RestitutionLaw& law) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
   const int a = cs.active;
   classical::ModeOffsets<N, C> off;
@@ -97,7 +98,8 @@ classical::ModeOffsets<N, C> newton_offsets(const ContactSpaceT<N, C>& cs, const
 // (classical_refine.hpp): compression first, then the expansion with the compression held.
 template <int N, int C>
 classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                                    const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
+                                    const RestitutionLaw& law,
+                                    typename ContactSpaceT<N, C>::Rows& P,
                                     typename ContactSpaceT<N, C>::Rows& P_C) {
   using classical::Refinement;
   classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
@@ -119,7 +121,7 @@ classical::Refinement refine_answer(const ImpactProblemT<N, C>& pb, const Contac
 // than they have independent directions, solve_mode_with_velocities).
 template <int N, int C>
 bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, typename ContactSpaceT<N, C>::Rows& P,
+                         const RestitutionLaw& law, typename ContactSpaceT<N, C>::Rows& P,
                          typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& qC,
                          bool& continuum) {
   classical::ModeOffsets<N, C> off = newton_offsets(cs, law);
@@ -171,7 +173,7 @@ struct Settling {
 // themselves, since a mode misread at a stick-slip boundary stays beyond that allowance.
 template <int N, int C>
 void refine_in_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                    const ImpactLaw& law, const SolverOptions& options, Settling<N, C>& st,
+                    const RestitutionLaw& law, const SolverOptions& options, Settling<N, C>& st,
                     ImpactResultT<N, C>& out) {
   typename ContactSpaceT<N, C>::Rows P = st.P, P_C = st.P_C;
   const auto refined = refine_answer(pb, cs, law, P, P_C);
@@ -207,7 +209,7 @@ void refine_in_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
 // then reads smaller and within rounding. G = WᵀM⁻¹W carries cond(M)·ε that this solve avoids.
 template <int N, int C>
 void mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                        const ImpactLaw& law, const SolverOptions& options, Settling<N, C>& st,
+                        const RestitutionLaw& law, const SolverOptions& options, Settling<N, C>& st,
                         ImpactResultT<N, C>& out) {
   VecT<N> q, qC;
   typename ContactSpaceT<N, C>::Rows P = st.P, P_C = st.P_C;
@@ -289,8 +291,9 @@ void report_solution(const SolverOptions& options, const LawOutcome<C>& lo, cons
 // (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
 template <int N, int C>
 void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                     const ImpactLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
-                     int pick, ImpactResultT<N, C>& out, const VecT<N>* velocities = nullptr,
+                     const RestitutionLaw& law, const SolverOptions& options,
+                     const LawOutcome<C>& lo, int pick, ImpactResultT<N, C>& out,
+                     const VecT<N>* velocities = nullptr,
                      const VecT<N>* compression_velocities = nullptr) {
   const LawSolution<C>& s = lo.solutions[pick];
   write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
@@ -309,7 +312,7 @@ void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
 
 template <int N, int C>
 void fill_trivial(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                  const ImpactLaw& law, ImpactResultT<N, C>& out) {
+                  const RestitutionLaw& law, ImpactResultT<N, C>& out) {
   typename ContactSpaceT<N, C>::Rows P(0);
   scatter_solution(pb, cs, P, out);
   out.has_phases = is_poisson(law);
@@ -335,7 +338,7 @@ void fill_trivial(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
 // double precision; it is not returned.
 template <int N, int C>
 void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                  const ImpactLaw& law, const LawOutcome<C>& lo, ImpactResultT<N, C>& out,
+                  const RestitutionLaw& law, const LawOutcome<C>& lo, ImpactResultT<N, C>& out,
                   bool overflow = false) {
   // No answer: report the state before the impact (no percussion) so every field is defined.
   typename ContactSpaceT<N, C>::Rows P = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
@@ -401,7 +404,7 @@ bool method_applies(SolverMethod m) {
 
 template <int N, int C>
 void fill_unsupported(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                      const ImpactLaw& law, const SolverOptions& options,
+                      const RestitutionLaw& law, const SolverOptions& options,
                       ImpactResultT<N, C>& out) {
   LawOutcome<C> none;
   none.exhaustive = false;
@@ -451,8 +454,9 @@ int most_dissipative(const LawOutcome<C>& lo, const bool* tried) {
 // exact; "stalled" would then be reported for a law that has an exact answer. Only when no solution
 // meets the tolerance is the most dissipative returned as it is (stalled).
 template <int N, int C>
-void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
-               const SolverOptions& options, const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
+void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+               const RestitutionLaw& law, const SolverOptions& options, const LawOutcome<C>& lo,
+               ImpactResultT<N, C>& out) {
   bool tried[classical::kMaxSolutions] = {};
   const int first = most_dissipative(lo, tried);
   for (int k = first; k >= 0; k = most_dissipative(lo, tried)) {
@@ -471,7 +475,7 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, co
 // when the law's residual then converges.
 template <int N, int C>
 bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                             const ImpactLaw& law, const SolverOptions& options,
+                             const RestitutionLaw& law, const SolverOptions& options,
                              const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
   if (lo.beyond_precision || (options.method != SolverMethod::automatic &&
                               options.method != SolverMethod::mode_enumeration))
@@ -508,7 +512,7 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
 // opposed. True, with the answer in `alt`, only when that converges.
 template <int N, int C>
 bool stalled_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                               const ImpactLaw& law, const SolverOptions& options,
+                               const RestitutionLaw& law, const SolverOptions& options,
                                const LawOutcome<C>& lo, const ImpactResultT<N, C>& stalled,
                                ImpactResultT<N, C>& alt) {
   if (stalled.solver.status != SolverStatus::stalled || options.method != SolverMethod::automatic ||
@@ -527,7 +531,7 @@ template <int N, int C>
 struct ClassicalChain {
   const ImpactProblemT<N, C>& pb;
   const ContactSpaceT<N, C>& cs;
-  const ImpactLaw& law;
+  const RestitutionLaw& law;
   const SolverOptions& opt;
   ImpactResultT<N, C>& out;
   LawOutcome<C> lo;
@@ -644,13 +648,14 @@ struct ClassicalChain {
 
 template <int N, int C>
 void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+                     const RestitutionLaw& law, const SolverOptions& options,
+                     ImpactResultT<N, C>& out) {
   ClassicalChain<N, C>{pb, cs, law, options, out, {}}.run();
 }
 
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>& pb,
-                                                     const ImpactLaw& law,
+                                                     const RestitutionLaw& law,
                                                      const SolverOptions& options,
                                                      HeldContacts held) {
   ContactSpaceT<N, C> cs;
@@ -718,15 +723,16 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                              \
-  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
-                                const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
-  template void write_classical_answer(                                                        \
-      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const ImpactLaw&,               \
-      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,    \
-      ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                   \
-  template std::vector<ImpactResultT<N, C>> solve_classical_all(                               \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&, HeldContacts);
+#define FREMOND_INSTANTIATE(N, C)                                                           \
+  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,    \
+                                const RestitutionLaw&, const SolverOptions&,                \
+                                ImpactResultT<N, C>&);                                      \
+  template void write_classical_answer(                                                     \
+      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const RestitutionLaw&,       \
+      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&, \
+      ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                \
+  template std::vector<ImpactResultT<N, C>> solve_classical_all(                            \
+      const ImpactProblemT<N, C>&, const RestitutionLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -1017,7 +1017,7 @@ bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, false, cs, held);
   classical::LawOutcome<C> lo;
-  classical::solve_law(pb, cs, ImpactLaw::newton(0.0), 0, lo);
+  classical::solve_law(pb, cs, RestitutionLaw{}, 0, lo);  // Newton, e = 0
   return lo.solutions.size == 0 && lo.exhaustive && !lo.beyond_precision && !lo.unsupported;
 }
 
@@ -1028,7 +1028,7 @@ bool normal_rows_infeasible(const ImpactProblemT<N, C>& pb, HeldContacts held) {
 template <int N, int C>
 struct FremondChain {
   FremondChain(const ImpactProblemT<N, C>& pb_, const ContactSpaceT<N, C>& cs_,
-               const ImpactLaw& law_, const SolverOptions& opt_, ImpactResultT<N, C>& out_)
+               const FremondLaw& law_, const SolverOptions& opt_, ImpactResultT<N, C>& out_)
       : pb(pb_),
         cs(cs_),
         law(law_),
@@ -1073,7 +1073,7 @@ struct FremondChain {
 
   const ImpactProblemT<N, C>& pb;
   const ContactSpaceT<N, C>& cs;
-  const ImpactLaw& law;
+  const FremondLaw& law;
   const SolverOptions& opt;
   ImpactResultT<N, C>& out;
   const SolverMethod want;
@@ -1626,7 +1626,8 @@ struct FremondChain {
 
 template <int N, int C>
 void solve_fremond_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+                         const FremondLaw& law, const SolverOptions& opt,
+                         ImpactResultT<N, C>& out) {
   FremondChain<N, C>(pb, cs, law, opt, out).run();
 }
 
@@ -1641,7 +1642,7 @@ namespace {
 /// (z = D_A + GP/2 rounded to ε|G||P|).
 template <int N, int C>
 void solve_one_dof_instead(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                           const ImpactLaw& law, const SolverOptions& opt,
+                           const FremondLaw& law, const SolverOptions& opt,
                            ImpactResultT<N, C>& out) {
   if (cs.dofs != 1 || cs.rows() == 0) return;
   FremondRowsT<N, C> rows;
@@ -1681,7 +1682,7 @@ namespace {
 /// proof's verdict.
 template <int N, int C>
 void report_no_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                        const ImpactLaw& law, ImpactResultT<N, C>& out) {
+                        const FremondLaw& law, ImpactResultT<N, C>& out) {
   typename ContactSpaceT<N, C>::Rows none = ContactSpaceT<N, C>::Rows::Zero(cs.rows());
   scatter_solution(pb, cs, none, out);
   out.P_N_reaction.setZero(cs.contacts);
@@ -1703,7 +1704,7 @@ void report_no_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
 
 template <int N, int C>
 void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                   const ImpactLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
+                   const FremondLaw& law, const SolverOptions& opt, ImpactResultT<N, C>& out) {
   solve_fremond_chain(pb, cs, law, opt, out);
   // The repairs where every method failed, only on that path, so that a solve that converges pays
   // nothing for them: no answer exists (proved on the normal rows), or one degree of freedom
@@ -1719,7 +1720,7 @@ void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
 
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
-                                                   const ImpactLaw& law, const SolverOptions& opt,
+                                                   const FremondLaw& law, const SolverOptions& opt,
                                                    HeldContacts held) {
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.has_friction(), cs, held);
@@ -1761,11 +1762,11 @@ std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& p
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                            \
-  template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,       \
-                              const ImpactLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
-  template std::vector<ImpactResultT<N, C>> solve_fremond_all(                               \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const SolverOptions&, HeldContacts);
+#define FREMOND_INSTANTIATE(N, C)                                                             \
+  template void solve_fremond(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,        \
+                              const FremondLaw&, const SolverOptions&, ImpactResultT<N, C>&); \
+  template std::vector<ImpactResultT<N, C>> solve_fremond_all(                                \
+      const ImpactProblemT<N, C>&, const FremondLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

@@ -43,7 +43,7 @@ struct NloptData {
   const MatrixX* M;
   const MatrixX* W;  // n × rows
   const VectorX* DA;
-  const ImpactLaw* law;
+  const FremondLaw* law;
   int n, a, rows;
   bool coulomb, tangential;
   VectorX b;  // Coulomb bounds

@@ -10,9 +10,8 @@
 #include "contact_space/contact_space.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "laws/detail/impact_problem.hpp"
+#include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
-#include "solvers/detail/classical.hpp"
-#include "solvers/detail/fremond.hpp"
 #include "solvers/detail/independent_groups.hpp"
 
 namespace fremond {
@@ -26,46 +25,30 @@ void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
                       out.solver.residual);
 }
 
-/// Frémond's law dissipates by construction ((15), (17) and (19) hold for every exact solution
-/// whose separating contacts carry no reaction: docs/concepts.md), so an answer marked converged
-/// that its certificate refuses is not resolved in double precision, whatever the law's residual
+/// A dissipative law (Frémond's: (15), (17) and (19) hold for every exact solution whose
+/// separating contacts carry no reaction: docs/concepts.md): an answer marked converged that its
+/// certificate refuses is not resolved in double precision, whatever the law's residual
 /// test said: it is kept and called stalled. The test accepts rows at their own rounding floor, and
 /// where percussions are 1e8 times the velocities on cond(M) = 5e7 those floors let velocities 5e-9
 /// off the exact ones through, with an energy gain (1e-8 of T_A) 5e6 times what ε·cond(M) allows.
-/// The classical laws are not held to it: Newton's and Poisson's with Coulomb create energy, which
-/// is the certificate's finding, not the solver's failure.
+/// The other laws are not held to it: Newton's and Poisson's with Coulomb create energy, which is
+/// the certificate's finding, not the solver's failure.
 template <int N, int C>
 void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
-  if (!law.is_fremond() || out.solver.status != SolverStatus::converged ||
+  if (!law.dissipative() || out.solver.status != SolverStatus::converged ||
       out.admissibility.admissible)
     return;
   // A reaction that stops a separating contact works on its true mean velocity D_NA/2 > 0: total
   // (15) may then fail for the exact answer, which is the convention's finding, not a failure.
   if (detail::stops_a_separating_contact(out)) return;
   out.unique = false;
-  // The law dissipates only with pseudo-potentials: a potential that is not one, seen from the
-  // answer, is what the certificate found, and no solver can do better.
-  for (Eigen::Index i = 0; i < out.D_NA.size(); ++i) {
-    if (out.D_NA(i) > 0.0) continue;
-    const int k = static_cast<int>(i);
-    const bool defect =
-        detail::not_a_pseudo_potential(law.normal[k], 0.5 * (out.D_NA(i) + out.D_NE(i))) ||
-        (law.has_tangential_potential() &&
-         detail::not_a_pseudo_potential(law.tangential_potential[k],
-                                        0.5 * (out.D_TA(i) + out.D_TE(i))));
-    if (!defect) continue;
-    out.solver.status = SolverStatus::unsupported;
-    out.solver.message =
-        "a potential of the contact admissibility.failed_contact names is not a pseudo-potential "
-        "at the answer (not convex, negative, or not zero at 0): Frémond's law is defined for "
-        "pseudo-potentials only (check_potential tests one)";
-    out.admissibility.failed_contact = k;
-    return;
-  }
+  // A law's data outside the domain where it dissipates, seen from the answer, is what the
+  // certificate found, and no solver can do better.
+  if (law.visit([&](const auto& l) { return detail::refuse_outside_domain(l, out); })) return;
   out.solver.status = SolverStatus::stalled;
   out.solver.message =
       "the answer passes the law's residual test, but its admissibility certificate refuses it "
-      "(see admissibility.failed); Frémond's law dissipates by construction, so the answer is not "
+      "(see admissibility.failed); the law dissipates by construction, so the answer is not "
       "resolved in double precision";
 }
 }  // namespace
@@ -135,17 +118,18 @@ std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, co
   // Independent groups of contacts: the product of the groups' lists (independent_groups.hpp).
   std::vector<ImpactResultT<N, C>> all;
   if (!detail::solve_all_by_groups(pb, law, options, all))
-    all = law.is_fremond() ? detail::solve_fremond_all(pb, law, options)
-                           : detail::solve_classical_all(pb, law, options);
+    all = law.visit([&](const auto& l) {
+      return detail::solve_every_answer(pb, l, options, detail::HeldContacts::approaching);
+    });
   // Every contact takes part (separating_contacts.hpp): where an answer without the separating
   // contacts drives one of them into its obstacle, the list is made again on every contact.
   bool drives = false;
   for (const auto& r : all) drives = drives || detail::drives_a_separating_contact(pb, r, options);
   if (drives) {
     const ImpactLaw every = detail::law_of_every_contact(law, all.front().D_NA);
-    all = law.is_fremond()
-              ? detail::solve_fremond_all(pb, every, options, detail::HeldContacts::every)
-              : detail::solve_classical_all(pb, every, options, detail::HeldContacts::every);
+    all = every.visit([&](const auto& l) {
+      return detail::solve_every_answer(pb, l, options, detail::HeldContacts::every);
+    });
   }
   for (auto& r : all) {
     log_answer_if_unlogged(r);

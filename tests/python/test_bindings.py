@@ -31,7 +31,7 @@ def bar_first_impact():
 
 def test_enums_use_the_library_names():
     assert str(f.Inequality.total_15) == "total_15"
-    assert f.LawType.from_string("poisson_coulomb") == f.LawType.poisson_coulomb
+    assert "poisson_coulomb" in f.law_names() and "fremond" in f.law_names()
     assert f.PaperLaw("fremond_viscous") == f.PaperLaw.fremond_viscous
     try:
         f.SolverMethod.from_string("fastest")

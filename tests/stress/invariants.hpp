@@ -254,14 +254,14 @@ std::string check_result(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
     drives_separating |= !r.takes_part(i) && (r.P_N(i) != 0.0 || r.P_T(i) != 0.0);
   const bool energy_only =
       a.failed == Inequality::total_15 || a.failed == Inequality::per_contact_15;
-  if (law.type == LawType::fremond && !a.admissible && !(drives_separating && energy_only))
+  if (law.is<FremondLaw>() && !a.admissible && !(drives_separating && energy_only))
     return "converged Frémond result not admissible: " + std::string(to_string(a.failed)) +
            (a.failed_contact >= 0 ? " (contact " + std::to_string(a.failed_contact) + ")" : "") +
            " by " + num(a.violation) + tag;
 
   // 7. Frictionless classical laws: P_N ≥ 0 on every contact.
   const double p_floor = bound * v_scale / std::max(w_scale, 1e-300);
-  if ((law.type == LawType::newton || law.type == LawType::poisson)) {
+  if ((law.name() == "newton" || law.name() == "poisson")) {
     for (int i = 0; i < c; ++i)
       if (r.P_N(i) < -p_floor)
         return "P_N[" + std::to_string(i) + "] = " + num(r.P_N(i)) + " < 0" + tag;

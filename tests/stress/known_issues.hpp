@@ -20,8 +20,8 @@ namespace fremond::robust {
 /// The stress runs' name of a law: newton, poisson, newton_coulomb, poisson_coulomb, fremond
 /// (normal law only), fremond_viscous (a tangential potential), fremond_coulomb.
 inline std::string law_family(const ImpactLaw& law) {
-  if (law.type != LawType::fremond) return std::string(to_string(law.type));
-  switch (law.tangential) {
+  if (!law.is<FremondLaw>()) return std::string(law.name());
+  switch (law.get<FremondLaw>().tangential) {
     case TangentialLaw::none:
       return "fremond";
     case TangentialLaw::potential:

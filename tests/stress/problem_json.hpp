@@ -88,24 +88,18 @@ inline std::string json_potentials(const PerContactPotential& ps) {
 
 inline std::string law_to_json(const ImpactLaw& law) {
   using namespace detail;
-  std::string s = "{\"type\": \"" + std::string(to_string(law.type)) + "\"";
-  switch (law.type) {
-    case LawType::newton:
-    case LawType::poisson:
-      return s + ", \"e\": " + json_per_contact(law.e) + "}";
-    case LawType::newton_coulomb:
-    case LawType::poisson_coulomb:
-      return s + ", \"e\": " + json_per_contact(law.e) + ", \"mu\": " + json_per_contact(law.mu) +
-             "}";
-    case LawType::fremond:
-      s += ", \"normal\": " + json_potentials(law.normal);
-      if (law.tangential == TangentialLaw::potential)
-        s += ", \"tangential\": " + json_potentials(law.tangential_potential);
-      if (law.tangential == TangentialLaw::coulomb)
-        s += ", \"tangential\": {\"potential\": \"coulomb\", \"mu\": " + json_per_contact(law.mu) +
-             "}";
-      return s + "}";
+  std::string s = "{\"type\": \"" + std::string(law.name()) + "\"";
+  if (const auto* r = law.get_if<RestitutionLaw>()) {
+    s += ", \"e\": " + json_per_contact(r->e);
+    if (r->coulomb) s += ", \"mu\": " + json_per_contact(r->mu);
+    return s + "}";
   }
+  const FremondLaw& f = law.get<FremondLaw>();
+  s += ", \"normal\": " + json_potentials(f.normal);
+  if (f.tangential == TangentialLaw::potential)
+    s += ", \"tangential\": " + json_potentials(f.tangential_potential);
+  if (f.tangential == TangentialLaw::coulomb)
+    s += ", \"tangential\": {\"potential\": \"coulomb\", \"mu\": " + json_per_contact(f.mu) + "}";
   return s + "}";
 }
 

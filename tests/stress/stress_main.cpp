@@ -299,7 +299,7 @@ std::string classical_answer_violation(const ImpactProblem& pb, const ImpactLaw&
   using ref::quad;
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential() && law.has_friction();
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+  const bool poisson = law.name() == "poisson" || law.name() == "poisson_coulomb";
   const double eps = std::numeric_limits<double>::epsilon();
   if (poisson && !r.has_phases) return "no phases";
   std::string missed = momentum_violation(pb, pb.qdot_A, r.qdot_E, r.P_N, r.P_T, "the impact's");
@@ -343,8 +343,8 @@ std::string classical_answer_violation(const ImpactProblem& pb, const ImpactLaw&
   };
   for (int i = 0; i < c; ++i) {
     // A separating contact: restitution on min(D_NA, 0) = 0 (docs/concepts.md).
-    const quad e = r.takes_part(i) ? quad(law.e[i]) : quad(0);
-    const quad mu = tangential ? quad(law.mu[i]) : quad(0);
+    const quad e = r.takes_part(i) ? quad(law.get<RestitutionLaw>().e[i]) : quad(0);
+    const quad mu = tangential ? quad(law.mu(i)) : quad(0);
     if (!poisson) {
       missed = row(i, r.qdot_E, r.P_N(i), e * quad(r.D_NA(i)), r.P_T(i), mu * quad(r.P_N(i)),
                    "Newton's");
@@ -371,18 +371,19 @@ double max_mode_cond(const std::vector<ref::Solution>& sols) {
 bool reference_laws(const ImpactLaw& law, int c, std::vector<ref::PowerLaw>& normal,
                     std::vector<ref::TangentialLaw>& tangential) {
   for (int i = 0; i < c; ++i) {
-    const auto* p = dynamic_cast<const PowerPotential*>(&law.normal[i]);
+    const auto* p = dynamic_cast<const PowerPotential*>(&law.get<FremondLaw>().normal[i]);
     if (!p) return false;
     normal.push_back({p->k(), p->p()});
-    switch (law.tangential) {
+    switch (law.get<FremondLaw>().tangential) {
       case TangentialLaw::none:
         tangential.push_back(ref::TangentialLaw::none());
         break;
       case TangentialLaw::coulomb:
-        tangential.push_back(ref::TangentialLaw::coulomb(law.mu[i]));
+        tangential.push_back(ref::TangentialLaw::coulomb(law.mu(i)));
         break;
       case TangentialLaw::potential: {
-        const auto* d = dynamic_cast<const DeadZonePowerPotential*>(&law.tangential_potential[i]);
+        const auto* d = dynamic_cast<const DeadZonePowerPotential*>(
+            &law.get<FremondLaw>().tangential_potential[i]);
         if (!d) return false;
         tangential.push_back(ref::TangentialLaw::dead_zone(d->k(), d->q(), d->r()));
         break;
@@ -413,18 +414,18 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     // min(D_NA, 0) = 0: Newton's e = 0, no potential (docs/concepts.md).
     q.every_contact_takes_part = true;
     const bool amended = true;
-    if (law.type != LawType::fremond) {
+    if (!law.is<FremondLaw>()) {
       // The classical laws by their contact modes: every mode's equations must be regular for the
       // list to be complete (G singular: a continuum the enumeration cannot list, and
       // newton_frictionless, which skips a singular active set, can miss the only solution: three
       // contacts on two dofs, newton #90835 of seed 23).
       ref::QVec e, mu;
-      const bool newton = law.type == LawType::newton || law.type == LawType::newton_coulomb;
+      const bool newton = law.name() == "newton" || law.name() == "newton_coulomb";
       for (int i = 0; i < c; ++i)
-        e.push_back(amended && newton && !r.takes_part(i) ? 0.0 : law.e[i]);
+        e.push_back(amended && newton && !r.takes_part(i) ? 0.0 : law.get<RestitutionLaw>().e[i]);
       if (law.has_friction())
-        for (double v : law.mu.values) mu.push_back(v);
-      const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+        for (double v : law.get<RestitutionLaw>().mu.values) mu.push_back(v);
+      const bool poisson = law.name() == "poisson" || law.name() == "poisson_coulomb";
       const auto found = ref::classical_modes(
           q, poisson ? ref::ClassicalLaw::poisson : ref::ClassicalLaw::newton, e, mu);
       if (!found.complete) {
@@ -495,8 +496,9 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
         return;
       }
       sols = found.solutions;
-    } else if (law.type == LawType::fremond && r.solver.status == SolverStatus::no_solution &&
-               !(law.tangential == TangentialLaw::coulomb && r.takes_part.count() == 1)) {
+    } else if (law.is<FremondLaw>() && r.solver.status == SolverStatus::no_solution &&
+               !(law.get<FremondLaw>().tangential == TangentialLaw::coulomb &&
+                 r.takes_part.count() == 1)) {
       // Frémond's law says no_solution where D_NE ≥ 0 is infeasible on the contacts that take
       // part (and, with Coulomb on one contact taking part, where its modes have none: checked
       // below where the problem has one contact): the same inequalities as Newton's law with
@@ -516,11 +518,11 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
         out.line("R checked 0\tno solution on either side");
       }
       return;
-    } else if (law.type == LawType::fremond) {
+    } else if (law.is<FremondLaw>()) {
       std::vector<ref::PowerLaw> normal;
       std::vector<ref::TangentialLaw> tangential;
       if (!reference_laws(law, c, normal, tangential)) return;
-      if (law.tangential != TangentialLaw::none && !pb.has_tangential()) return;
+      if (law.get<FremondLaw>().tangential != TangentialLaw::none && !pb.has_tangential()) return;
       for (int i = 0; i < c && amended; ++i) {
         if (r.takes_part(i)) continue;
         normal[i] = {0, 2};
@@ -529,14 +531,14 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
       }
       if (c == 1) {
         sols = ref::fremond_one_contact(q, normal[0], tangential[0]);
-      } else if (law.tangential != TangentialLaw::coulomb && several) {
+      } else if (law.get<FremondLaw>().tangential != TangentialLaw::coulomb && several) {
         const auto s = ref::fremond_several(q, normal, tangential);
         if (!s.ok) {
           out.line("R skipped 0\tthe reference did not converge");
           return;
         }
         sols.push_back(s);
-      } else if (law.tangential == TangentialLaw::coulomb && r.ok()) {
+      } else if (law.get<FremondLaw>().tangential == TangentialLaw::coulomb && r.ok()) {
         // Coulomb on several contacts: no reference lists its solutions (quasi-variational); the
         // answer is checked instead against the exact solution nearest to it, each mode it lies
         // near solved in quad precision (fremond_coulomb_near). None there: the answer is not a
@@ -545,7 +547,7 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
         for (int i = 0; i < c; ++i) {
           PN.push_back(r.P_N(i));
           PT.push_back(r.P_T(i));
-          mu.push_back(law.mu[i]);
+          mu.push_back(law.mu(i));
         }
         const auto s = ref::fremond_coulomb_near(q, normal, mu, PN, PT);
         if (!s.ok) {
@@ -712,17 +714,22 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
 // copy the answer of its own problem, to its own scale (the law's parameters repeated for the
 // copy's contacts). Compared where both answers converged and the copy's own answer is unique.
 ImpactLaw doubled(const ImpactLaw& law) {
-  ImpactLaw out = law;
   auto twice = [](PerContact& p) {
     if (p.values.size() > 1) p.values.insert(p.values.end(), p.values.begin(), p.values.end());
   };
-  twice(out.e);
-  twice(out.mu);
   auto twice_potentials = [](PerContactPotential& p) {
     const std::size_t n = p.potentials.size();
     if (n > 1)
       for (std::size_t i = 0; i < n; ++i) p.potentials.emplace_back(p.potentials[i]->clone());
   };
+  if (const auto* r = law.get_if<RestitutionLaw>()) {
+    RestitutionLaw out = *r;
+    twice(out.e);
+    twice(out.mu);
+    return out;
+  }
+  FremondLaw out = law.get<FremondLaw>();
+  twice(out.mu);
   twice_potentials(out.normal);
   twice_potentials(out.tangential_potential);
   return out;
@@ -789,10 +796,10 @@ void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactRes
 }
 
 std::vector<SolverMethod> forced_methods(const ImpactLaw& law) {
-  if (law.type == LawType::fremond && law.tangential == TangentialLaw::coulomb)
+  if (law.is<FremondLaw>() && law.get<FremondLaw>().tangential == TangentialLaw::coulomb)
     return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt,
             SolverMethod::mode_enumeration};
-  if (law.type == LawType::fremond)
+  if (law.is<FremondLaw>())
     return {SolverMethod::semismooth_newton, SolverMethod::proximal, SolverMethod::nlopt};
   return {SolverMethod::lemke, SolverMethod::mode_enumeration};
 }

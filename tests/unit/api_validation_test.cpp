@@ -229,10 +229,10 @@ TEST(ApiValidation, RestitutionRangeAndNumbers) {
   EXPECT_EQ(refusal([&] { (void)ImpactLaw::poisson(PerContact({0.5, kNaN})); }), "law.e[1]");
   EXPECT_EQ(refusal([&] { (void)ImpactLaw::newton(PerContact(std::vector<double>{})); }), "law.e");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(PerContact({0.5, 0.5, 0.5}))), "law.e");
-  // A law changed after it was made is still checked where it is solved.
-  ImpactLaw law = ImpactLaw::newton(0.5);
-  law.e = PerContact(-0.5);
-  EXPECT_EQ(solve_refusal(pb, law), "law.e");
+  // A law's values set on its value type are checked where it becomes an ImpactLaw.
+  RestitutionLaw raw;
+  raw.e = PerContact(-0.5);
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(raw); }), "law.e");
   // The edges are valid.
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(0.0)), "<none>");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton(1.0)), "<none>");
@@ -257,31 +257,32 @@ TEST(ApiValidation, FrictionRangeAndNumbers) {
             "law.e");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, PerContact({0.1, 0.1, 0.1}))),
             "law.mu");
-  ImpactLaw law = ImpactLaw::newton_coulomb(0.5, 0.1);
-  law.mu = PerContact(-1.0);
-  EXPECT_EQ(solve_refusal(pb, law), "law.mu");
+  RestitutionLaw raw{RestitutionLaw::Kind::newton, 0.5, true, 0.1};
+  raw.mu = PerContact(-1.0);
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(raw); }), "law.mu");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 0.0)), "<none>");
   EXPECT_EQ(solve_refusal(pb, ImpactLaw::newton_coulomb(0.5, 1e300)), "<none>");
 }
 
 TEST(ApiValidation, FremondPotentialsPresentAndCounted) {
   const ImpactProblem pb = base_problem();
-  ImpactLaw law;
-  law.type = LawType::fremond;  // no normal potential
-  EXPECT_EQ(solve_refusal(pb, law), "law.normal");
-  law = fremond_law();
-  law.normal.potentials.emplace_back(PowerPotential(1, 2).clone());
-  law.normal.potentials.emplace_back(PowerPotential(1, 2).clone());  // three for two contacts
-  EXPECT_EQ(solve_refusal(pb, law), "law.normal");
-  law = fremond_law();
-  law.normal.potentials.emplace_back(nullptr);
-  EXPECT_EQ(solve_refusal(pb, law), "law.normal");
-  law = fremond_law();
-  law.tangential = TangentialLaw::potential;  // without a tangential potential
-  EXPECT_EQ(solve_refusal(pb, law), "law.tangential");
-  law = ImpactLaw::fremond(PowerPotential(6, 2), DeadZonePowerPotential(1, 2, 0));
-  law.tangential_potential.potentials.emplace_back(nullptr);
-  EXPECT_EQ(solve_refusal(pb, law), "law.tangential");
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(FremondLaw{}); }), "law.normal");  // no normal potential
+  FremondLaw three = fremond_law().get<FremondLaw>();
+  three.normal.potentials.emplace_back(PowerPotential(1, 2).clone());
+  three.normal.potentials.emplace_back(PowerPotential(1, 2).clone());  // three for two contacts
+  EXPECT_EQ(solve_refusal(pb, ImpactLaw(three)), "law.normal");
+  FremondLaw null = fremond_law().get<FremondLaw>();
+  null.normal.potentials.emplace_back(nullptr);
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(null); }), "law.normal");
+  FremondLaw no_potential = fremond_law().get<FremondLaw>();
+  no_potential.tangential = TangentialLaw::potential;  // without a tangential potential
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(no_potential); }), "law.tangential");
+  FremondLaw null_tangential =
+      ImpactLaw::fremond(PowerPotential(6, 2), DeadZonePowerPotential(1, 2, 0)).get<FremondLaw>();
+  null_tangential.tangential_potential.potentials.emplace_back(nullptr);
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw(null_tangential); }), "law.tangential");
+  // Asking a law for another law's values names both.
+  EXPECT_EQ(refusal([&] { (void)ImpactLaw::newton(0.5).get<FremondLaw>(); }), "law");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -132,7 +132,7 @@ TEST(IllConditionedMass, NewtonWhoseModeFixesTheVelocitiesMeetsTheReference) {
   const ref::Problem q = ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A);
   const ImpactLaw laws[] = {ImpactLaw::newton(e), ImpactLaw::newton_coulomb(e, {0.3, 0.3})};
   for (const ImpactLaw& law : laws) {
-    SCOPED_TRACE(to_string(law.type));
+    SCOPED_TRACE(law.name());
     const ImpactResult r = solve_impact(pb, law);
     ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
     const ref::QVec qe{quad(e[0]), quad(e[1])};

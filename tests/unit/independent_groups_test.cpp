@@ -193,7 +193,7 @@ TEST(IndependentGroups, AGroupsVelocitiesSolvedForFirstAreKept) {
   const double slow = std::max(std::fabs(r.D_NA(0)), std::fabs(r.D_NA(1)));
   for (int i = 0; i < 2; ++i) {
     ASSERT_GT(r.P_N(i), 0.0);
-    EXPECT_NEAR(r.D_NE(i), -law.e[i] * r.D_NA(i), 1e-15 * slow) << i;
+    EXPECT_NEAR(r.D_NE(i), -law.get<RestitutionLaw>().e[i] * r.D_NA(i), 1e-15 * slow) << i;
   }
   EXPECT_DOUBLE_EQ(r.qdot_E(2), 0.5);
   EXPECT_DOUBLE_EQ(r.P_N(2), 1.5);

@@ -284,8 +284,8 @@ TEST(NoAllocation, ClassicalModeSolvedForItsVelocities) {
     SmallImpactResult r;
     std::string where;
     const long n = allocations([&, &law = law] { r = solve_impact(p, law); }, &where);
-    EXPECT_EQ(r.solver.status, SolverStatus::converged) << to_string(law.type);
-    EXPECT_EQ(n, 0) << to_string(law.type) << ": first allocation at\n" << where;
+    EXPECT_EQ(r.solver.status, SolverStatus::converged) << law.name();
+    EXPECT_EQ(n, 0) << law.name() << ": first allocation at\n" << where;
   }
 }
 

@@ -51,9 +51,9 @@ TEST(ProblemFile, ReadsTheExampleOfSpec7) {
   EXPECT_EQ(pb.W_N(2, 0), -0.353553390593);  // rows of the file are rows of the matrix
   EXPECT_EQ(pb.W_T(0, 0), 1.0);
   EXPECT_EQ(pb.qdot_A(1), -3.5613);
-  EXPECT_EQ(file.law.type, LawType::newton_coulomb);
-  EXPECT_EQ(file.law.e.values, std::vector<double>{0.9});
-  EXPECT_EQ(file.law.mu.values, std::vector<double>{1.0});
+  EXPECT_EQ(file.law.name(), "newton_coulomb");
+  EXPECT_EQ(file.law.get<RestitutionLaw>().e.values, std::vector<double>{0.9});
+  EXPECT_EQ(file.law.get<RestitutionLaw>().mu.values, std::vector<double>{1.0});
 }
 
 TEST(ProblemFile, OptionalKeysMeanFrictionlessAndFixedObstacles) {
@@ -65,7 +65,7 @@ TEST(ProblemFile, OptionalKeysMeanFrictionlessAndFixedObstacles) {
   EXPECT_EQ(file.problem.W_T.rows(), 2);
   EXPECT_EQ(file.problem.W_T.cols(), 0);
   EXPECT_EQ(file.problem.w_N, Eigen::VectorXd::Zero(2));
-  EXPECT_EQ(file.law.e.values, (std::vector<double>{0.5, 1.0}));
+  EXPECT_EQ(file.law.get<RestitutionLaw>().e.values, (std::vector<double>{0.5, 1.0}));
 }
 
 TEST(ProblemFile, ReadsFremondLawsWithEveryTangentialForm) {
@@ -73,8 +73,8 @@ TEST(ProblemFile, ReadsFremondLawsWithEveryTangentialForm) {
                               "qdot_A": [2, -1], "law": {"type": "fremond",
                               "normal": {"potential": "power", "k": 85.36, "p": 3})";
   auto law = parse_problem_file(head + "}}", builtins()).law;
-  EXPECT_EQ(law.tangential, TangentialLaw::none);
-  const auto* power = dynamic_cast<const PowerPotential*>(&law.normal[0]);
+  EXPECT_EQ(law.get<FremondLaw>().tangential, TangentialLaw::none);
+  const auto* power = dynamic_cast<const PowerPotential*>(&law.get<FremondLaw>().normal[0]);
   ASSERT_NE(power, nullptr);
   EXPECT_EQ(power->k(), 85.36);
   EXPECT_EQ(power->p(), 3.0);
@@ -82,15 +82,16 @@ TEST(ProblemFile, ReadsFremondLawsWithEveryTangentialForm) {
   law = parse_problem_file(head + R"(, "tangential": {"potential": "coulomb", "mu": 1.0}}})",
                            builtins())
             .law;
-  EXPECT_EQ(law.tangential, TangentialLaw::coulomb);
-  EXPECT_EQ(law.mu.values, std::vector<double>{1.0});
+  EXPECT_EQ(law.get<FremondLaw>().tangential, TangentialLaw::coulomb);
+  EXPECT_EQ(law.get<FremondLaw>().mu.values, std::vector<double>{1.0});
 
   law = parse_problem_file(
             head + R"(, "tangential": {"potential": "deadzone_power", "k": 1.5, "q": 2}}})",
             builtins())
             .law;
-  EXPECT_EQ(law.tangential, TangentialLaw::potential);
-  const auto* dz = dynamic_cast<const DeadZonePowerPotential*>(&law.tangential_potential[0]);
+  EXPECT_EQ(law.get<FremondLaw>().tangential, TangentialLaw::potential);
+  const auto* dz =
+      dynamic_cast<const DeadZonePowerPotential*>(&law.get<FremondLaw>().tangential_potential[0]);
   ASSERT_NE(dz, nullptr);
   EXPECT_EQ(dz->r(), 0.0);  // the registry's default for r, stated in the kind
 }
@@ -100,13 +101,13 @@ TEST(ProblemFile, PerContactParametersMakeOnePotentialPerContact) {
                              "law": {"type": "fremond", "normal": )";
   auto law =
       parse_problem_file(pb + R"({"potential": "power", "k": [1, 2], "p": 2}}})", builtins()).law;
-  ASSERT_EQ(law.normal.potentials.size(), 2u);
-  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.normal[0]).k(), 1.0);
-  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.normal[1]).k(), 2.0);
-  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.normal[1]).p(), 2.0);
+  ASSERT_EQ(law.get<FremondLaw>().normal.potentials.size(), 2u);
+  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.get<FremondLaw>().normal[0]).k(), 1.0);
+  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.get<FremondLaw>().normal[1]).k(), 2.0);
+  EXPECT_EQ(dynamic_cast<const PowerPotential&>(law.get<FremondLaw>().normal[1]).p(), 2.0);
   // A list of one value is the same value for every contact: one shared potential.
   law = parse_problem_file(pb + R"({"potential": "power", "k": [3], "p": 2}}})", builtins()).law;
-  EXPECT_EQ(law.normal.potentials.size(), 1u);
+  EXPECT_EQ(law.get<FremondLaw>().normal.potentials.size(), 1u);
 }
 
 TEST(ProblemFile, UsersPotentialsAreFoundByNameInTheRegistryPassed) {
@@ -124,7 +125,7 @@ TEST(ProblemFile, UsersPotentialsAreFoundByNameInTheRegistryPassed) {
   const std::string text = R"({"M": [[2]], "W_N": [[1]], "qdot_A": [-3], "law": {"type":
       "fremond", "normal": {"potential": "my_quadratic", "stiffness": 6, "scale": 2}}})";
   const auto file = parse_problem_file(text, registry);
-  EXPECT_EQ(dynamic_cast<const PowerPotential&>(file.law.normal[0]).k(), 12.0);
+  EXPECT_EQ(dynamic_cast<const PowerPotential&>(file.law.get<FremondLaw>().normal[0]).k(), 12.0);
   // The built-in registry does not know it: the registry is what the caller passes, not global.
   EXPECT_EQ(refusal(text), "law.normal.potential");
   // Its parameters are checked by name, and its own refusals are renamed to the file's keys.

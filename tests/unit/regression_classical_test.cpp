@@ -38,10 +38,10 @@ fremond_reference::ClassicalSolutions reference_modes(const ImpactProblem& pb,
                                                       const ImpactLaw& law) {
   namespace ref = fremond_reference;
   ref::QVec e, mu;
-  for (double v : law.e.values) e.push_back(v);
+  for (double v : law.get<RestitutionLaw>().e.values) e.push_back(v);
   if (law.has_friction())
-    for (double v : law.mu.values) mu.push_back(v);
-  const bool poisson = law.type == LawType::poisson || law.type == LawType::poisson_coulomb;
+    for (double v : law.get<RestitutionLaw>().mu.values) mu.push_back(v);
+  const bool poisson = law.name() == "poisson" || law.name() == "poisson_coulomb";
   return ref::classical_modes(
       ref::problem_from(pb.M, pb.W_N, pb.has_tangential() ? pb.W_T : Eigen::MatrixXd(pb.dofs(), 0),
                         pb.qdot_A),
@@ -138,7 +138,8 @@ TEST(RegressionClassical, NewtonExistenceDecidedWithinRoundingIsNotNoSolution) {
   // Contacts 0 and 3 closed: D_NE = −e D_NA, to the rounding of velocities of 2e5 (a few ulps:
   // q̇_E = q̇_A + Δ and D_NE = W_Nᵀq̇_E are each rounded once).
   const double v_scale = r.D_NA.cwiseAbs().maxCoeff();
-  for (const int i : {0, 3}) EXPECT_NEAR(r.D_NE(i), -law.e[i] * r.D_NA(i), 4e-16 * v_scale) << i;
+  for (const int i : {0, 3})
+    EXPECT_NEAR(r.D_NE(i), -law.get<RestitutionLaw>().e[i] * r.D_NA(i), 4e-16 * v_scale) << i;
   // The exact answer (the quad reference's modes, and the exact rational enumeration above).
   const double P0 = 580222296540071629.56, P3 = 206354905227069027.38;
   EXPECT_NEAR(r.P_N(0), P0, 1e-13 * P0);
@@ -1178,9 +1179,9 @@ void expect_stops_in_both_phases(const ImpactProblem& pb, const ImpactLaw& law,
     }
     const double PNE = r.P_N(i) - r.P_NC(i);
     EXPECT_GE(r.P_NC(i), 0.0) << i;
-    EXPECT_LE(std::fabs(r.P_TC(i)), law.mu[i] * r.P_NC(i) + slack) << i;
-    EXPECT_GE(PNE, law.e[i] * r.P_NC(i) - slack) << i;
-    EXPECT_LE(std::fabs(r.P_T(i) - r.P_TC(i)), law.mu[i] * PNE + slack) << i;
+    EXPECT_LE(std::fabs(r.P_TC(i)), law.mu(i) * r.P_NC(i) + slack) << i;
+    EXPECT_GE(PNE, law.get<RestitutionLaw>().e[i] * r.P_NC(i) - slack) << i;
+    EXPECT_LE(std::fabs(r.P_T(i) - r.P_TC(i)), law.mu(i) * PNE + slack) << i;
   }
 }
 

@@ -96,7 +96,7 @@ fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, cons
   std::vector<ref::PowerLaw> normal;
   ref::QVec PN, PT, mu;
   for (int i = 0; i < pb.contacts(); ++i) {
-    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.normal[i]);
+    const auto* power = dynamic_cast<const PowerPotential*>(&file.law.get<FremondLaw>().normal[i]);
     EXPECT_NE(power, nullptr);
     if (!power) {
       ref::Solution none;
@@ -106,7 +106,7 @@ fremond_reference::Solution exact_coulomb_near(const io::ProblemFile& file, cons
     normal.push_back({power->k(), power->p()});
     PN.push_back(r.P_N(i));
     PT.push_back(r.P_T(i));
-    mu.push_back(file.law.mu[i]);
+    mu.push_back(file.law.mu(i));
   }
   return ref::fremond_coulomb_near(ref::problem_from(pb.M, pb.W_N, pb.W_T, pb.qdot_A), normal, mu,
                                    PN, PT);
@@ -1425,9 +1425,9 @@ void expect_bar_slides_one_end(const io::ProblemFile& file, const ImpactResult& 
                                double delta, bool percussions) {
   ASSERT_EQ(r.solver.status, SolverStatus::converged) << why(r);
   const int sticking = 1 - sliding;
-  const double b_slide = file.law.mu[sliding] * r.P_N(sliding);
+  const double b_slide = file.law.mu(sliding) * r.P_N(sliding);
   EXPECT_NEAR(std::fabs(r.P_T(sliding)), b_slide, 1e-9 * b_slide);
-  EXPECT_LT(std::fabs(r.P_T(sticking)), file.law.mu[sticking] * r.P_N(sticking));
+  EXPECT_LT(std::fabs(r.P_T(sticking)), file.law.mu(sticking) * r.P_N(sticking));
   const double qbar_theta = 0.5 * (file.problem.qdot_A(2) + r.qdot_E(2));
   const double zT = (sliding == 0 ? 2 : -2) * delta * qbar_theta;
   EXPECT_LT(r.P_T(sliding) * zT, 0.0);

@@ -42,8 +42,8 @@ TEST(SceneFile, ReadsTheBarAsThePresetMakesIt) {
   EXPECT_EQ(f.scene.gravity, 9.81);                               // the default
   EXPECT_EQ(f.scene.initial.q, preset.initial.q);
   EXPECT_EQ(f.scene.initial.qdot, preset.initial.qdot);
-  EXPECT_EQ(f.scene.law.type, LawType::newton_coulomb);
-  EXPECT_EQ(f.scene.law.mu[1], 0.5);  // one value per contact, in contact order
+  EXPECT_EQ(f.scene.law.name(), "newton_coulomb");
+  EXPECT_EQ(f.scene.law.mu(1), 0.5);  // one value per contact, in contact order
   EXPECT_EQ(f.options.integrator, Integrator::moreau_jean);
   EXPECT_EQ(f.options.t_end, 3.0);
   EXPECT_EQ(f.options.step, 0.002);
@@ -66,7 +66,7 @@ TEST(SceneFile, ReadsGeneralBodiesBallsBlocksAndFremondLaws) {
   EXPECT_EQ(general.scene.body.points[1].radius, 0.0);
   EXPECT_EQ(general.scene.obstacles[1].offset, -3.0);
   EXPECT_EQ(general.scene.gravity, 0.0);
-  EXPECT_EQ(general.scene.law.tangential, TangentialLaw::potential);
+  EXPECT_EQ(general.scene.law.get<FremondLaw>().tangential, TangentialLaw::potential);
   EXPECT_EQ(general.options.t_end, SimulationOptions{}.t_end);
 
   const io::SceneFile ball = io::parse_scene_file(

@@ -17,14 +17,15 @@ namespace fremond::detail {
 /// unrefined answer: Lemke's pivots on cond(M) = 1e9 leave errors of 1e-5 that such a floor would
 /// hide.
 template <int MaxDofs, int MaxContacts>
-double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
+                          const RestitutionLaw& law,
                           const ImpactResultT<MaxDofs, MaxContacts>& result,
                           double* beyond_rounding = nullptr, bool percussions_rounded = false,
                           double percussion_cap = 1e-10);
 
 /// Scaled Frémond residual of an answer (law_residual for Frémond's law).
 template <int N, int C>
-double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+double fremond_residual(const ImpactProblemT<N, C>& pb, const FremondLaw& law,
                         const ImpactResultT<N, C>& result);
 
 }  // namespace fremond::detail

@@ -26,30 +26,15 @@ bool stops_a_separating_contact(const ImpactResultT<N, C>& r) {
   return false;
 }
 
-/// `law` as the contacts obey it, D_N their velocities before the impact: the separating ones
-/// without restitution and without potentials (the file's comment); the same law where none
-/// separates.
+/// `law` as every contact obeys it, D_N their velocities before the impact: each law says how its
+/// separating contacts obey it (its of_every_contact); the same law where none separates.
+template <class Law, class Vec>
+Law law_of_every_contact(const Law& law, const Vec& D_N) {
+  return law.of_every_contact({D_N.data(), static_cast<std::size_t>(D_N.size())});
+}
 template <class Vec>
 ImpactLaw law_of_every_contact(const ImpactLaw& law, const Vec& D_N) {
-  const int c = static_cast<int>(D_N.size());
-  ImpactLaw out = law;
-  if (law.is_fremond()) {
-    const PowerPotential none(0.0, 2.0);  // φ = 0: the reaction alone
-    PerContactPotential normal, tangential;
-    for (int i = 0; i < c; ++i) {
-      normal.potentials.emplace_back(D_N(i) > 0.0 ? none.clone() : law.normal[i].clone());
-      if (law.has_tangential_potential())
-        tangential.potentials.emplace_back(D_N(i) > 0.0 ? none.clone()
-                                                        : law.tangential_potential[i].clone());
-    }
-    out.normal = std::move(normal);
-    if (law.has_tangential_potential()) out.tangential_potential = std::move(tangential);
-  } else if (!law.has_phases()) {  // Poisson's: a separating contact obeys both phases as is
-    std::vector<double> e(static_cast<std::size_t>(c));
-    for (int i = 0; i < c; ++i) e[static_cast<std::size_t>(i)] = D_N(i) > 0.0 ? 0.0 : law.e[i];
-    out.e = PerContact(std::move(e));
-  }
-  return out;
+  return law.visit([&](const auto& l) { return ImpactLaw(law_of_every_contact(l, D_N)); });
 }
 
 /// True when the answer `r`, solved without the separating contacts, drives one of them into its

@@ -4,14 +4,14 @@
 #include <cmath>
 
 #include "contact_space/contact_space.hpp"
-#include "laws/detail/fremond_rows.hpp"
 #include "laws/detail/residuals.hpp"
 #include "laws/detail/separating_contacts.hpp"
+#include "laws/fremond/rows.hpp"
 
 namespace fremond::detail {
 
 template <int N, int C>
-double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+double fremond_residual(const ImpactProblemT<N, C>& pb, const FremondLaw& law,
                         const ImpactResultT<N, C>& r) {
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.has_friction(), cs);
@@ -23,7 +23,7 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   }
   // Every contact obeys the law, the separating ones with the reaction alone
   // (separating_contacts.hpp); where none separates that is the law as it is.
-  const ImpactLaw every = law_of_every_contact(law, cs.D_N);
+  const FremondLaw every = law_of_every_contact(law, cs.D_N);
   if (cs.active < cs.contacts) build_contact_space(pb, law.has_friction(), cs, HeldContacts::every);
   FremondRowsT<N, C> rows;
   rows.init(cs, every);
@@ -35,10 +35,10 @@ double fremond_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   return rows.plain_residual(P) / cs.v_scale;
 }
 
-template double fremond_residual(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,
+template double fremond_residual(const ImpactProblemT<Dynamic, Dynamic>&, const FremondLaw&,
                                  const ImpactResultT<Dynamic, Dynamic>&);
 template double fremond_residual(const ImpactProblemT<kSmallDofs, kSmallContacts>&,
-                                 const ImpactLaw&,
+                                 const FremondLaw&,
                                  const ImpactResultT<kSmallDofs, kSmallContacts>&);
 
 }  // namespace fremond::detail

@@ -40,7 +40,7 @@ struct FremondRowsT {
   using Rows = typename CS::Rows;
 
   const CS* cs = nullptr;
-  const ImpactLaw* law = nullptr;
+  const FremondLaw* law = nullptr;
   Rows tau;     ///< prox step per row
   Rows weight;  ///< τ_max/τ_j ≥ 1: a row's residual R_j = τ_j·(percussion error), so the weight
                 ///< measures every row's percussion error on the same scale
@@ -72,7 +72,7 @@ struct FremondRowsT {
   /// An exact memo: the same argument gives the same bits.
   mutable Rows last_x, last_y;
 
-  void init(const CS& space, const ImpactLaw& l) {
+  void init(const CS& space, const FremondLaw& l) {
     cs = &space;
     law = &l;
     coulomb = l.uses_coulomb() && space.tangential;

@@ -77,7 +77,7 @@ bool balances_percussions(const ImpactProblemT<N, C>& pb, const VecT<N>& q, cons
 }  // namespace
 
 template <int N, int C>
-double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
                           const ImpactResultT<N, C>& r, double* beyond_rounding,
                           bool percussions_rounded, double percussion_cap) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -270,8 +270,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   return residual;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                   \
-  template double classical_residual(const ImpactProblemT<N, C>&, const ImpactLaw&, \
+#define FREMOND_INSTANTIATE(N, C)                                                        \
+  template double classical_residual(const ImpactProblemT<N, C>&, const RestitutionLaw&, \
                                      const ImpactResultT<N, C>&, double*, bool, double);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

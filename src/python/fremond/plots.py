@@ -75,13 +75,13 @@ def describe_law(law, scaling_note: bool = True) -> str:
     paper's values (docs/laws.md) follow in parentheses.
     """
     t = law.type
-    if t == _f.LawType.newton:
+    if t == "newton":
         return f"Newton, frictionless (e = {_one(law.e)})"
-    if t == _f.LawType.poisson:
+    if t == "poisson":
         return f"Poisson, frictionless (e = {_one(law.e)})"
-    if t == _f.LawType.newton_coulomb:
+    if t == "newton_coulomb":
         return f"Newton + Coulomb (e = {_one(law.e)}, μ = {_one(law.mu)})"
-    if t == _f.LawType.poisson_coulomb:
+    if t == "poisson_coulomb":
         return f"Poisson + Coulomb (e = {_one(law.e)}, μ = {_one(law.mu)})"
     normal = law.normal[0] if law.normal else None
     parts = [_potential_text(normal, scaling_note)] if normal is not None else []

@@ -13,7 +13,7 @@ namespace fremond::detail {
 /// `unique`, `solutions_found` and `out.solver` (not the admissibility, which the driver adds).
 template <int MaxDofs, int MaxContacts>
 void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
-                     const ContactSpaceT<MaxDofs, MaxContacts>& cs, const ImpactLaw& law,
+                     const ContactSpaceT<MaxDofs, MaxContacts>& cs, const RestitutionLaw& law,
                      const SolverOptions& options, ImpactResultT<MaxDofs, MaxContacts>& out);
 
 /// Writes the percussions P (and Poisson's compression P_C) of the rows that take part (`cs`'s
@@ -23,7 +23,8 @@ void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
 /// classical_velocity_mode.hpp).
 template <int MaxDofs, int MaxContacts>
 void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
-                            const ContactSpaceT<MaxDofs, MaxContacts>& cs, const ImpactLaw& law,
+                            const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                            const RestitutionLaw& law,
                             const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
                             const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P_C,
                             ImpactResultT<MaxDofs, MaxContacts>& out,
@@ -34,7 +35,7 @@ void write_classical_answer(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
 /// `held`: the contacts solved for.
 template <int MaxDofs, int MaxContacts>
 std::vector<ImpactResultT<MaxDofs, MaxContacts>> solve_classical_all(
-    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const RestitutionLaw& law,
     const SolverOptions& options, HeldContacts held = HeldContacts::approaching);
 
 }  // namespace fremond::detail

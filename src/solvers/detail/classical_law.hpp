@@ -425,7 +425,7 @@ void decide_in_extended_precision(const ImpactProblemT<N, C>& pb, const ContactS
 /// enumerates); `out` is then left empty.
 template <int N, int C>
 bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                           const ImpactLaw& law, LawOutcome<C>& out) {
+                           const RestitutionLaw& law, LawOutcome<C>& out) {
   const bool poisson = law.has_phases();
   const bool f = cs.tangential;
   const int r = f ? 2 : 1, i = cs.index(0);
@@ -508,8 +508,9 @@ bool solve_law_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
 /// most kMaxEnumerated) with friction, list every solution the enumeration finds; otherwise one,
 /// by the cheapest exact method (0: always one). `force`: see solve_phase.
 template <int N, int C>
-void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
-               int list_up_to, LawOutcome<C>& out, SolverMethod force = SolverMethod::automatic) {
+void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+               const RestitutionLaw& law, int list_up_to, LawOutcome<C>& out,
+               SolverMethod force = SolverMethod::automatic) {
   using Rows = typename Phase<C>::Rows;
   out.reset();
   const int a = cs.active;

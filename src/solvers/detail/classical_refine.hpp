@@ -62,7 +62,7 @@ struct ModeOffsets {
 /// Poisson's expansion around the compression P_C (docs/laws.md): P_NE = e P_NC + ΔP with bound
 /// μ P_NE, so P_N = (1 + e) P_NC + ΔP and P_T = P_TC + t with |t| ≤ μ (P_N − P_NC); target 0.
 template <int N, int C>
-void hold_compression(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+void hold_compression(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
                       const typename ContactSpaceT<N, C>::Rows& P_C, ModeOffsets<N, C>& off) {
   const int a = cs.active;
   off.target.setZero(a);
@@ -87,7 +87,7 @@ struct Mode {
   Eigen::Matrix<int, Eigen::Dynamic, 1, 0, kMax, 1> kind;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> slide;  ///< 0 except on sliding rows
   /// μ of the contact of active contact k (0 without friction).
-  static double mu(const ContactSpaceT<N, C>& cs, const ImpactLaw& law, int k) {
+  static double mu(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law, int k) {
     return cs.tangential && law.has_friction() ? law.mu[cs.index(k)] : 0.0;
   }
 };
@@ -97,7 +97,7 @@ struct Mode {
 /// |w_k| (x = 1e-17 left by rounding beside w = 2e-3 is an open row), sticking where the bound's
 /// slack G_jj (β − |t|) exceeds |v_j|.
 template <int N, int C>
-Mode<N, C> read_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+Mode<N, C> read_mode(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
                      const ModeOffsets<N, C>& off, const typename ContactSpaceT<N, C>::Rows& P,
                      const typename ContactSpaceT<N, C>::Rows& D) {
   const int a = cs.active, r = cs.rows();
@@ -124,7 +124,7 @@ Mode<N, C> read_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
 /// Refines P in place (up to `steps` corrections).
 template <int N, int C>
 Refinement refine_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                       const ImpactLaw& law, const ModeOffsets<N, C>& off,
+                       const RestitutionLaw& law, const ModeOffsets<N, C>& off,
                        typename ContactSpaceT<N, C>::Rows& P, int steps = 4) {
   using Rows = typename ContactSpaceT<N, C>::Rows;
   constexpr int kMax = ContactSpaceT<N, C>::kMaxRows;

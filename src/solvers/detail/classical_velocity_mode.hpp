@@ -88,7 +88,7 @@ void basis_coefficients(const ContactSpaceT<N, C>& cs, const RowFlags<N, C>& row
 /// negative and a sticking one's lies in its cone μ (P_N − cB).
 template <int N, int C>
 bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                    const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
+                    const RestitutionLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
                     const RowFlags<N, C>& basic, const RowFlags<N, C>& rows, int m,
                     const BasisCoefficients<N, C>& coef,
                     const typename ContactSpaceT<N, C>::Rows& P, const VecT<N>& qE,
@@ -128,7 +128,7 @@ bool kept_rows_hold(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
 /// ties its percussion to its normal's, so that a move along W's dependence alone would change the
 /// momentum: the caller claims no move then.
 template <int N, int C>
-bool percussions_can_move(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+bool percussions_can_move(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
                           const ModeOffsets<N, C>& off, const RowFlags<N, C>& rows, int m,
                           const RowFlags<N, C>& loose, const RowFlags<N, C>& edge,
                           const BasisCoefficients<N, C>& coef, const RowFlags<N, C>& spanned,
@@ -172,8 +172,8 @@ bool percussions_can_move(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
 /// the answer, the velocities not.
 template <int N, int C>
 bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                         const ImpactLaw& law, const ModeOffsets<N, C>& off, const Mode<N, C>& mode,
-                         const RowFlags<N, C>& basic,
+                         const RestitutionLaw& law, const ModeOffsets<N, C>& off,
+                         const Mode<N, C>& mode, const RowFlags<N, C>& basic,
                          const typename ContactSpaceT<N, C>::Rows& fixed,
                          typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q, const VecT<N>* q_from,
                          const typename ContactSpaceT<N, C>::Rows* P_from, bool& continuum) {
@@ -369,7 +369,7 @@ bool solve_mode_on_basis(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
 /// continuum about the answer, the velocities unique).
 template <int N, int C>
 bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                                const ImpactLaw& law, const ModeOffsets<N, C>& off,
+                                const RestitutionLaw& law, const ModeOffsets<N, C>& off,
                                 const Mode<N, C>& mode, typename ContactSpaceT<N, C>::Rows& P,
                                 VecT<N>& q, const VecT<N>* q_from = nullptr,
                                 const typename ContactSpaceT<N, C>::Rows* P_from = nullptr,
@@ -449,7 +449,7 @@ bool solve_mode_with_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
 /// the answer.
 template <int N, int C>
 bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                              const ImpactLaw& law, const ModeOffsets<N, C>& off,
+                              const RestitutionLaw& law, const ModeOffsets<N, C>& off,
                               typename ContactSpaceT<N, C>::Rows& P, VecT<N>& q,
                               const VecT<N>* q_from = nullptr,
                               const typename ContactSpaceT<N, C>::Rows* P_from = nullptr,
@@ -466,7 +466,7 @@ bool solve_mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpace
 /// and the normal closed or cN > cB: Poisson's expansion keeps μ e P_NC on an open row),
 /// sticking or sliding either way, else t = 0. Nothing where there are more than 4.
 template <int N, int C, class Visit>
-void for_each_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
+void for_each_mode(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
                    const ModeOffsets<N, C>& off, Visit&& visit) {
   const int a = cs.active, r = cs.rows();
   if (r == 0 || a > 4) return;
@@ -515,7 +515,7 @@ void for_each_mode(const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
 /// number of answers accepted; P, q and Poisson's P_C, q_C hold the one kept when it is not zero.
 template <int N, int C>
 int solve_modes_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                              const ImpactLaw& law, bool poisson, const ModeOffsets<N, C>& off,
+                              const RestitutionLaw& law, bool poisson, const ModeOffsets<N, C>& off,
                               typename ContactSpaceT<N, C>::Rows& P,
                               typename ContactSpaceT<N, C>::Rows& P_C, VecT<N>& q, VecT<N>& q_C) {
   using Rows = typename ContactSpaceT<N, C>::Rows;

@@ -6,7 +6,7 @@
 #include "contact_space/contact_space.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/solvers/solver_options.hpp"
-#include "laws/detail/fremond_rows.hpp"
+#include "laws/fremond/rows.hpp"
 
 namespace fremond::detail {
 
@@ -25,13 +25,13 @@ struct MethodOutcome {
 
 template <int N, int C>
 void solve_fremond(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                   const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out);
+                   const FremondLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out);
 
 /// Every solution found: exact for one contact with Coulomb (mode enumeration), else one;
 /// `held`: the contacts solved for (separating_contacts.hpp).
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_fremond_all(const ImpactProblemT<N, C>& pb,
-                                                   const ImpactLaw& law,
+                                                   const FremondLaw& law,
                                                    const SolverOptions& options,
                                                    HeldContacts held = HeldContacts::approaching);
 

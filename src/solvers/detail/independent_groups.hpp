@@ -18,8 +18,7 @@
 #include <vector>
 
 #include "contact_space/contact_space.hpp"
-#include "solvers/detail/classical.hpp"
-#include "solvers/detail/fremond.hpp"
+#include "laws/detail/plugins.hpp"
 
 namespace fremond::detail {
 
@@ -66,14 +65,11 @@ bool coupled_to_first(const ContactSpaceT<N, C>& cs) {
   return true;
 }
 
-/// The law stage (docs/laws.md) on one contact space: Frémond's chain or the classical laws.
+/// The law stage (docs/laws.md) on one contact space: the law's own solver chain.
 template <int N, int C>
 void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  if (law.is_fremond())
-    solve_fremond(pb, cs, law, options, out);
-  else
-    solve_classical(pb, cs, law, options, out);
+  law.visit([&](const auto& l) { solve_chain(pb, cs, l, options, out); });
 }
 
 /// Whether the law has tangential rows in contact space (Frémond's with any tangential law, the
@@ -151,20 +147,14 @@ class GroupMerge {
     solutions_ = r.solutions_found > 0 ? std::min(solutions_ * r.solutions_found, 1 << 20) : 0;
   }
 
-  /// Writes the whole answer into `out`: Frémond's velocities from the gathered percussions (as
-  /// its methods write their own); a classical law's as q̇_A plus each group's velocity change,
-  /// since a group whose mode was solved for its velocities has them more accurately than its
-  /// percussions make them (classical_velocity_mode.hpp); the report of the groups. False, with
-  /// `out` untouched, where the velocities or the energy are not finite.
+  /// Writes the whole answer into `out`, as the law writes an answer merged from its groups
+  /// (its write_merged_answer), and the report of the groups. False, with `out` untouched, where
+  /// the velocities or the energy are not finite.
   bool write(const ImpactLaw& law, ImpactResultT<N, C>& out) const {
     ImpactResultT<N, C> merged;
-    if (law.is_fremond()) {
-      scatter_solution(pb_, cs_, P_, merged);
-      merged.P_N_reaction = reaction_;
-    } else {
-      const VecT<N> q = pb_.qdot_A + dq_, qC = pb_.qdot_A + dqC_;
-      write_classical_answer(pb_, cs_, law, P_, P_C_, merged, &q, &qC);
-    }
+    law.visit([&](const auto& l) {
+      write_merged_answer(pb_, cs_, l, P_, P_C_, reaction_, dq_, dqC_, merged);
+    });
     if (!(merged.qdot_E.allFinite() && std::isfinite(merged.energy_change))) return false;
     merged.solver = report_;
     merged.solver.iterations = iterations_;
@@ -249,8 +239,9 @@ bool solve_all_by_groups(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
   long total = 1;
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
-    lists[g] = law.is_fremond() ? solve_fremond_all(sub, law, options)
-                                : solve_classical_all(sub, law, options);
+    lists[g] = law.visit([&](const auto& l) {
+      return solve_every_answer(sub, l, options, HeldContacts::approaching);
+    });
     if (lists[g].empty()) return false;
     for (const ImpactResultT<N, C>& r : lists[g])
       if (r.solver.status != SolverStatus::converged) return false;

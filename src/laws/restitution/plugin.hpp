@@ -1,0 +1,64 @@
+#pragma once
+// What the generic driver (solve_impact, law_residual, the independent groups) calls for Newton's
+// and Poisson's laws: their solver chain (solvers/classical.cpp) and their residual
+// (laws/restitution/residual.cpp). docs/architecture.md lists the hooks every law gives.
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "fremond/potentials/registry.hpp"
+#include "laws/detail/residuals.hpp"
+#include "solvers/detail/classical.hpp"
+
+namespace fremond::detail {
+
+/// The law from the problem file's `law` object (docs/problem-file.md), `name` one of its names;
+/// InvalidArgument naming the file's key (under `where`) for a bad one
+/// (laws/restitution/schema.cpp).
+ImpactLaw read_law(std::type_identity<RestitutionLaw>, std::string_view name,
+                   const nlohmann::json& j, int contacts, const PotentialRegistry& registry,
+                   const std::string& where);
+
+template <int N, int C>
+double residual_of(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
+                   const ImpactResultT<N, C>& r) {
+  return classical_residual(pb, law, r);
+}
+
+template <int N, int C>
+void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                 const RestitutionLaw& law, const SolverOptions& options,
+                 ImpactResultT<N, C>& out) {
+  solve_classical(pb, cs, law, options, out);
+}
+
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_every_answer(const ImpactProblemT<N, C>& pb,
+                                                    const RestitutionLaw& law,
+                                                    const SolverOptions& options,
+                                                    HeldContacts held) {
+  return solve_classical_all(pb, law, options, held);
+}
+
+/// The answer of independent groups solved apart: q̇_A plus each group's velocity change (dq,
+/// dq_C: Poisson's compression), since a group whose mode was solved for its velocities has them
+/// more accurately than its percussions make them (classical_velocity_mode.hpp).
+template <int N, int C>
+void write_merged_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                         const RestitutionLaw& law, const typename ContactSpaceT<N, C>::Rows& P,
+                         const typename ContactSpaceT<N, C>::Rows& P_C, const VecT<C>& /*reaction*/,
+                         const VecT<N>& dq, const VecT<N>& dq_C, ImpactResultT<N, C>& out) {
+  const VecT<N> q = pb.qdot_A + dq, qC = pb.qdot_A + dq_C;
+  write_classical_answer(pb, cs, law, P, P_C, out, &q, &qC);
+}
+
+/// Not dissipative by construction: its certificate's refusal is the finding (solve_impact.cpp).
+template <int N, int C>
+bool refuse_outside_domain(const RestitutionLaw& /*law*/, ImpactResultT<N, C>& /*out*/) {
+  return false;
+}
+
+}  // namespace fremond::detail
