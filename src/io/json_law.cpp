@@ -112,6 +112,20 @@ std::vector<double> values(const json& obj, const std::string& obj_key, std::str
   return number_or_list(required_key(obj, obj_key, key), key_path(obj_key, key), contacts);
 }
 
+std::pair<std::vector<double>, std::vector<double>> restitution_values(const json& j,
+                                                                       const std::string& where,
+                                                                       std::string_view name,
+                                                                       bool coulomb, int contacts) {
+  const std::string context = "a '" + std::string(name) + "' law";
+  if (coulomb)
+    check_keys(j, where, {"type", "e", "mu"}, context);
+  else
+    check_keys(j, where, {"type", "e"}, context);
+  auto e = values(j, where, "e", contacts);
+  auto mu = coulomb ? values(j, where, "mu", contacts) : std::vector<double>{0.0};
+  return {std::move(e), std::move(mu)};
+}
+
 namespace {
 // The law named `name` read by its own schema (its read_law), or nothing where no law of
 // law_list.hpp has that name.

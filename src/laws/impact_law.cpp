@@ -49,13 +49,23 @@ ImpactLaw ImpactLaw::poisson_coulomb(PerContact e, PerContact mu) {
   return RestitutionLaw{RestitutionLaw::Kind::poisson, std::move(e), true, std::move(mu)};
 }
 ImpactLaw ImpactLaw::fremond(PerContactPotential normal) {
-  return FremondLaw{std::move(normal)};
+  FremondLaw law;
+  law.normal = std::move(normal);
+  return law;
 }
 ImpactLaw ImpactLaw::fremond(PerContactPotential normal, PerContactPotential tangential) {
-  return FremondLaw{std::move(normal), TangentialLaw::potential, std::move(tangential)};
+  FremondLaw law;
+  law.normal = std::move(normal);
+  law.tangential = TangentialLaw::potential;
+  law.tangential_potential = std::move(tangential);
+  return law;
 }
 ImpactLaw ImpactLaw::fremond_coulomb(PerContactPotential normal, PerContact mu) {
-  return FremondLaw{std::move(normal), TangentialLaw::coulomb, {}, std::move(mu)};
+  FremondLaw law;
+  law.normal = std::move(normal);
+  law.tangential = TangentialLaw::coulomb;
+  law.mu = std::move(mu);
+  return law;
 }
 
 }  // namespace fremond

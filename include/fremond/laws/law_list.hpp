@@ -6,9 +6,10 @@
 
 #include "fremond/laws/fremond/fremond_law.hpp"
 #include "fremond/laws/restitution/restitution_law.hpp"
+#include "fremond/laws/stronge/stronge_law.hpp"
 
 namespace fremond {
 
-using LawVariant = std::variant<RestitutionLaw, FremondLaw>;
+using LawVariant = std::variant<RestitutionLaw, FremondLaw, StrongeLaw>;
 
 }  // namespace fremond

@@ -3,6 +3,7 @@
 // impact-problem reader and the scene reader.
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fremond/core/error.hpp"
@@ -29,6 +30,13 @@ PerContactPotential potential_from_json(const json& j, const std::string& where,
 /// The values of obj[key] under the key path obj_key.key: a number or one per contact.
 std::vector<double> values(const json& obj, const std::string& obj_key, std::string_view key,
                            int contacts);
+
+/// A restitution law's keys, {"type", "e"} and with Coulomb "mu", each a number or one per contact:
+/// (e, μ), μ = {0} without Coulomb. Refuses other keys, naming the law `name`.
+std::pair<std::vector<double>, std::vector<double>> restitution_values(const json& j,
+                                                                       const std::string& where,
+                                                                       std::string_view name,
+                                                                       bool coulomb, int contacts);
 
 /// The library names the law's values `law.e`, `law.mu[1]`, `law.normal`; the file spells them
 /// under `where`, Frémond's Coulomb μ under `where.tangential`, and a list of one value as

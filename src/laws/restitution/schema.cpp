@@ -1,6 +1,8 @@
 // The problem file's schema of Newton's and Poisson's laws (docs/problem-file.md, `law`):
 // {"type": "newton" | "poisson", "e"} and, with Coulomb, {"type": "..._coulomb", "e", "mu"},
 // each a number or one per contact.
+#include <tuple>
+
 #include "io/detail/json_law.hpp"
 #include "laws/restitution/plugin.hpp"
 
@@ -14,20 +16,8 @@ ImpactLaw read_law(std::type_identity<RestitutionLaw>, std::string_view name,
   law.kind =
       name.starts_with("poisson") ? RestitutionLaw::Kind::poisson : RestitutionLaw::Kind::newton;
   law.coulomb = name.ends_with("_coulomb");
-  const std::string context = "a '" + std::string(name) + "' law";
-  if (law.coulomb)
-    check_keys(j, where, {"type", "e", "mu"}, context);
-  else
-    check_keys(j, where, {"type", "e"}, context);
-  const auto e = values(j, where, "e", contacts);
-  const auto mu = law.coulomb ? values(j, where, "mu", contacts) : std::vector<double>{0.0};
-  return built(
-      [&] {
-        law.e = e;
-        law.mu = mu;
-        return ImpactLaw(law);
-      },
-      contacts, j, where);
+  std::tie(law.e.values, law.mu.values) = restitution_values(j, where, name, law.coulomb, contacts);
+  return built([&] { return ImpactLaw(law); }, contacts, j, where);
 }
 
 }  // namespace fremond::detail

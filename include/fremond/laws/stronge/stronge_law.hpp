@@ -1,0 +1,42 @@
+#pragma once
+/// @file Stronge's energetic restitution, with or without Coulomb friction (docs/stronge.md).
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "fremond/laws/per_contact.hpp"
+
+namespace fremond {
+
+/// Stronge's law: the impact integrated in the normal percussion (Darboux-Keller) with Coulomb
+/// friction, compression ending where D_N = 0 and restitution where the normal work of restitution
+/// is e² times that of compression. Dissipative by construction for one contact; solved for one
+/// contact at a time (independent contacts each apart).
+struct StrongeLaw {
+  PerContact e{0.0};     ///< Stronge's energetic coefficient e* in [0, 1].
+  bool coulomb = false;  ///< Coulomb's law during the impact (slip, stick, reversal).
+  PerContact mu{0.0};    ///< friction coefficient ≥ 0, read when `coulomb`.
+
+  static constexpr std::array<std::string_view, 2> names{"stronge", "stronge_coulomb"};
+  std::string_view name() const { return names[coulomb]; }
+
+  bool has_phases() const { return false; }
+  bool has_friction() const { return coulomb; }
+  bool uses_coulomb() const { return coulomb; }
+  bool has_tangential_potential() const { return false; }
+  static constexpr bool dissipative = true;
+
+  /// Throws InvalidArgument naming `law.e` or `law.mu`: e in [0, 1], μ ≥ 0 and finite, one value
+  /// or one per contact.
+  void validate(int contacts) const;
+  bool quick_valid(int contacts) const;
+  std::size_t longest_list() const;
+  /// E.g. "stronge_coulomb(e=0.9, mu=0.3)".
+  std::string describe() const;
+  StrongeLaw restricted(const int* idx, int n) const;
+  /// Separating contacts without restitution (their reaction alone: docs/concepts.md).
+  StrongeLaw of_every_contact(std::span<const double> D_N) const;
+};
+
+}  // namespace fremond
