@@ -4,6 +4,7 @@
 
 #include "admissibility/detail/admissibility.hpp"
 #include "core/detail/cholesky.hpp"
+#include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "laws/fremond/rows.hpp"
 
@@ -54,7 +55,10 @@ double change_within(const Around& f) {
 [[gnu::cold, gnu::noinline]] double sampled_gap(const Potential& phi, double z, double s,
                                                 double energy, double dz, double ds);
 
-double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds) {
+}  // namespace
+
+double detail::scaled_gap(const Potential& phi, double z, double s, double energy, double dz,
+                          double ds) {
   if (!phi.capabilities().conjugate) return sampled_gap(phi, z, s, energy, dz, ds);
   // A point outside the domain of φ or φ* (an indicator's boundary, |s| ≤ b for b|z|, s = 0 when
   // k = 0) by less than its rounding is taken on the boundary: moved toward 0 by that rounding.
@@ -108,6 +112,8 @@ double scaled_gap(const Potential& phi, double z, double s, double energy, doubl
                           conj_noise < 0.5 * scale;
   return resolvable ? gap : std::min(gap, subdifferential_miss());
 }
+
+namespace {
 
 // Without a conjugate, φ*(s) ≥ s y − φ(y) for every y bounds the gap from below by
 // φ(z) − φ(y) − s (z − y): sampled at a few points, a potential that is not convex (its slope at
@@ -229,8 +235,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   for (int i = 0; i < c; ++i)
     p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
   const double energy = p_scale * v_scale;  // the impact's energy scale
-  // Frémond's terms: the reaction apart, complementarity (16) and the Fenchel-Young gaps.
-  const FremondLaw* fremond = law.get_if<FremondLaw>();
+  // A law with terms of its own (Frémond's: the reaction apart, (16), (17), (19), Fenchel-Young).
+  const bool own_terms = law.visit([](const auto& l) { return has_certificate_terms(l); });
   double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
   int worst_contact = -1;
   double worst_contact_value = 0.0;
@@ -257,73 +263,35 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     // potential applies to it. Its (15) above keeps the true mean velocity (eq. 9).
     const bool separating = !r.takes_part(i);
     if (separating && r.P_N(i) == 0.0 && r.P_T(i) == 0.0) continue;  // undriven: nothing to add
-    const double Pr = !fremond                     ? 0.0
-                      : separating                 ? r.P_N(i)
-                      : r.P_N_reaction.size() == c ? r.P_N_reaction(i)
-                                                   : 0.0;
-    reaction += -Pr * (separating ? 0.5 * r.D_NE(i) : zN);
-    dissipation += -(r.P_N(i) - Pr) * zN - r.P_T(i) * zT;
-    if (fremond) {
-      // How well z = (D_A + D_E)/2 and the percussions are known (see scaled_gap): to the
-      // solver's stopping tolerance on the law's residual (relative to the velocities), and never
-      // better than rounding.
-      const double dz =
-          std::max(rounding.size() == c ? rounding(i) : 0.0,
-                   std::max(8 * eps, 2 * solved_to) *
-                       std::max({v_scale, std::fabs(r.D_NE(i)), std::fabs(r.D_TE(i))}));
-      // The stopping test (fremond_rows.hpp) weighs row j's residual by τ_max/τ_j, so it bounds
-      // the percussion error of every row by tolerance · v_scale / τ_max with τ_max = G_max/2,
-      // whatever the percussions' own size: a contact barely loaded (P ≪ v_scale/G_max, e.g.
-      // D_NA ≪ D_TA) has its P known to that, not to the tolerance times max|P|. The same
-      // percussion scale as the reference's, max(max|P|, v_scale/max G_jj).
-      const double p_known = std::max(p_scale, g_max > 0.0 ? 2.0 * v_scale / g_max : 0.0);
-      // And a row that stopped at its rounding floor knows its percussion only to floor/τ_j.
-      const double ds = std::max({8 * eps * p_scale, 2 * solved_to * p_known,
-                                  percussion && percussion->size() == c ? (*percussion)(i) : 0.0});
-      // (16): I_reac = −P_reac ≤ 0, D_NE ≥ 0, I_reac·D_NE = 0 (scaled by P and v scales).
-      // A separating contact's reaction is held to the impact's percussion scale: a solve on
-      // every contact leaves the open ones rounding's percussions, not exact zeros.
-      const double pscale =
-          std::fabs(r.P_N(i)) + std::fabs(r.P_T(i)) + (separating ? p_scale : 0.0) + 1e-300;
-      // D_NE = 0 holds only to how well D_NE is known (dz: rounding, or the solver's tolerance).
-      compl_viol = std::max(
-          {compl_viol, std::max(0.0, -Pr) / pscale,
-           std::fabs(Pr) * std::max(0.0, std::fabs(r.D_NE(i)) - 2 * dz) / (pscale * v_scale)});
-      if (!separating)
-        fy = std::max(fy, scaled_gap(fremond->normal[i], zN, -(r.P_N(i) - Pr), energy, dz, ds));
-      if (fremond->has_tangential_potential()) {
-        if (!separating)
-          fy = std::max(
-              fy, scaled_gap(fremond->tangential_potential[i], zT, -r.P_T(i), energy, dz, ds));
-        else  // φ_T = 0: its conjugate allows P_T = 0 alone
-          fy = std::max(fy, std::max(0.0, std::fabs(r.P_T(i)) - ds) / (p_scale + 1e-300));
-      }
-      if (fremond->uses_coulomb()) {
-        // Coulomb's support function b|z_T| with b = μ|P_N|; its conjugate is the indicator of
-        // [−b, b], so the gap is b|z_T| + P_T z_T when |P_T| ≤ b.
-        const double b = fremond->mu[i] * std::fabs(r.P_N(i));
-        const double s = -r.P_T(i);
-        const double scale = b * std::fabs(zT) + std::fabs(s * zT) + energy + 1e-300;
-        const double over = std::fabs(s) - b;
-        // Outside the cone the conjugate is +∞. But P_T is known only to ds, and b = μ|P_N| to
-        // μ·ds: an excess within that, or within the rounding of the two, is not counted as one.
-        // (A contact touching below rounding beside fast sliding with μ = 1e8 has P_N and P_T
-        // of 1e-12 while ds is 2e-9: its percussions are noise the law cannot be held to.)
-        const double known = (1.0 + fremond->mu[i]) * ds + 1e-12 * (b + std::fabs(s));
-        if (over > known)
-          fy = std::max(fy, (over - known) / (b + std::fabs(s) + p_scale));
-        else
-          // The gap b|z_T| + P_T z_T less what the errors of z_T (dz), of P_T (ds) and of b
-          // (μ·ds) can make of it.
-          fy = std::max(fy, std::max(0.0, b * std::fabs(zT) - s * zT - (b + std::fabs(s)) * dz -
-                                              (1.0 + fremond->mu[i]) * ds * std::fabs(zT)) /
-                                scale);
-      }
+    // The law's own terms (its certificate_terms): Frémond's reaction, (16) and Fenchel-Young.
+    CertificateTerms t;
+    if (own_terms) {
+      const CertificateContact contact{
+          .separating = separating,
+          .zN = zN,
+          .zT = zT,
+          .P_N = r.P_N(i),
+          .P_T = r.P_T(i),
+          .D_NE = r.D_NE(i),
+          .D_TE = r.D_TE(i),
+          .P_N_reaction = r.P_N_reaction.size() == c ? r.P_N_reaction(i) : 0.0,
+          .rounding = rounding.size() == c ? rounding(i) : 0.0,
+          .percussion_floor = percussion && percussion->size() == c ? (*percussion)(i) : 0.0,
+          .solved_to = solved_to,
+          .v_scale = v_scale,
+          .p_scale = p_scale,
+          .g_max = g_max,
+          .energy = energy};
+      law.visit([&](const auto& l) { certificate_terms(l, i, contact, t); });
     }
+    reaction += -t.reaction * (separating ? 0.5 * r.D_NE(i) : zN);
+    dissipation += -(r.P_N(i) - t.reaction) * zN - r.P_T(i) * zT;
+    compl_viol = std::max(compl_viol, t.complementarity);
+    fy = std::max(fy, t.fenchel_young);
   }
   rep.total = rep.per_contact.sum();
   rep.reaction = reaction;
-  rep.dissipation = fremond ? dissipation : rep.total;
+  rep.dissipation = own_terms ? dissipation : rep.total;
   rep.complementarity = compl_viol;
   rep.penetration = pen;
   rep.fenchel_young_gap = fy;
@@ -378,15 +346,15 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     fail(Inequality::total_15, -r.energy_change);
   else if (worst_contact >= 0 && worst_contact_value < -tol)
     fail(Inequality::per_contact_15, worst_contact_value, worst_contact);
-  else if (fremond && rep.reaction < -tol)
+  else if (own_terms && rep.reaction < -tol)
     fail(Inequality::reaction_17, rep.reaction);
-  else if (fremond && rep.dissipation < -tol)
+  else if (own_terms && rep.dissipation < -tol)
     fail(Inequality::dissipation_19, rep.dissipation);
-  else if (fremond && compl_viol > rel)
+  else if (own_terms && compl_viol > rel)
     fail(Inequality::complementarity_16, compl_viol);
   else if (pen > rel)
     fail(Inequality::non_penetration, pen);
-  else if (fremond && fy > rel)
+  else if (own_terms && fy > rel)
     fail(Inequality::fenchel_young, fy);
   rep.admissible = rep.failed == Inequality::none;
   return rep;

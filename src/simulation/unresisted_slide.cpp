@@ -8,17 +8,6 @@
 
 namespace fremond {
 
-namespace {
-// True where the law of contact k puts no tangential percussion on a slide at D_T.
-bool resists_no_slide(const ImpactLaw& law, int k, double D_T) {
-  // A tangential potential: the slide's mean velocity is D_T itself (before = after), so no
-  // percussion where 0 ∈ ∂φ_T(D_T). Otherwise Coulomb's with μ = 0, or no friction at all.
-  if (const FremondLaw* f = law.get_if<FremondLaw>(); f && f->has_tangential_potential())
-    return f->tangential_potential[k].subdifferential(D_T).contains(0.0);
-  return !law.has_friction() || law.mu(k) == 0.0;
-}
-}  // namespace
-
 std::optional<UnresistedSlide> unresisted_slide(const Scene& scene,
                                                 const SimulationOptions& options,
                                                 const SimulationResult& result) {
@@ -37,7 +26,7 @@ std::optional<UnresistedSlide> unresisted_slide(const Scene& scene,
     if (std::fabs(f.gap) > touching || std::fabs(D_N) > options.velocity_tolerance ||
         std::fabs(D_T) <= options.velocity_tolerance)
       continue;
-    if (!resists_no_slide(scene.law, k, D_T)) continue;
+    if (!scene.law.leaves_slide_free(k, D_T)) continue;
     if (!out || std::fabs(D_T) > std::fabs(out->speed)) out = UnresistedSlide{k, D_T};
   }
   return out;

@@ -1,4 +1,4 @@
-// The driver (docs/laws.md, docs/concepts.md): validate → trivial → law-specific chain →
+// The driver (docs/laws.md, docs/concepts.md): validate → the law's chain (its solve_chain) →
 // admissibility.
 #include "fremond/solvers/solve_impact.hpp"
 

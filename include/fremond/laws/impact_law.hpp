@@ -97,6 +97,11 @@ class ImpactLaw {
   double mu(int k) const {
     return visit([k](const auto& l) { return l.uses_coulomb() ? l.mu[k] : 0.0; });
   }
+  /// No tangential percussion on a lasting slide of contact k at D_T (the simulation's test of a
+  /// slide nothing stops).
+  bool leaves_slide_free(int k, double D_T) const {
+    return visit([k, D_T](const auto& l) { return l.leaves_slide_free(k, D_T); });
+  }
   /// Checks parameters and their counts against the number of contacts; throws InvalidArgument
   /// naming `law.e`, `law.mu`, `law.normal`, `law.tangential`.
   void validate(int contacts) const {

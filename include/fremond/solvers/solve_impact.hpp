@@ -1,6 +1,6 @@
 #pragma once
-/// @file The one entry point for every law: validate → trivial → closed form → Newton → proximal →
-/// NLopt, then the admissibility certificate (docs/concepts.md) on the answer.
+/// @file The one entry point for every law: validate, the law's own solver chain
+/// (docs/solvers.md), then the admissibility certificate (docs/concepts.md) on the answer.
 #include <vector>
 
 #include "fremond/laws/impact_law.hpp"

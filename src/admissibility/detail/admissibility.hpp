@@ -5,6 +5,7 @@
 #include "fremond/admissibility/admissibility_report.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/impact_problem.hpp"
+#include "fremond/potentials/potential.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 
@@ -15,6 +16,32 @@ namespace fremond::detail {
 /// 0, ±z, z/2, 3z/2, 2z at its midpoint (beyond rounding). Independent of how well the answer is
 /// solved: built on φ's values alone.
 bool not_a_pseudo_potential(const Potential& phi, double z);
+
+/// Fenchel–Young gap of φ at (z, s) beyond what the rounding of z (dz) and s (ds) explains, scaled
+/// by the size of its terms and by `energy`, the impact's energy scale (admissibility.cpp).
+double scaled_gap(const Potential& phi, double z, double s, double energy, double dz, double ds);
+
+/// One contact of an answer as a law's own certificate terms see it (its certificate_terms).
+struct CertificateContact {
+  bool separating = false;    ///< D_NA > 0: held by the reaction alone (docs/concepts.md)
+  double zN = 0.0, zT = 0.0;  ///< mean velocities (D_A + D_E)/2
+  double P_N = 0.0, P_T = 0.0, D_NE = 0.0, D_TE = 0.0;
+  double P_N_reaction = 0.0;            ///< the reaction part of P_N the result reports (0 if none)
+  double rounding = 0.0;                ///< how well D_E is known from rounding (velocity_rounding)
+  double percussion_floor = 0.0;        ///< how well the stopping test pins P down (0 if unknown)
+  double solved_to = 0.0;               ///< the solver's stopping tolerance
+  double v_scale = 0.0, p_scale = 0.0;  ///< the impact's velocity and percussion scales
+  double g_max = 0.0;                   ///< delassus_max
+  double energy = 0.0;                  ///< p_scale · v_scale
+};
+
+/// What a law adds to the certificate for one contact: the reaction part of P_N (checked by (16)
+/// and (17); the rest of P_N by (19)), the complementarity (16) and Fenchel–Young violations.
+struct CertificateTerms {
+  double reaction = 0.0;
+  double complementarity = 0.0;
+  double fenchel_young = 0.0;
+};
 
 /// Per contact of the problem, how well its velocities D_E (hence z = (D_A + D_E)/2) are known
 /// from rounding alone: 16ε (|D_A,j| + κ(M) Σ_k |G_jk||P_k|) over its rows (G is formed by a

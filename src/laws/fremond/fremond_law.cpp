@@ -41,6 +41,11 @@ TangentialLaw tangential_law_from_string(std::string_view s) {
   return detail::enum_from_string(kTangential, s, "tangential law");
 }
 
+bool FremondLaw::leaves_slide_free(int k, double D_T) const {
+  if (has_tangential_potential()) return tangential_potential[k].subdifferential(D_T).contains(0.0);
+  return !uses_coulomb() || mu[k] == 0.0;
+}
+
 bool FremondLaw::quick_valid(int contacts) const {
   if (uses_coulomb() && !detail::friction_fits(mu, contacts)) return false;
   if (!potentials_fit(normal, contacts)) return false;

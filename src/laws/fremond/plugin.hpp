@@ -12,6 +12,7 @@
 #include "admissibility/detail/admissibility.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "laws/detail/residuals.hpp"
+#include "laws/fremond/certificate.hpp"
 #include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "admissibility/detail/admissibility.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "laws/detail/residuals.hpp"
 #include "solvers/detail/classical.hpp"
@@ -60,5 +61,12 @@ template <int N, int C>
 bool refuse_outside_domain(const RestitutionLaw& /*law*/, ImpactResultT<N, C>& /*out*/) {
   return false;
 }
+
+/// No terms of its own: the certificate holds it to (15) and non-penetration.
+inline bool has_certificate_terms(const RestitutionLaw& /*law*/) {
+  return false;
+}
+inline void certificate_terms(const RestitutionLaw& /*law*/, int /*i*/,
+                              const CertificateContact& /*k*/, CertificateTerms& /*out*/) {}
 
 }  // namespace fremond::detail

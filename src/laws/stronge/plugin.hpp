@@ -11,6 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "admissibility/detail/admissibility.hpp"
 #include "contact_space/contact_space.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/potentials/registry.hpp"
@@ -168,5 +169,12 @@ template <int N, int C>
 bool refuse_outside_domain(const StrongeLaw& /*law*/, ImpactResultT<N, C>& /*out*/) {
   return false;
 }
+
+/// No terms of its own: the certificate holds it to (15) and non-penetration.
+inline bool has_certificate_terms(const StrongeLaw& /*law*/) {
+  return false;
+}
+inline void certificate_terms(const StrongeLaw& /*law*/, int /*i*/, const CertificateContact& /*k*/,
+                              CertificateTerms& /*out*/) {}
 
 }  // namespace fremond::detail

@@ -35,6 +35,9 @@ struct FremondLaw {
   bool uses_coulomb() const { return tangential == TangentialLaw::coulomb; }
   bool has_tangential_potential() const { return tangential == TangentialLaw::potential; }
   /// Dissipative by construction: an answer its certificate refuses is not resolved.
+  /// No tangential percussion on a lasting slide of contact k at D_T (its mean velocity is D_T):
+  /// 0 ∈ ∂φ_T(D_T) for a tangential potential, μ = 0 for Coulomb's, always without friction.
+  bool leaves_slide_free(int k, double D_T) const;
   static constexpr bool dissipative = true;
 
   /// Throws InvalidArgument naming `law.normal`, `law.tangential` or `law.mu`: potentials present,

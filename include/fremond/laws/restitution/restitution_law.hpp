@@ -33,6 +33,8 @@ struct RestitutionLaw {
   bool uses_coulomb() const { return coulomb; }
   bool has_tangential_potential() const { return false; }
   /// Creates no energy by construction (the certificate's finding, not the solver's failure).
+  /// No tangential percussion on a lasting slide of contact k at D_T: no friction, or μ = 0.
+  bool leaves_slide_free(int k, double /*D_T*/) const { return !coulomb || mu[k] == 0.0; }
   static constexpr bool dissipative = false;
 
   /// Throws InvalidArgument naming `law.e`, `law.mu` (or `law.e[i]`): e in [0, 1], μ ≥ 0 and

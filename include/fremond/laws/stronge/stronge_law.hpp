@@ -25,6 +25,8 @@ struct StrongeLaw {
   bool has_friction() const { return coulomb; }
   bool uses_coulomb() const { return coulomb; }
   bool has_tangential_potential() const { return false; }
+  /// No tangential percussion on a lasting slide of contact k at D_T: no friction, or μ = 0.
+  bool leaves_slide_free(int k, double /*D_T*/) const { return !coulomb || mu[k] == 0.0; }
   static constexpr bool dissipative = true;
 
   /// Throws InvalidArgument naming `law.e` or `law.mu`: e in [0, 1], μ ≥ 0 and finite, one value
