@@ -2,12 +2,12 @@
 /// @file Everything a user of the library needs, in one include.
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/core/error.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/core/types.hpp"
 #include "fremond/curves/curves.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/io/scene_file.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/laws/residual.hpp"
 #include "fremond/potentials/absolute_value.hpp"
 #include "fremond/potentials/callable_potential.hpp"

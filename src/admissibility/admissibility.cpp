@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include "laws/detail/impact_problem.hpp"
+#include "core/detail/impact_problem.hpp"
 
 namespace fremond {
 

@@ -13,12 +13,12 @@
 
 #include "core/detail/accurate_dot.hpp"
 #include "core/detail/cholesky.hpp"
+#include "core/detail/impact_problem.hpp"
 #include "core/detail/refined_solve.hpp"
 #include "core/detail/small_dense.hpp"
 #include "fremond/core/error.hpp"
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
-#include "laws/detail/impact_problem.hpp"
 
 namespace fremond::detail {
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "fremond/admissibility/admissibility.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/io/problem_file.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/laws/residual.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "python/bind_helpers.hpp"

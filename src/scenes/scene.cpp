@@ -4,12 +4,12 @@
 #include <cmath>
 #include <string>
 
+#include "core/detail/impact_problem.hpp"
 #include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/core/types.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/scenes/kinematics.hpp"
-#include "laws/detail/impact_problem.hpp"
 
 namespace fremond {
 

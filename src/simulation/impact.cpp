@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "fremond/core/error.hpp"
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "simulation/detail/impact_record.hpp"
 #include "simulation/detail/run.hpp"

@@ -8,8 +8,8 @@
 
 #include "admissibility/detail/admissibility.hpp"
 #include "contact_space/contact_space.hpp"
+#include "core/detail/impact_problem.hpp"
 #include "fremond/admissibility/admissibility.hpp"
-#include "laws/detail/impact_problem.hpp"
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/independent_groups.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// @file A block landing flat on both corners (tests/support: the shared problems).
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 
 namespace fremond::fixtures {
 

@@ -1,8 +1,8 @@
 #pragma once
 /// @file Computes the admissibility certificate (docs/concepts.md) of any law's answer.
 #include "fremond/admissibility/admissibility_report.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 

@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "fremond/admissibility/admissibility_report.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/solver_options.hpp"
 #include "fremond/solvers/solver_status.hpp"
 

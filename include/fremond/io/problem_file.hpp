@@ -21,8 +21,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/impact_result.hpp"
 

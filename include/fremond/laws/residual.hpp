@@ -1,8 +1,8 @@
 #pragma once
 /// @file One residual per law, shared by every solver and by the tests (scaled by the velocity
 /// scale).
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
 
 namespace fremond {

@@ -6,7 +6,7 @@
 /// for p = 3). It is computed at run time, never hard-coded.
 #include <array>
 
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/scenes/scene.hpp"
 #include "fremond/solvers/solver_options.hpp"

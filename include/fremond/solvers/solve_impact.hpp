@@ -3,8 +3,8 @@
 /// (docs/solvers.md), then the admissibility certificate (docs/concepts.md) on the answer.
 #include <vector>
 
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 

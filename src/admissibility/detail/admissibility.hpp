@@ -3,8 +3,8 @@
 /// already has the Delassus matrix (solve_impact); the public check_admissibility computes it.
 #include "contact_space/contact_space.hpp"
 #include "fremond/admissibility/admissibility_report.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/potentials/potential.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"

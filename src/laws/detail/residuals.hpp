@@ -1,8 +1,8 @@
 #pragma once
 /// @file The residual of each law family (laws/residual.hpp dispatches to them); the solvers report
 /// and stop on the same functions.
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "fremond/solvers/impact_result.hpp"
 
 namespace fremond::detail {

@@ -22,8 +22,8 @@
 
 #include "contact_space/contact_space.hpp"
 #include "core/detail/small_lu.hpp"
+#include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
-#include "fremond/laws/impact_problem.hpp"
 #include "laws/detail/residuals.hpp"
 
 namespace fremond::detail::classical {

@@ -1,13 +1,13 @@
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "core/detail/impact_problem.hpp"
 #include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "laws/detail/impact_problem.hpp"
 
 namespace fremond {
 

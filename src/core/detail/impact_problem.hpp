@@ -3,7 +3,7 @@
 /// callers that factorise M anyway.
 #include "core/detail/cholesky.hpp"
 #include "core/detail/small_dense.hpp"
-#include "fremond/laws/impact_problem.hpp"
+#include "fremond/core/impact_problem.hpp"
 
 namespace fremond {
 
