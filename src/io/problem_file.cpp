@@ -45,6 +45,12 @@ void check_given_w(const ImpactProblem& pb, const json& doc) {
 
 }  // namespace
 
+ImpactLaw parse_law(std::string_view json_text, int contacts, const PotentialRegistry& registry) {
+  if (contacts < 1)
+    throw InvalidArgument("contacts", "must be >= 1, got " + std::to_string(contacts));
+  return detail::law_from_json(detail::parse_json(json_text, "law"), contacts, registry, "law");
+}
+
 ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry) {
   const json doc = detail::parse_json(json_text, "problem");
   detail::require_object(doc, "problem");

@@ -88,18 +88,33 @@ void bind_impacts(py::module_& m) {
             return ImpactLaw::fremond_coulomb(per_contact(normal), per_contact(mu));
           },
           py::arg("normal"), py::arg("mu"))
-      // Each value is the law's own, None where the law has no such value (e for Frémond's).
+      .def_static(
+          "from_json",
+          [](const std::string& text, int contacts, const PotentialRegistry* registry) {
+            return io::parse_law(text, contacts,
+                                 registry ? *registry : PotentialRegistry::with_builtins());
+          },
+          py::arg("text"), py::arg("contacts") = 1, py::arg("registry") = nullptr,
+          "Any law by the problem file's schema, e.g. '{\"type\": \"stronge_coulomb\", \"e\": 0.9, "
+          "\"mu\": 1}', validated for `contacts` contacts.")
+      // Each value is the law's own, None where the law has no such value (e for Frémond's): asked
+      // of any law's type by the member's name, so a new law needs nothing here.
       .def_property_readonly("type", [](const ImpactLaw& l) { return std::string(l.name()); })
       .def_property_readonly("tangential",
                              [](const ImpactLaw& l) -> std::optional<TangentialLaw> {
-                               if (const auto* f = l.get_if<FremondLaw>()) return f->tangential;
-                               return std::nullopt;
+                               return l.visit([](const auto& law) -> std::optional<TangentialLaw> {
+                                 if constexpr (requires { law.tangential; }) return law.tangential;
+                                 return std::nullopt;
+                               });
                              })
-      .def_property_readonly("e",
-                             [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
-                               if (const auto* r = l.get_if<RestitutionLaw>()) return r->e.values;
-                               return std::nullopt;
-                             })
+      .def_property_readonly(
+          "e",
+          [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
+            return l.visit([](const auto& law) -> std::optional<std::vector<double>> {
+              if constexpr (requires { law.e; }) return law.e.values;
+              return std::nullopt;
+            });
+          })
       .def_property_readonly("mu",
                              [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
                                if (!l.uses_coulomb()) return std::nullopt;
@@ -107,16 +122,20 @@ void bind_impacts(py::module_& m) {
                              })
       .def_property_readonly("normal",
                              [](const ImpactLaw& l) -> std::optional<py::list> {
-                               if (const auto* f = l.get_if<FremondLaw>())
-                                 return potentials_list(f->normal);
-                               return std::nullopt;
+                               return l.visit([](const auto& law) -> std::optional<py::list> {
+                                 if constexpr (requires { law.normal; })
+                                   return potentials_list(law.normal);
+                                 return std::nullopt;
+                               });
                              })
       .def_property_readonly("tangential_potential",
                              [](const ImpactLaw& l) -> std::optional<py::list> {
-                               const auto* f = l.get_if<FremondLaw>();
-                               if (f && f->has_tangential_potential())
-                                 return potentials_list(f->tangential_potential);
-                               return std::nullopt;
+                               if (!l.has_tangential_potential()) return std::nullopt;
+                               return l.visit([](const auto& law) -> std::optional<py::list> {
+                                 if constexpr (requires { law.tangential_potential; })
+                                   return potentials_list(law.tangential_potential);
+                                 return std::nullopt;
+                               });
                              })
       .def("is_fremond", [](const ImpactLaw& l) { return l.is<FremondLaw>(); })
       .def("dissipative", &ImpactLaw::dissipative)

@@ -391,3 +391,21 @@ def test_a_flight_too_fast_to_resolve_stops_the_run():
 
 if __name__ == "__main__":
     run_tests(globals())
+
+
+def test_any_law_from_its_file_schema():
+    # Stronge + Coulomb on a point mass sliding throughout: P_N = (1 + e)|D_NA|, P_T = -mu P_N.
+    law = f.ImpactLaw.from_json('{"type": "stronge_coulomb", "e": 0.5, "mu": 0.25}')
+    assert law.type == "stronge_coulomb" and law.e == [0.5] and law.mu == [0.25]
+    assert law.normal is None
+    pb = f.ImpactProblem(M=np.eye(2), W_N=np.array([[0.0], [1.0]]), W_T=np.array([[1.0], [0.0]]),
+                         qdot_A=np.array([1.0, -2.0]))
+    r = f.solve_impact(pb, law)
+    assert abs(r.P_N[0] - 3.0) < 1e-15 and abs(r.P_T[0] + 0.75) < 1e-15
+    assert r.energy_change < 0
+    try:
+        f.ImpactLaw.from_json('{"type": "stronge", "e": 2}')
+    except ValueError as e:
+        assert "law.e" in str(e)
+    else:
+        raise AssertionError("e = 2 accepted")

@@ -41,6 +41,11 @@ struct ProblemFile {
 /// that is not an object) is named "problem".
 ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry);
 
+/// Reads a law alone, the `law` object of the problem file (e.g. `{"type": "stronge_coulomb", "e":
+/// 0.9, "mu": 1}`), validated for `contacts` contacts: any law of law_list.hpp by its name.
+/// Throws InvalidArgument naming the key as `law.<key>`.
+ImpactLaw parse_law(std::string_view json_text, int contacts, const PotentialRegistry& registry);
+
 /// The same, reading the whole stream first.
 ProblemFile read_problem_file(std::istream& in, const PotentialRegistry& registry);
 
