@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The paper's comparison on the bar, reproduced: every figure, and the table of the five laws.
 
-Runs the paper's scene (the paper's Fig. 1) under each of its five laws through the Python bindings, prints
+Runs the paper's scene (the paper's Fig. 1) under each of its five laws, and under Stronge's
+energetic restitution with Coulomb friction (not in the paper), through the Python bindings, prints
 a table (per law: impacts, energy before and after each of the first impacts, whether every impact
 was admissible, which inequality failed), and writes into the output folder:
 
@@ -12,6 +13,7 @@ was admissible, which inequality failed), and writes into the output folder:
   fig09_tangential_dead_zone.png                D_TE against D_TA, viscous dead zone
   fig10_fremond_coulomb_animation.gif, ..._poses.png, fig11_fremond_coulomb_energy.png
   fig12_fremond_viscous_animation.gif, ..._poses.png, fig13_fremond_viscous_energy.png
+  stronge_coulomb_animation.gif, ..._poses.png, stronge_coulomb_energy.png  (not in the paper)
   <law>_impacts.csv                             the impact log of each run
   comparison.txt, comparison.json               the table, as printed and as data
 
@@ -32,14 +34,25 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# The paper's figures of each law: (animation and poses, energy).
+# The paper's figures of each law: (animation and poses, energy); None for a law the paper does not
+# have, whose files are named by the law alone.
 LAWS = [
     ("newton", 2, 3),
     ("newton_coulomb", 4, 5),
     ("poisson_coulomb", 6, 7),
     ("fremond_coulomb", 10, 11),
     ("fremond_viscous", 12, 13),
+    ("stronge_coulomb", None, None),
 ]
+
+
+def figure_name(n, law, kind):
+    """fig04_newton_coulomb_poses.png for the paper's figure 4; stronge_coulomb_poses.png without."""
+    return f"fig{n:02d}_{law}_{kind}" if n is not None else f"{law}_{kind}"
+
+
+def figure_title(n, what):
+    return f"Fig. {n}: {what}" if n is not None else f"Not in the paper: {what}"
 FIG8_P = [1.5, 2.0, 2.5, 3.0, 4.0]
 
 
@@ -87,7 +100,8 @@ def law_row(f, name, scene, run, n_first):
 
 
 def table_text(rows, n_first, t_end):
-    head = (f"The paper's bar (the paper's Fig. 1) under its five laws, t = 0 to {t_end:g} s; "
+    head = (f"The paper's bar (the paper's Fig. 1) under its five laws and Stronge's, "
+            f"t = 0 to {t_end:g} s; "
             f"energy ½q̇ᵀMq̇ + mgy in J\n")
     cols = ["law", "impacts", f"energy before→after, impacts 1..{n_first}", "admissible",
             "failed"]
@@ -168,13 +182,16 @@ def main(argv=None):
             print(f"paper_figures: {name}: the run stopped early: {run.result.message}",
                   file=sys.stderr)
         law_text = f.plots.describe_law(scene.law)
-        save(f.plots.energy_plot(run, title=wrap(f"Fig. {fig_energy}: energy, {law_text}", 110)),
-             f"fig{fig_energy:02d}_{name}_energy.png")
-        save(f.plots.poses_plot(run, scene, title=wrap(f"Fig. {fig_motion}: motion, {law_text}", 65)),
-             f"fig{fig_motion:02d}_{name}_poses.png")
+        save(f.plots.energy_plot(
+            run, title=wrap(figure_title(fig_energy, f"energy, {law_text}"), 110)),
+            figure_name(fig_energy, name, "energy.png"))
+        save(f.plots.poses_plot(
+            run, scene, title=wrap(figure_title(fig_motion, f"motion, {law_text}"), 65)),
+            figure_name(fig_motion, name, "poses.png"))
         if not args.no_animations:
-            gif = f"fig{fig_motion:02d}_{name}_animation.gif"
-            f.plots.animate(run, scene, out / gif, title=wrap(f"Fig. {fig_motion}: {law_text}", 75))
+            gif = figure_name(fig_motion, name, "animation.gif")
+            f.plots.animate(run, scene, out / gif,
+                            title=wrap(figure_title(fig_motion, law_text), 75))
             written.append(gif)
         write_impacts_csv(out / f"{name}_impacts.csv", run)
         written.append(f"{name}_impacts.csv")

@@ -41,7 +41,7 @@ inline constexpr const char* kScaling =
     "velocity) "
     "or paper (k_paper = k 2^(1-p), k_T,paper = k_T 2^(1-q), r_paper = 2r; docs/laws.md).";
 inline constexpr const char* kPaperLaw =
-    "The five laws the paper compares on the bar (the paper's Fig. 1).";
+    "The five laws the paper compares on the bar (the paper's Fig. 1), and Stronge + Coulomb.";
 inline constexpr const char* kIntegrator = "event_driven (exact flights) or moreau_jean.";
 inline constexpr const char* kPhase = "The phase of a run: event_driven or moreau_jean.";
 inline constexpr const char* kSimulationStatus = "How a run ended.";

@@ -44,7 +44,8 @@ void bind_enums(py::module_& m) {
   using P = PaperLaw;
   bind_enum<P>(
       m, "PaperLaw", doc::kPaperLaw,
-      {P::newton, P::newton_coulomb, P::poisson_coulomb, P::fremond_coulomb, P::fremond_viscous},
+      {P::newton, P::newton_coulomb, P::poisson_coulomb, P::fremond_coulomb, P::fremond_viscous,
+       P::stronge_coulomb},
       &paper_law_from_string);
   bind_enum<Integrator>(m, "Integrator", doc::kIntegrator,
                         {Integrator::event_driven, Integrator::moreau_jean},

@@ -8,12 +8,13 @@
 namespace fremond {
 
 namespace {
-constexpr detail::EnumNames<PaperLaw, 5> kPaperLaws{
+constexpr detail::EnumNames<PaperLaw, 6> kPaperLaws{
     {{PaperLaw::newton, "newton"},
      {PaperLaw::newton_coulomb, "newton_coulomb"},
      {PaperLaw::poisson_coulomb, "poisson_coulomb"},
      {PaperLaw::fremond_coulomb, "fremond_coulomb"},
-     {PaperLaw::fremond_viscous, "fremond_viscous"}}};
+     {PaperLaw::fremond_viscous, "fremond_viscous"},
+     {PaperLaw::stronge_coulomb, "stronge_coulomb"}}};
 
 // `dimensions` names what the inertia was computed from, for the one error they can cause.
 Scene on_ground(PlanarBody body, double gravity, const PlanarState& initial, ImpactLaw law,
@@ -82,6 +83,13 @@ ImpactLaw paper_law(PaperLaw law, double k_N) {
     case PaperLaw::fremond_viscous:
       return ImpactLaw::fremond(PowerPotential(k_N, C::p),
                                 DeadZonePowerPotential(C::k_T, C::q, C::r));
+    case PaperLaw::stronge_coulomb: {
+      StrongeLaw stronge;
+      stronge.e = C::e;
+      stronge.coulomb = true;
+      stronge.mu = C::mu;
+      return stronge;
+    }
   }
   return ImpactLaw::newton(C::e);
 }

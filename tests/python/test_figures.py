@@ -19,7 +19,8 @@ from PIL import Image  # noqa: E402
 from support import ROOT, near, run_tests  # noqa: E402
 import fremond as f  # noqa: E402
 
-LAWS = ["newton", "newton_coulomb", "poisson_coulomb", "fremond_coulomb", "fremond_viscous"]
+LAWS = ["newton", "newton_coulomb", "poisson_coulomb", "fremond_coulomb", "fremond_viscous",
+        "stronge_coulomb"]
 _runs = {}
 
 
@@ -73,6 +74,19 @@ def test_newton_coulomb_first_impact_creates_energy_and_is_flagged():
         if name != "newton_coulomb":
             _, other = paper_run(name)
             assert other.impacts[0].admissible, name
+
+
+def test_stronge_first_impact_loses_what_the_hand_derivation_says():
+    # The bar at its first impact (θ = π/4, l = 0.5, m = 1, J = 1/12): G_NN = G_TT = 2.5,
+    # G_NT = -1.5, D_TA = 2, D_NA = -v. It slips (dD_T/dp = -4) until D_T = 0 at p = 1/2, then
+    # sticks (|G_NT| <= μ G_TT) with dD_N/dp = det G / G_TT = 1.6. The energy lost is the normal
+    # work (1 - e²)|W_c| plus the friction work μ ∫|D_T| dp = 1/2.
+    _, run = paper_run("stronge_coulomb")
+    first = run.impacts[0]
+    v = math.sqrt(2 * 9.81 * (1 - 0.5 * math.sin(math.pi / 4)))
+    w_c = 0.5 * (v + (v - 2)) * 0.5 + (v - 2) ** 2 / 3.2
+    near([first.energy_E - first.energy_A], [-(1 - 0.81) * w_c - 0.5], rel=1e-12)
+    assert first.admissible
 
 
 def test_fig8_plotted_p2_line_is_eq_24():
@@ -142,8 +156,9 @@ def test_main_job_writes_every_figure():
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "paper"
         assert paper_figures.main(["--out", str(out)]) == 0
-        expected = [f"fig{n:02d}_{law}_{kind}" for law, a, e in paper_figures.LAWS
+        expected = [paper_figures.figure_name(n, law, kind) for law, a, e in paper_figures.LAWS
                     for n, kind in ((a, "animation.gif"), (a, "poses.png"), (e, "energy.png"))]
+        assert "stronge_coulomb_energy.png" in expected
         expected += ["fig08_normal_restitution.png", "fig09_tangential_dead_zone.png"]
         for name in expected:
             path = out / name

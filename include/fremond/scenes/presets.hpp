@@ -49,6 +49,8 @@ enum class PaperLaw {
   fremond_coulomb,  ///< Frémond p = 3 + Coulomb on the mean velocity, μ = 1 (§5, Figs. 10-11).
   fremond_viscous,  ///< Frémond p = 3 + viscous dead zone k_T = 1.5, q = 2, r = 0.2 in the
                     ///< library's scaling (the paper's k_T = 0.75, r = 0.4; §5.4, Figs. 12-13).
+  stronge_coulomb,  ///< Stronge's energetic e* = 0.9 + Coulomb μ = 1 (not in the paper: the
+                    ///< classical energy-consistent answer, docs/stronge.md).
 };
 std::string_view to_string(PaperLaw l);
 /// Throws InvalidArgument("law", ...) naming the accepted values.

@@ -83,6 +83,10 @@ def describe_law(law, scaling_note: bool = True) -> str:
         return f"Newton + Coulomb (e = {_one(law.e)}, μ = {_one(law.mu)})"
     if t == "poisson_coulomb":
         return f"Poisson + Coulomb (e = {_one(law.e)}, μ = {_one(law.mu)})"
+    if t == "stronge":
+        return f"Stronge, frictionless (e* = {_one(law.e)})"
+    if t == "stronge_coulomb":
+        return f"Stronge + Coulomb (e* = {_one(law.e)}, μ = {_one(law.mu)})"
     normal = law.normal[0] if law.normal else None
     parts = [_potential_text(normal, scaling_note)] if normal is not None else []
     if law.tangential == _f.TangentialLaw.coulomb:
