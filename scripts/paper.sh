@@ -6,9 +6,10 @@
 # Installs the Debian packages (scripts/install-deps.sh), builds the command and the Python module
 # (Release, into build/), then runs the bar under each of the paper's five laws (the paper's Fig. 1)
 # and Stronge's, prints the table (impacts, energy before and after the first impacts,
-# admissibility, the inequality that failed) and writes every figure of the paper into OUT_DIR: the motions as GIFs and strips of
-# poses (Figs. 2, 4, 6, 10, 12), the energies (Figs. 3, 5, 7, 11, 13), the normal restitution for
-# several p (Fig. 8) and the viscous dead zone (Fig. 9), with the data of Figs. 8 and 9 as CSV.
+# admissibility, the inequality that failed) and writes every figure of the paper into OUT_DIR:
+# the motions as GIFs and strips of poses (Figs. 2, 4, 6, 10, 12), the energies (Figs. 3, 5, 7,
+# 11, 13), the normal restitution for several p (Fig. 8) and the viscous dead zone (Fig. 9), with
+# the data of Figs. 8 and 9 as CSV; Stronge's runs as stronge_coulomb_*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${1:-${FREMOND_OUT:-out/paper}}
