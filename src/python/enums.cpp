@@ -42,11 +42,10 @@ void bind_enums(py::module_& m) {
   bind_enum<Scaling>(m, "Scaling", doc::kScaling, {Scaling::library, Scaling::paper},
                      &scaling_from_string);
   using P = PaperLaw;
-  bind_enum<P>(
-      m, "PaperLaw", doc::kPaperLaw,
-      {P::newton, P::newton_coulomb, P::poisson_coulomb, P::fremond_coulomb, P::fremond_viscous,
-       P::stronge_coulomb},
-      &paper_law_from_string);
+  bind_enum<P>(m, "PaperLaw", doc::kPaperLaw,
+               {P::newton, P::newton_coulomb, P::poisson_coulomb, P::fremond_coulomb,
+                P::fremond_viscous, P::stronge_coulomb},
+               &paper_law_from_string);
   bind_enum<Integrator>(m, "Integrator", doc::kIntegrator,
                         {Integrator::event_driven, Integrator::moreau_jean},
                         &integrator_from_string);
