@@ -127,8 +127,7 @@ std::pair<std::vector<double>, std::vector<double>> restitution_values(const jso
 }
 
 namespace {
-// The law named `name` read by its own schema (its read_law), or nothing where no law of
-// law_list.hpp has that name.
+// The law named `name` read by its own schema (its read_law); nothing for a name no law has.
 template <std::size_t I = 0>
 std::optional<ImpactLaw> read_named(std::string_view name, const json& j, int contacts,
                                     const PotentialRegistry& registry, const std::string& where) {
@@ -150,13 +149,13 @@ ImpactLaw law_from_json(const json& j, int contacts, const PotentialRegistry& re
   require_object(j, where);
   const std::string key = key_path(where, "type");
   const std::string name = string_from_json(required_key(j, where, "type"), key);
-  if (auto law = read_named(name, j, contacts, registry, where)) return std::move(*law);
   try {
     check_law_name(name);
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(key, reason_of(e));
   }
-  throw InvalidArgument(key, "no schema for '" + name + "'");  // not reached: every law has one
+  // A known name: every law of the list has its schema.
+  return std::move(*read_named(name, j, contacts, registry, where));
 }
 
 }  // namespace fremond::io::detail
