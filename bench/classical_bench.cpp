@@ -10,6 +10,8 @@
 //    sticking, in its semidefinite form where G is singular), then Lemke on the phase's LCP if the
 //    guess fails ("stage=kernel"); no minimum-norm choice, no uniqueness check. This is the work
 //    the Siconos peers' solvers do after assembly.
+//  - BM_Classical_Prepared: the prepared solver (ImpactSolver) built once per problem, then
+//    solve(q̇_A) with the same answer, certificate and residual as solve_impact ("stage=prepared").
 //  - BM_Classical_SolveImpact: the public entry point, with input validation, the result's
 //    velocities, the law's residual and the admissibility report ("stage=solve_impact"); uniqueness
 //    checked by mode enumeration or not ("checked=1|0").
@@ -186,6 +188,29 @@ void BM_Classical_SolveImpact(benchmark::State& state, const Case* c, bool check
   check(state, *c);
 }
 
+void BM_Classical_Prepared(benchmark::State& state, const Case* c, bool checked) {
+  SolverOptions options;
+  options.check_uniqueness = checked;
+  std::vector<SmallImpactSolver> solvers;
+  for (const SmallImpactProblem& p : c->problems) solvers.emplace_back(p, c->law, options);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    SmallImpactSolver& s = solvers[k++ % solvers.size()];
+    const SmallImpactResult& r = s.solve(s.problem().qdot_A);
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.SetLabel(bench_label(c->problem, c->law_name) +
+                 " stage=prepared checked=" + (checked ? "1" : "0"));
+  // The prepared answers are solve_impact's, which check() holds to the closed forms.
+  for (std::size_t i = 0; i < solvers.size(); ++i)
+    if (!(Eigen::VectorXd(solvers[i].solve(c->problems[i].qdot_A).qdot_E) ==
+          Eigen::VectorXd(solve_impact(c->problems[i], c->law, options).qdot_E))) {
+      state.SkipWithError("the prepared solver's answer differs from solve_impact's");
+      return;
+    }
+  check(state, *c);
+}
+
 // The first phase of the law (Newton: eq. 5; Poisson: compression) on contact space.
 detail::classical::Phase<kSmallContacts> first_phase(const SmallImpactProblem& p,
                                                      const ContactSpace3& cs,
@@ -263,6 +288,10 @@ const bool registered = [] {
       benchmark::RegisterBenchmark(
           ("BM_Classical_SolveImpact" + suffix + (checked ? "/checked" : "/unchecked")).c_str(),
           BM_Classical_SolveImpact, &c, checked);
+    for (const bool checked : {false, true})
+      benchmark::RegisterBenchmark(
+          ("BM_Classical_Prepared" + suffix + (checked ? "/checked" : "/unchecked")).c_str(),
+          BM_Classical_Prepared, &c, checked);
   }
   return true;
 }();

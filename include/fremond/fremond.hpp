@@ -27,5 +27,6 @@
 #include "fremond/simulation/persistent_contact.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulation_options.hpp"
+#include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solve_batch.hpp"
 #include "fremond/solvers/solve_impact.hpp"

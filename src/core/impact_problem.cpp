@@ -35,6 +35,24 @@ double non_finite_probe(const Eigen::PlainObjectBase<Derived>& m) {
   return probe;
 }
 
+/// plainly_valid's tests of q̇_A, for a configuration already validated: its size, its entries
+/// finite, and the kinetic energy and contact velocities it makes finite.
+template <int N, int C>
+bool plainly_valid_velocity(const ImpactProblemT<N, C>& pb) {
+  const auto c = pb.W_N.cols();
+  if (pb.qdot_A.size() != pb.M.rows() || non_finite_probe(pb.qdot_A) != 0.0) return false;
+  // The same expressions as the tests below, so that an overflow is judged identically.
+  if (!std::isfinite(detail::kinetic_energy(pb.M, pb.qdot_A))) return false;
+  for (Eigen::Index i = 0; i < c; ++i) {
+    if (!std::isfinite(pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0)))
+      return false;
+    if (pb.W_T.cols() != 0 &&
+        !std::isfinite(pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0)))
+      return false;
+  }
+  return true;
+}
+
 /// True only when validate_shapes' tests below all pass, in one pass over the data without
 /// building any message: every solve validates its problem, and on a planar body the test by test
 /// path (each its own loop) costs as much as a third of the law's own solve. False sends the caller
@@ -48,8 +66,9 @@ bool plainly_valid(const ImpactProblemT<N, C>& pb) {
   if (has_WT && (pb.W_T.rows() != n || pb.W_T.cols() != c)) return false;
   if (pb.w_N.size() != 0 && pb.w_N.size() != c) return false;
   if (pb.w_T.size() != 0 && (pb.w_T.size() != c || pb.W_T.cols() == 0)) return false;
-  double probe = non_finite_probe(pb.M) + non_finite_probe(pb.W_N) + non_finite_probe(pb.W_T) +
-                 non_finite_probe(pb.w_N) + non_finite_probe(pb.w_T) + non_finite_probe(pb.qdot_A);
+  const double probe = non_finite_probe(pb.M) + non_finite_probe(pb.W_N) +
+                       non_finite_probe(pb.W_T) + non_finite_probe(pb.w_N) +
+                       non_finite_probe(pb.w_T);
   if (probe != 0.0) return false;
   double scale = 0.0;
   const double* const m = pb.M.data();
@@ -57,16 +76,7 @@ bool plainly_valid(const ImpactProblemT<N, C>& pb) {
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = i + 1; j < n; ++j)
       if (std::fabs(pb.M(i, j) - pb.M(j, i)) > 1e-12 * scale) return false;
-  // The same expressions as the tests below, so that an overflow is judged identically.
-  if (!std::isfinite(detail::kinetic_energy(pb.M, pb.qdot_A))) return false;
-  for (Eigen::Index i = 0; i < c; ++i) {
-    if (!std::isfinite(pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0)))
-      return false;
-    if (pb.W_T.cols() != 0 &&
-        !std::isfinite(pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0)))
-      return false;
-  }
-  return true;
+  return plainly_valid_velocity(pb);
 }
 }  // namespace
 
@@ -116,6 +126,13 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
                                      std::to_string(pb.w_T.size()));
   if (pb.w_T.size() != 0 && pb.W_T.cols() == 0) throw InvalidArgument("w_T", "given without W_T");
   require_all_finite("w_T", pb.w_T);
+  detail::validate_velocity(pb);
+}
+
+template <int N, int C>
+void detail::validate_velocity(const ImpactProblemT<N, C>& pb) {
+  const auto n = pb.M.rows(), c = pb.W_N.cols();
+  if (plainly_valid_velocity(pb)) return;
   if (pb.qdot_A.size() != n)
     throw InvalidArgument("qdot_A", "must have " + std::to_string(n) + " entries, got " +
                                         std::to_string(pb.qdot_A.size()));
@@ -130,7 +147,7 @@ void detail::validate_shapes(const ImpactProblemT<N, C>& pb) {
                           "the kinetic energy 1/2 qdot_A^T M qdot_A overflows double "
                           "precision (max |qdot_A| = " +
                               detail::format_number(pb.qdot_A.cwiseAbs().maxCoeff()) +
-                              ", max |M| = " + detail::format_number(scale) +
+                              ", max |M| = " + detail::format_number(pb.M.cwiseAbs().maxCoeff()) +
                               "); express the problem in other units");
   for (Eigen::Index i = 0; i < c; ++i) {
     const double dn = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
@@ -162,6 +179,8 @@ template void validate(const ImpactProblemT<Dynamic, Dynamic>&);
 template void validate(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::validate_shapes(const ImpactProblemT<Dynamic, Dynamic>&);
 template void detail::validate_shapes(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
+template void detail::validate_velocity(const ImpactProblemT<Dynamic, Dynamic>&);
+template void detail::validate_velocity(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::require_positive_definite(const MatT<Dynamic, Dynamic>&,
                                                 const detail::CholeskyT<Dynamic>&);
 template void detail::require_positive_definite(const MatT<kSmallDofs, kSmallDofs>&,

@@ -4,14 +4,14 @@
 #include <string>
 
 #include "fremond/core/error.hpp"
+#include "solvers/detail/result_copy.hpp"
 
 namespace fremond {
 
 namespace {
-/// The certificate in the other storage: every member.
+/// Every member of the certificate a into d.
 template <int To, int From>
-AdmissibilityReportT<To> convert(const AdmissibilityReportT<From>& a) {
-  AdmissibilityReportT<To> d;
+void assign_report(const AdmissibilityReportT<From>& a, AdmissibilityReportT<To>& d) {
   d.kinetic_energy_A = a.kinetic_energy_A;
   d.energy_change = a.energy_change;
   d.total = a.total;
@@ -26,13 +26,19 @@ AdmissibilityReportT<To> convert(const AdmissibilityReportT<From>& a) {
   d.failed = a.failed;
   d.failed_contact = a.failed_contact;
   d.violation = a.violation;
+}
+
+/// The certificate in the other storage: every member.
+template <int To, int From>
+AdmissibilityReportT<To> convert(const AdmissibilityReportT<From>& a) {
+  AdmissibilityReportT<To> d;
+  assign_report(a, d);
   return d;
 }
 
-/// The result in the other storage: every member.
+/// Every member of s into d, d's heap vectors reused where their sizes already match.
 template <int N, int C, int N0, int C0>
-ImpactResultT<N, C> convert(const ImpactResultT<N0, C0>& s) {
-  ImpactResultT<N, C> d;
+void assign(const ImpactResultT<N0, C0>& s, ImpactResultT<N, C>& d) {
   d.qdot_E = s.qdot_E;
   d.P_N = s.P_N;
   d.P_T = s.P_T;
@@ -51,8 +57,15 @@ ImpactResultT<N, C> convert(const ImpactResultT<N0, C0>& s) {
   d.energy_change = s.energy_change;
   d.unique = s.unique;
   d.solutions_found = s.solutions_found;
-  d.admissibility = convert<C>(s.admissibility);
+  assign_report(s.admissibility, d.admissibility);
   d.solver = s.solver;
+}
+
+/// The result in the other storage: every member.
+template <int N, int C, int N0, int C0>
+ImpactResultT<N, C> convert(const ImpactResultT<N0, C0>& s) {
+  ImpactResultT<N, C> d;
+  assign(s, d);
   return d;
 }
 }  // namespace
@@ -63,6 +76,10 @@ AdmissibilityReportT<Dynamic> to_dynamic(const AdmissibilityReportT<kSmallContac
 
 ImpactResult to_dynamic(const SmallImpactResult& result) {
   return convert<Dynamic, Dynamic>(result);
+}
+
+void detail::copy_into(const SmallImpactResult& from, ImpactResult& to) {
+  assign(from, to);
 }
 
 bool fits_small(const ImpactResult& r) {

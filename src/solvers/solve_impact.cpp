@@ -13,6 +13,7 @@
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/independent_groups.hpp"
+#include "solvers/detail/solve_stages.hpp"
 
 namespace fremond {
 
@@ -54,16 +55,10 @@ void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
 }  // namespace
 
 template <int N, int C>
-ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
-                                                        const ImpactLaw& law,
-                                                        const SolverOptions& options) {
-  detail::validate_shapes(pb);
-  law.validate(pb.contacts());
-  options.validate();
-  ImpactResultT<N, C> out;
-  detail::ContactSpaceT<N, C> cs;
-  build_contact_space(pb, detail::tangential_rows(law), cs);
-  detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
+void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                    const SolverOptions& options, ContactSpaceT<N, C>& cs,
+                                    ImpactResultT<N, C>& out) {
+  out = ImpactResultT<N, C>{};
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
   // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
   // and one contact does not even make the call (its frame holds three problems' storage).
@@ -83,6 +78,20 @@ ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, 
   out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
                                                   detail::delassus_max(cs), &percussion);
   refuse_inadmissible(law, out);
+}
+
+template <int N, int C>
+ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
+                                                        const ImpactLaw& law,
+                                                        const SolverOptions& options) {
+  detail::validate_shapes(pb);
+  law.validate(pb.contacts());
+  options.validate();
+  detail::ContactSpaceT<N, C> cs;
+  build_contact_space(pb, detail::tangential_rows(law), cs);
+  detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
+  ImpactResultT<N, C> out;
+  solve_on_contact_space(pb, law, options, cs, out);
   return out;
 }
 
@@ -101,6 +110,14 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
   return detail::solve_impact_in_own_storage(pb, law, options);
 }
 
+template void detail::solve_on_contact_space(const ImpactProblemT<Dynamic, Dynamic>&,
+                                             const ImpactLaw&, const SolverOptions&,
+                                             ContactSpaceT<Dynamic, Dynamic>&,
+                                             ImpactResultT<Dynamic, Dynamic>&);
+template void detail::solve_on_contact_space(const ImpactProblemT<kSmallDofs, kSmallContacts>&,
+                                             const ImpactLaw&, const SolverOptions&,
+                                             ContactSpaceT<kSmallDofs, kSmallContacts>&,
+                                             ImpactResultT<kSmallDofs, kSmallContacts>&);
 template ImpactResultT<Dynamic, Dynamic> detail::solve_impact_in_own_storage(
     const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&, const SolverOptions&);
 template ImpactResultT<kSmallDofs, kSmallContacts> detail::solve_impact_in_own_storage(

@@ -322,5 +322,29 @@ TEST(NoAllocation, HeapStoredSmallProblemAllocatesOnlyItsResult) {
     }
 }
 
+// The prepared solver (impact_solver.hpp) keeps its answer's storage from one solve to the next:
+// a small problem, heap-stored or not, allocates nothing at all once the first answer is made.
+TEST(NoAllocation, PreparedSolverAllocatesNothingPerSolve) {
+  require_counting();
+  if (::testing::Test::IsSkipped()) return;
+  const std::vector<std::pair<std::string, ImpactLaw>> laws{
+      {"newton_coulomb", ImpactLaw::newton_coulomb(0.9, 1.0)},
+      {"poisson_coulomb", ImpactLaw::poisson_coulomb(0.9, 1.0)},
+      {"fremond viscous", bar_fremond_laws().viscous},
+      {"fremond coulomb", bar_fremond_laws().coulomb}};
+  for (const SmallImpactProblem& small : {bar_first_impact(true), flat_bar_two_contacts(true)})
+    for (const auto& [name, law] : laws) {
+      SmallImpactSolver stack_solver(small, law);
+      ImpactSolver heap_solver(to_dynamic(small), law);
+      Eigen::VectorXd q = small.qdot_A;
+      std::string where;
+      long n = allocations([&] { stack_solver.solve(q); }, &where);
+      EXPECT_EQ(n, 0) << name << ", small solver: first allocation at\n" << where;
+      n = allocations([&] { heap_solver.solve(q); }, &where);
+      EXPECT_TRUE(heap_solver.result().ok()) << name;
+      EXPECT_EQ(n, 0) << name << ", heap-stored solver: first allocation at\n" << where;
+    }
+}
+
 }  // namespace
 }  // namespace fremond

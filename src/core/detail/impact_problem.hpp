@@ -22,6 +22,10 @@ double kinetic_energy(const MatT<N, N>& M, const VecT<N>& v) {
 /// validate() without the positive-definiteness test, for callers that factorise M anyway.
 template <int MaxDofs, int MaxContacts>
 void validate_shapes(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
+/// validate_shapes' tests of q̇_A alone (its size, finite entries, a finite kinetic energy and
+/// finite contact velocities), for a configuration (M, W, w) validated before: the same errors.
+template <int MaxDofs, int MaxContacts>
+void validate_velocity(const ImpactProblemT<MaxDofs, MaxContacts>& problem);
 /// The positive-definiteness test of validate() on a Cholesky factorisation of M.
 template <int MaxDofs>
 void require_positive_definite(const MatT<MaxDofs, MaxDofs>& M, const CholeskyT<MaxDofs>& llt);

@@ -1,0 +1,21 @@
+#pragma once
+/// @file The driver's stages after validation (solve_impact.cpp), shared by the one-shot
+/// solve_impact and the prepared ImpactSolver.
+#include "contact_space/contact_space.hpp"
+#include "fremond/core/impact_problem.hpp"
+#include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/solver_options.hpp"
+
+namespace fremond::detail {
+
+/// Solves a validated problem whose contact space `cs` was built on the approaching contacts: the
+/// law's chain (by independent groups), again on every contact where the answer drives a
+/// separating one into its obstacle (cs is then rebuilt), and the certificate. `out` is
+/// overwritten whole.
+template <int N, int C>
+void solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                            const SolverOptions& options, ContactSpaceT<N, C>& cs,
+                            ImpactResultT<N, C>& out);
+
+}  // namespace fremond::detail
