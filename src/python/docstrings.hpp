@@ -156,6 +156,15 @@ admissibility certificate. Raises ValueError for an invalid problem, law or opti
 does not converge says so in result.solver.status. Contacts that G = W^T M^-1 W does not couple
 (two bodies in one problem) are solved group by group, each to its own velocity scale.
 )doc";
+inline constexpr const char* kImpactSolver = R"doc(
+ImpactSolver(problem, law, options=SolverOptions())
+
+A solver prepared for one configuration: built once from the problem (M, W_N, W_T, w_N, w_T and
+a first qdot_A), the law and the options, which it validates; then solve(qdot_A) as often as
+wanted, and update(M, W_N, W_T, w_N, w_T) or update_law(law) between configurations. Every answer
+is solve_impact's on the same data, to the last bit; a solve checks only the new velocity. Raises
+ValueError naming the member on bad input, and then keeps its previous state.
+)doc";
 inline constexpr const char* kSolveImpactAll =
     "Every solution found (mode enumeration for laws with friction on small problems); an empty "
     "list means the law has no solution for these data.";

@@ -11,6 +11,7 @@
 #include "fremond/io/problem_file.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/laws/residual.hpp"
+#include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "python/bind_helpers.hpp"
 #include "python/docstrings.hpp"
@@ -280,6 +281,40 @@ void bind_impacts(py::module_& m) {
             &solve_impact<Dynamic, Dynamic>),
         py::arg("problem"), py::arg("law"), py::arg("options") = SolverOptions{},
         py::call_guard<py::gil_scoped_release>(), doc::kSolveImpact);
+  py::class_<ImpactSolver>(m, "ImpactSolver", doc::kImpactSolver)
+      .def(py::init<const ImpactProblem&, ImpactLaw, const SolverOptions&>(), py::arg("problem"),
+           py::arg("law"), py::arg("options") = SolverOptions{})
+      .def(
+          "solve",
+          [](ImpactSolver& s, const Eigen::VectorXd& qdot_A) -> ImpactResult {
+            py::gil_scoped_release release;  // a law's Python potentials take it back
+            return s.solve(qdot_A);
+          },
+          py::arg("qdot_A"), "Solves for the velocity before the impact; returns the answer.")
+      .def(
+          "solve",
+          [](ImpactSolver& s) -> ImpactResult {
+            py::gil_scoped_release release;
+            return s.solve();
+          },
+          "Solves for the problem's current qdot_A.")
+      .def(
+          "update",
+          [](ImpactSolver& s, const Eigen::MatrixXd& M, const Eigen::MatrixXd& W_N,
+             const Eigen::MatrixXd& W_T, const Eigen::VectorXd& w_N,
+             const Eigen::VectorXd& w_T) { s.update(M, W_N, W_T, w_N, w_T); },
+          py::arg("M"), py::arg("W_N"), py::arg("W_T"), py::arg("w_N") = Eigen::VectorXd(),
+          py::arg("w_T") = Eigen::VectorXd(),
+          "A new configuration of the same sizes (W_T with no column: frictionless); qdot_A "
+          "kept.")
+      .def("update_law", &ImpactSolver::update_law, py::arg("law"),
+           "Another law for the same contacts.")
+      // Copies: a view would change under the caller at the next solve or update.
+      .def_property_readonly("problem", [](const ImpactSolver& s) { return s.problem(); })
+      .def_property_readonly("law", [](const ImpactSolver& s) { return s.law(); })
+      .def_property_readonly("options", [](const ImpactSolver& s) { return s.options(); })
+      .def_property_readonly(
+          "result", [](const ImpactSolver& s) { return s.result(); }, "The last answer.");
   m.def("solve_impact_all", &solve_impact_all, py::arg("problem"), py::arg("law"),
         py::arg("options") = SolverOptions{}, py::call_guard<py::gil_scoped_release>(),
         doc::kSolveImpactAll);

@@ -389,6 +389,44 @@ def test_a_flight_too_fast_to_resolve_stops_the_run():
     opts.max_gap_evaluations = 10
     assert not opts.is_valid()
 
+def test_prepared_solver_answers_as_solve_impact_and_keeps_its_state_on_bad_input():
+    # A point mass m falling at v under Newton's law: qdot_E = -e v, P_N = m (1 + e)|v|, at every
+    # velocity the prepared solver is given; and each answer equal to solve_impact's.
+    m, e = 2.0, 0.5
+    pb = f.ImpactProblem(M=np.array([[m]]), W_N=np.array([[1.0]]), qdot_A=np.array([-1.0]))
+    law = f.ImpactLaw.newton(e)
+    solver = f.ImpactSolver(pb, law)
+    for v in (-0.25, -1.0, -40.0):
+        r = solver.solve(np.array([v]))
+        near(r.qdot_E, [-e * v], rel=1e-15)
+        near(r.P_N, [m * (1 + e) * -v], rel=1e-15)
+        one_shot = f.solve_impact(
+            f.ImpactProblem(M=np.array([[m]]), W_N=np.array([[1.0]]), qdot_A=np.array([v])), law)
+        assert r.qdot_E[0] == one_shot.qdot_E[0] and r.P_N[0] == one_shot.P_N[0]
+    try:
+        solver.solve(np.array([1.0, 2.0]))
+        raise AssertionError("a velocity of the wrong size was accepted")
+    except ValueError as err:
+        assert "qdot_A" in str(err)
+    near(solver.solve().qdot_E, [20.0], rel=1e-15)  # the last valid velocity, -40, kept
+    # The bar turned: update() takes the next configuration; the answer is solve_impact's on it.
+    bar, _ = bar_first_impact()
+    nc = f.ImpactLaw.newton_coulomb(0.9, 1.0)
+    solver = f.ImpactSolver(bar, nc)
+    theta = math.pi / 3
+    W_N = np.array([[0.0], [1.0], [-L * math.cos(theta)]])
+    W_T = np.array([[1.0], [0.0], [L * math.sin(theta)]])
+    solver.update(bar.M, W_N, W_T)
+    turned = f.ImpactProblem(M=bar.M, W_N=W_N, W_T=W_T, qdot_A=bar.qdot_A)
+    assert list(solver.solve().qdot_E) == list(f.solve_impact(turned, nc).qdot_E)
+    try:
+        solver.update(np.eye(4), W_N, W_T)
+        raise AssertionError("a mass matrix of the wrong size was accepted")
+    except ValueError as err:
+        assert str(err).startswith("M")
+    assert list(solver.result.qdot_E) == list(f.solve_impact(turned, nc).qdot_E)
+
+
 if __name__ == "__main__":
     run_tests(globals())
 
