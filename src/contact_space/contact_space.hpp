@@ -60,6 +60,13 @@ struct ContactSpaceT {
   double v_scale = 0.0;    ///< max |D_A| over the active rows, floored to the smallest normal
   CholeskyT<MaxDofs> llt;  ///< of M
 
+  /// W_iᵀM⁻¹W_i of every contact's normal and tangential direction through llt, which the
+  /// classical residual reads at every evaluation: computed once a build, on first use
+  /// (self_delassus()), since a problem of 230 contacts on 1,000 dofs spent 78 % of its solve
+  /// solving them again.
+  mutable VecT<MaxContacts> self_N, self_T;
+  mutable bool self_ready = false;
+
   int rows() const { return tangential ? 2 * active : active; }
   int normal_row(int i) const { return i; }
   int tangential_row(int i) const { return active + i; }
@@ -302,9 +309,34 @@ template <int MaxDofs, int MaxContacts>
 void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
                          ContactSpaceT<MaxDofs, MaxContacts>& cs,
                          HeldContacts held = HeldContacts::approaching) {
+  cs.self_ready = false;
   if constexpr (MaxDofs != Dynamic)
     if (contact_space_detail::build_diagonal(pb, with_tangential, cs, held)) return;
   build_contact_space_general(pb, with_tangential, cs, held);
+}
+
+/// W_iᵀM⁻¹W_i of every contact i of `pb` (normal into N, tangential into T: empty without W_T),
+/// each as the dot product of W_i with llt's solve of it: the classical residual's scales.
+template <int MaxDofs, int MaxContacts>
+void self_delassus(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const CholeskyT<MaxDofs>& llt,
+                   VecT<MaxContacts>& N, VecT<MaxContacts>& T) {
+  const int c = pb.contacts();
+  N.resize(c);
+  T.resize(pb.has_tangential() ? c : 0);
+  for (int i = 0; i < c; ++i) {
+    N(i) = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
+    if (pb.has_tangential()) T(i) = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
+  }
+}
+
+/// self_delassus() of the problem `cs` was built from, through cs's factor of M, computed on first
+/// use after a build.
+template <int MaxDofs, int MaxContacts>
+void self_delassus(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                   const ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  if (cs.self_ready) return;
+  self_delassus(pb, cs.llt, cs.self_N, cs.self_T);
+  cs.self_ready = true;
 }
 
 /// Which contacts `cs` holds, to build the contact space of the same problem again: a space that

@@ -182,7 +182,7 @@ void refine_in_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
   ImpactResultT<N, C> trial;
   write_classical_answer(pb, cs, law, P, P_C, trial);
   double trial_beyond = 0.0;
-  const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, rounded);
+  const double trial_residual = classical_residual(pb, cs, law, trial, &trial_beyond, rounded);
   bool keep = trial_residual < st.residual || (rounded && trial_beyond <= options.tolerance);
   // On a diagonal M (a body in its principal axes) each component is solved to its last bit, so
   // the percussions' rounding is all that is left: it is allowed up to kRoundedPercussionCap of
@@ -190,7 +190,7 @@ void refine_in_mode(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& c
   // `stalled` is the honest word.
   if (!(trial_beyond <= options.tolerance) && is_diagonal(pb.M)) {
     double loose = 0.0;
-    classical_residual(pb, law, trial, &loose, true, kRoundedPercussionCap);
+    classical_residual(pb, cs, law, trial, &loose, true, kRoundedPercussionCap);
     if (loose <= options.tolerance) {
       keep = true;
       trial_beyond = loose;
@@ -218,7 +218,7 @@ void mode_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
   ImpactResultT<N, C> trial;
   write_classical_answer(pb, cs, law, P, P_C, trial, &q, &qC);
   double trial_beyond = 0.0;
-  const double trial_residual = classical_residual(pb, law, trial, &trial_beyond, true);
+  const double trial_residual = classical_residual(pb, cs, law, trial, &trial_beyond, true);
   if (!(trial_beyond <= options.tolerance) ||
       (st.beyond_rounding <= options.tolerance && !(trial_residual < st.residual)))
     return;
@@ -298,11 +298,11 @@ void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   const LawSolution<C>& s = lo.solutions[pick];
   write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
   Settling<N, C> st;
-  st.residual = classical_residual(pb, law, out);
+  st.residual = classical_residual(pb, cs, law, out);
   st.P = s.P;
   st.P_C = s.P_C;
   if (!(st.residual <= options.tolerance))  // the floors, on this failure path only
-    classical_residual(pb, law, out, &st.beyond_rounding, velocities != nullptr);
+    classical_residual(pb, cs, law, out, &st.beyond_rounding, velocities != nullptr);
   if (!velocities) {
     if (!(st.beyond_rounding <= options.tolerance)) refine_in_mode(pb, cs, law, options, st, out);
     if (!(st.residual <= options.tolerance)) mode_in_velocities(pb, cs, law, options, st, out);
@@ -359,7 +359,7 @@ void fill_failure(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   out.solver.fallbacks = lo.fallbacks;
   // The residual of the state reported, as for any other result: no NaN leaves the library, and
   // a failure's residual says how far "no percussion" is from the law.
-  out.solver.residual = classical_residual(pb, law, out);
+  out.solver.residual = classical_residual(pb, cs, law, out);
   if (overflow) {
     out.solver.status = SolverStatus::failed;
     out.solver.message =

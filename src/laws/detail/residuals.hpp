@@ -1,6 +1,7 @@
 #pragma once
 /// @file The residual of each law family (laws/residual.hpp dispatches to them); the solvers report
 /// and stop on the same functions.
+#include "contact_space/contact_space.hpp"
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/solvers/impact_result.hpp"
@@ -19,6 +20,15 @@ namespace fremond::detail {
 template <int MaxDofs, int MaxContacts>
 double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                           const RestitutionLaw& law,
+                          const ImpactResultT<MaxDofs, MaxContacts>& result,
+                          double* beyond_rounding = nullptr, bool percussions_rounded = false,
+                          double percussion_cap = 1e-10);
+
+/// classical_residual of an answer on the problem `cs` was built from, through cs's factor of M
+/// and its self_delassus() scales, computed once a build: the same number, to the last bit.
+template <int MaxDofs, int MaxContacts>
+double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
+                          const ContactSpaceT<MaxDofs, MaxContacts>& cs, const RestitutionLaw& law,
                           const ImpactResultT<MaxDofs, MaxContacts>& result,
                           double* beyond_rounding = nullptr, bool percussions_rounded = false,
                           double percussion_cap = 1e-10);

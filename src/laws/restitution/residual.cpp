@@ -74,12 +74,12 @@ bool balances_percussions(const ImpactProblemT<N, C>& pb, const VecT<N>& q, cons
   return true;
 }
 
-}  // namespace
-
+/// classical_residual with M's factor and every contact's W_iᵀM⁻¹W_i (self_delassus()) given.
 template <int N, int C>
-double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
-                          const ImpactResultT<N, C>& r, double* beyond_rounding,
-                          bool percussions_rounded, double percussion_cap) {
+double residual_with(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
+                     const ImpactResultT<N, C>& r, const detail::CholeskyT<N>& llt,
+                     const VecT<C>& self_N, const VecT<C>& self_T, double* beyond_rounding,
+                     bool percussions_rounded, double percussion_cap) {
   const double inf = std::numeric_limits<double>::infinity();
   const int n = pb.dofs(), c = pb.contacts();
   const bool tangential = pb.has_tangential();
@@ -88,7 +88,6 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& 
   if (r.P_N.size() != c || r.P_T.size() != c) return inf;
   if (poisson && (!r.has_phases || r.P_NC.size() != c || r.P_TC.size() != c)) return inf;
 
-  const detail::CholeskyT<N> llt(pb.M);
   const bool diagonal = detail::is_diagonal(pb.M);
   auto wn = [&](int i) { return pb.w_N.size() ? pb.w_N(i) : 0.0; };
   auto wt = [&](int i) { return pb.w_T.size() ? pb.w_T(i) : 0.0; };
@@ -181,13 +180,8 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& 
     for (int i = 0; i < c; ++i) {
       const double dna = contact_velocity(pb.W_N.col(i), pb.qdot_A, wn(i));
       const double dta = tangential ? contact_velocity(pb.W_T.col(i), pb.qdot_A, wt(i)) : 0.0;
-      const double gn_raw = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
-      const double gn = gn_raw > 0 ? gn_raw : 1.0;
-      double gt = 1.0;
-      if (tangential) {
-        const double g = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
-        gt = g > 0 ? g : 1.0;
-      }
+      const double gn = self_N(i) > 0 ? self_N(i) : 1.0;
+      const double gt = tangential && self_T(i) > 0 ? self_T(i) : 1.0;
       // The rounding floor of the contact's terms, as in Frémond's stopping test
       // (row_rounding_floor): 16ε times the size of the terms, capped at 1e-6 of the velocities
       // (the percussions' part at 1e-10, above).
@@ -270,9 +264,35 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& 
   return residual;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                        \
-  template double classical_residual(const ImpactProblemT<N, C>&, const RestitutionLaw&, \
-                                     const ImpactResultT<N, C>&, double*, bool, double);
+}  // namespace
+
+template <int N, int C>
+double classical_residual(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
+                          const ImpactResultT<N, C>& r, double* beyond_rounding,
+                          bool percussions_rounded, double percussion_cap) {
+  const detail::CholeskyT<N> llt(pb.M);
+  VecT<C> self_N, self_T;
+  self_delassus(pb, llt, self_N, self_T);
+  return residual_with(pb, law, r, llt, self_N, self_T, beyond_rounding, percussions_rounded,
+                       percussion_cap);
+}
+
+template <int N, int C>
+double classical_residual(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                          const RestitutionLaw& law, const ImpactResultT<N, C>& r,
+                          double* beyond_rounding, bool percussions_rounded,
+                          double percussion_cap) {
+  self_delassus(pb, cs);
+  return residual_with(pb, law, r, cs.llt, cs.self_N, cs.self_T, beyond_rounding,
+                       percussions_rounded, percussion_cap);
+}
+
+#define FREMOND_INSTANTIATE(N, C)                                                                \
+  template double classical_residual(const ImpactProblemT<N, C>&, const RestitutionLaw&,         \
+                                     const ImpactResultT<N, C>&, double*, bool, double);         \
+  template double classical_residual(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,    \
+                                     const RestitutionLaw&, const ImpactResultT<N, C>&, double*, \
+                                     bool, double);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE
