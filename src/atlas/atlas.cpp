@@ -56,8 +56,11 @@ ImpactLaw make_law(const std::string& name, double e, double mu, double k_N, dou
   return stronge;
 }
 
-// The reading of the velocities that every law shares (AtlasMode).
-AtlasMode mode_of(double D_TA, double D_TE, double speed) {
+// The reading every law shares (AtlasMode): inside Coulomb's bound is a stick in the law's own
+// variable; at it, the velocities say whether the slip goes on or turns back.
+AtlasMode mode_of(double D_TA, double D_TE, double P_N, double P_T, double mu, double speed) {
+  const double bound = mu * std::fabs(P_N);
+  if (std::fabs(P_T) < (1.0 - kAtlasStickTolerance) * bound) return AtlasMode::stick;
   if (std::fabs(D_TE) <= kAtlasStickTolerance * speed) return AtlasMode::stick;
   return D_TA * D_TE < 0.0 ? AtlasMode::reversal : AtlasMode::slide;
 }
@@ -217,8 +220,9 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
   r.reference = options.reference.empty() ? options.laws.front() : options.reference;
   r.parameter = options.parameter;
   r.values = options.values;
-  r.e = options.e;
-  r.mu = options.mu;
+  // The swept one's fixed value is not used: NaN says so.
+  r.e = options.parameter == AtlasParameter::e ? kNaN : options.e;
+  r.mu = options.parameter == AtlasParameter::mu ? kNaN : options.mu;
   r.fremond_p = options.fremond_p;
   r.spins = options.spins;
   r.theta = centres(options.theta_min, options.theta_max, options.theta_count);
@@ -313,8 +317,9 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
           r.D_TE[p] = ok ? res.D_TE(0) : kNaN;
           for (int d = 0; d < 3; ++d)
             r.qdot_E[3 * p + static_cast<std::size_t>(d)] = ok ? res.qdot_E(d) : kNaN;
-          r.mode[p] = static_cast<std::uint8_t>(ok ? mode_of(r.D_TA[c], res.D_TE(0), r.speed)
-                                                   : AtlasMode::unknown);
+          r.mode[p] = static_cast<std::uint8_t>(
+              ok ? mode_of(r.D_TA[c], res.D_TE(0), res.P_N(0), res.P_T(0), law.mu(0), r.speed)
+                 : AtlasMode::unknown);
         }
         done += count;
         if (options.progress) options.progress(done, np);

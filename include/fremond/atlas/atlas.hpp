@@ -30,18 +30,21 @@ std::string_view to_string(AtlasParameter p);
 /// Throws InvalidArgument("parameter", ...) naming the accepted values.
 AtlasParameter atlas_parameter_from_string(std::string_view s);
 
-/// The contact's mode after the impact, read from its tangential velocities (the same reading for
-/// every law, so that maps compare).
+/// The contact's mode after the impact, the same reading for every law so that maps compare: from
+/// |P_T| against Coulomb's bound μ|P_N| (μ = 0 for a law without Coulomb), then the signs of D_TE
+/// and D_TA.
 enum class AtlasMode : std::uint8_t {
-  stick,     ///< |D_TE| ≤ kAtlasStickTolerance · V: the point leaves without slip.
-  slide,     ///< D_TE ≠ 0 with the sign of D_TA (or D_TA = 0): the slip goes on.
-  reversal,  ///< D_TE ≠ 0 against the sign of D_TA: the slip turns back.
+  stick,     ///< |P_T| inside the bound (the law's own stick: D_TE = 0 for Newton's, z_T = 0 for
+             ///< Frémond's, which leaves D_TE = −D_TA), or |D_TE| ≤ kAtlasStickTolerance · V.
+  slide,     ///< at the bound, D_TE ≠ 0 with the sign of D_TA (or D_TA = 0): the slip goes on.
+  reversal,  ///< at the bound, D_TE ≠ 0 against the sign of D_TA: the slip turns back.
   unknown,   ///< no converged answer.
 };
 std::string_view to_string(AtlasMode m);
 AtlasMode atlas_mode_from_string(std::string_view s);
 
-/// |D_TE| below this fraction of the contact speed V is a stick.
+/// |D_TE| below this fraction of the contact speed V is a stick; |P_T| within this fraction of
+/// μ|P_N| is at Coulomb's bound.
 inline constexpr double kAtlasStickTolerance = 1e-9;
 
 /// What is swept, under which laws. Defaults: the paper's bar's lower end, 200 × 200.
@@ -94,7 +97,7 @@ struct AtlasResult {
   std::string reference;  ///< the law of `distance`.
   AtlasParameter parameter = AtlasParameter::mu;
   std::vector<double> values;  ///< the swept parameter.
-  double e = 0.0, mu = 0.0;    ///< the fixed ones (the swept one's entry is unused).
+  double e = 0.0, mu = 0.0;    ///< the fixed ones (the swept one's is NaN).
   /// Frémond's k_N for each value (the same for every μ), NaN without Frémond in `laws`.
   std::vector<double> fremond_k_N;
   double fremond_p = 0.0;
