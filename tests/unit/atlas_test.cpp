@@ -235,6 +235,11 @@ TEST(Atlas, DissipativeLawsNeverCreateEnergy) {
           ++converged;
           EXPECT_LE(r.energy_ratio[p], 1e-9) << r.laws[l] << " point " << p;
           EXPECT_EQ(r.admissible[p], 1) << r.laws[l] << " point " << p;
+          // Frémond's Coulomb acts on the mean velocity: inside its bound z_T = 0, so D_TE = −D_TA.
+          if (l == 0 && static_cast<AtlasMode>(r.mode[p]) == AtlasMode::stick &&
+              r.values[v] > 0.0) {
+            EXPECT_NEAR(r.D_TE[p], -r.D_TA[c], 1e-9 * r.speed) << "point " << p;
+          }
         }
     for (std::size_t p = 2 * r.values.size() * r.configurations(); p < r.points(); ++p)
       created += r.energy_ratio[p] > 1e-9;
