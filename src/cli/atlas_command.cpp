@@ -153,8 +153,6 @@ void run(const AtlasArguments& a) {
   try {
     if (a.csv.empty() && a.npz.empty())
       throw InvalidArgument("--csv", "give --csv FILE and/or --npz FILE: the atlas goes there");
-    if (!a.scene_file.empty() && a.preset != "paper-bar")
-      throw InvalidArgument("--preset", "give a scene file or a preset, not both");
     if (a.mu.size() > 1 && a.e.size() > 1)
       throw InvalidArgument("--e", "sweep μ or e, not both: give one of --mu, --e a single value");
     if (a.mu.empty()) throw InvalidArgument("--mu", "needs a value");
@@ -261,8 +259,10 @@ void add_atlas_command(CLI::App& app) {
   cmd->footer(
       "Exit status: 0 written; 1 a value refused or a file that could not be written (the "
       "message names the option; nothing is written). docs/atlas.md describes the columns.");
-  cmd->add_option("--preset", a->preset, "Scene: paper-bar, ball or block")->capture_default_str();
-  cmd->add_option("--scene", a->scene_file, "A scene file instead of a preset (its law unused)");
+  auto* preset = cmd->add_option("--preset", a->preset, "Scene: paper-bar, ball or block")
+                     ->capture_default_str();
+  cmd->add_option("--scene", a->scene_file, "A scene file instead of a preset (its law unused)")
+      ->excludes(preset);
   cmd->add_option("--laws", a->laws,
                   "Laws, comma-separated: newton, poisson, newton_coulomb, poisson_coulomb, "
                   "fremond (power law + Coulomb on the mean velocity), stronge, stronge_coulomb")

@@ -62,7 +62,7 @@ else
 fi
 
 # Errors of the command line itself (CLI11): a usage error, no file.
-for args in "--grid" "--frobnicate" "--mu abc"; do
+for args in "--grid" "--frobnicate" "--mu abc" "--preset ball --scene $SCENES/ball_newton.json"; do
   # shellcheck disable=SC2086
   run_atlas --csv "$TMP/u.csv" $args
   if [ "$RC" -eq 0 ] || [ "$RC" -ge 128 ] || [ -e "$TMP/u.csv" ]; then
