@@ -29,9 +29,10 @@ constexpr detail::EnumNames<AtlasMode, 4> kModes{{{AtlasMode::stick, "stick"},
                                                   {AtlasMode::unknown, "unknown"}}};
 
 constexpr int kMaxCells = 100000;
-// Points solved per solve_batch call: small enough for the progress to move and the reused
-// results to stay in cache, large enough that starting the threads costs nothing.
-constexpr std::size_t kBlock = 4096;
+// Points solved per solve_batch call: small enough for the reused problems and results (2 kB a
+// point) to stay in cache while they are read back, large enough that starting the threads
+// costs little (about 1 ms of solving per block).
+constexpr std::size_t kBlock = 1024;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string indexed(const char* name, std::size_t i) {
@@ -88,6 +89,29 @@ FirstImpact scene_first_impact(const Scene& scene, const char* option) {
                                                                  : "turns too fast to find it") +
                                       "; give it");
   return first;
+}
+
+// The contact's frame at θ (its position does not matter: W_N, W_T depend on θ alone).
+ContactFrame frame_at(const Scene& scene, int contact, double theta) {
+  const ContactPoint& point = scene.body.points[static_cast<std::size_t>(scene.point_of(contact))];
+  const HalfPlane& plane = scene.obstacles[static_cast<std::size_t>(scene.obstacle_of(contact))];
+  return contact_frame(point, plane, Eigen::Vector2d::Zero(), std::cos(theta), std::sin(theta));
+}
+
+// q̇_A with contact velocities (D_TA, D_NA) and spin θ̇: the centre's velocity v from
+// n·v = D_NA − θ̇ W_N,θ and t·v = D_TA − θ̇ W_T,θ.
+Eigen::Vector3d velocity_before(const ContactFrame& f, const Eigen::Vector2d& n, double D_NA,
+                                double D_TA, double omega) {
+  const Eigen::Vector2d v =
+      (D_NA - omega * f.W_N.z()) * n + (D_TA - omega * f.W_T.z()) * tangent_of(n);
+  return {v.x(), v.y(), omega};
+}
+
+// One configuration's problem into `pb`, whose M and w are already set.
+void set_problem(SmallImpactProblem& pb, const ContactFrame& f, const Eigen::Vector3d& qdot_A) {
+  pb.W_N = f.W_N;
+  pb.W_T = f.W_T;
+  pb.qdot_A = qdot_A;
 }
 
 }  // namespace
@@ -193,23 +217,15 @@ SmallImpactProblem atlas_problem(const Scene& scene, int contact, double theta, 
   detail::require_finite("theta", theta);
   detail::require_finite("psi", psi);
   detail::require_finite("spin", spin);
-  const ContactPoint& point = scene.body.points[static_cast<std::size_t>(scene.point_of(contact))];
-  const HalfPlane& plane = scene.obstacles[static_cast<std::size_t>(scene.obstacle_of(contact))];
-  const ContactFrame f =
-      contact_frame(point, plane, Eigen::Vector2d::Zero(), std::cos(theta), std::sin(theta));
-  const Eigen::Vector2d n = plane.normal, t = tangent_of(n);
-  // (D_TA, D_NA) = V (cos ψ, sin ψ) and θ̇ = s V / r_g; the centre's velocity is the rest.
-  const double D_NA = speed * std::sin(psi), D_TA = speed * std::cos(psi);
+  const ContactFrame f = frame_at(scene, contact, theta);
   const double omega = spin * speed / std::sqrt(scene.body.inertia / scene.body.mass);
-  const Eigen::Vector2d v = (D_NA - omega * f.W_N.z()) * n + (D_TA - omega * f.W_T.z()) * t;
+  const HalfPlane& plane = scene.obstacles[static_cast<std::size_t>(scene.obstacle_of(contact))];
   SmallImpactProblem pb;
   pb.M = scene.body.mass_matrix();
-  pb.W_N = f.W_N;
-  pb.W_T = f.W_T;
   pb.w_N.setZero(1);
   pb.w_T.setZero(1);
-  pb.qdot_A.resize(3);
-  pb.qdot_A << v.x(), v.y(), omega;
+  set_problem(
+      pb, f, velocity_before(f, plane.normal, speed * std::sin(psi), speed * std::cos(psi), omega));
   return pb;
 }
 
@@ -264,9 +280,15 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
     }
   }
 
-  // The configurations, built once and solved under every law.
+  // The configurations: the frame per θ, the velocity before per (spin, θ, ψ). Problems are built
+  // block by block into a reused buffer: all of them at once would be 880 bytes a point.
   const std::size_t nc = r.configurations();
-  std::vector<SmallImpactProblem> problems(nc);
+  std::vector<ContactFrame> frames(r.theta.size());
+  for (std::size_t i = 0; i < r.theta.size(); ++i)
+    frames[i] = frame_at(scene, r.contact, r.theta[i]);
+  const Eigen::Vector2d normal =
+      scene.obstacles[static_cast<std::size_t>(scene.obstacle_of(r.contact))].normal;
+  const Eigen::Matrix3d M = scene.body.mass_matrix();
   r.D_NA.resize(nc);
   r.D_TA.resize(nc);
   r.qdot_A.resize(3 * nc);
@@ -275,13 +297,20 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
     for (std::size_t i = 0; i < r.theta.size(); ++i)
       for (std::size_t j = 0; j < r.psi.size(); ++j) {
         const std::size_t c = r.config(s, i, j);
-        SmallImpactProblem& pb = problems[c];
-        pb = atlas_problem(scene, r.contact, r.theta[i], r.psi[j], r.spins[s], r.speed);
-        r.D_NA[c] = pb.W_N.col(0).dot(pb.qdot_A);
-        r.D_TA[c] = pb.W_T.col(0).dot(pb.qdot_A);
-        for (int k = 0; k < 3; ++k) r.qdot_A[3 * c + static_cast<std::size_t>(k)] = pb.qdot_A(k);
-        r.kinetic_energy[c] = 0.5 * pb.qdot_A.dot(pb.M * pb.qdot_A);
+        const double omega = r.spins[s] * r.speed / r.radius_of_gyration;
+        const Eigen::Vector3d qdot = velocity_before(
+            frames[i], normal, r.speed * std::sin(r.psi[j]), r.speed * std::cos(r.psi[j]), omega);
+        Eigen::Map<Eigen::Vector3d>(&r.qdot_A[3 * c]) = qdot;
+        r.D_NA[c] = frames[i].W_N.dot(qdot);
+        r.D_TA[c] = frames[i].W_T.dot(qdot);
+        r.kinetic_energy[c] = 0.5 * qdot.dot(M * qdot);
       }
+  std::vector<SmallImpactProblem> problems(std::min(kBlock, nc));
+  for (SmallImpactProblem& pb : problems) {
+    pb.M = M;
+    pb.w_N.setZero(1);
+    pb.w_T.setZero(1);
+  }
 
   const std::size_t np = r.points();
   for (auto* a : {&r.energy_ratio, &r.distance, &r.P_N, &r.P_T, &r.D_NE, &r.D_TE}) a->resize(np);
@@ -299,8 +328,12 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
       const ImpactLaw law = make_law(r.laws[l], e, mu, r.fremond_k_N[v], r.fremond_p);
       for (std::size_t begin = 0; begin < nc; begin += kBlock) {
         const std::size_t count = std::min(kBlock, nc - begin);
+        for (std::size_t k = 0; k < count; ++k) {
+          const std::size_t c = begin + k, th = (c / r.psi.size()) % r.theta.size();
+          set_problem(problems[k], frames[th], Eigen::Map<const Eigen::Vector3d>(&r.qdot_A[3 * c]));
+        }
         const std::span<SmallImpactResult> out(results.data(), count);
-        solve_batch(std::span<const SmallImpactProblem>(problems).subspan(begin, count), law, out,
+        solve_batch(std::span<const SmallImpactProblem>(problems.data(), count), law, out,
                     options.solver, batch);
         for (std::size_t k = 0; k < count; ++k) {
           const SmallImpactResult& res = out[k];
@@ -329,7 +362,6 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
   // Each law's distance from the reference, in the norm of kinetic energy.
   const std::size_t ref = static_cast<std::size_t>(
       std::find(r.laws.begin(), r.laws.end(), r.reference) - r.laws.begin());
-  const Eigen::Matrix3d M = scene.body.mass_matrix();
   for (std::size_t l = 0; l < r.laws.size(); ++l)
     for (std::size_t v = 0; v < r.values.size(); ++v)
       for (std::size_t c = 0; c < nc; ++c) {
