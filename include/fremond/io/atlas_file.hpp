@@ -22,8 +22,9 @@ std::string atlas_npz(const AtlasResult& atlas);
 /// The CSV's header row, without its newline.
 extern const char* const kAtlasCsvHeader;
 
-/// One header row, then one row per point in index order (ψ fastest), numbers as %.17g (read
-/// back to the same double; `nan` where a solve did not converge), the codes by their names.
+/// One header row, then one row per point in index order (ψ fastest), each number in the shortest
+/// text that reads back to the same double (`nan` where a solve did not converge), the codes by
+/// their names.
 std::string atlas_csv(const AtlasResult& atlas);
 
 }  // namespace fremond::io
