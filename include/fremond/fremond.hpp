@@ -1,6 +1,7 @@
 #pragma once
 /// @file Everything a user of the library needs, in one include.
 #include "fremond/admissibility/admissibility.hpp"
+#include "fremond/atlas/atlas.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/core/types.hpp"
