@@ -136,6 +136,41 @@ TEST(Atlas, NewtonCoulombModeMapIsTheClosedForm) {
   EXPECT_GT(reversal, 0);  // every mode is on the maps (reversals need a small μ)
 }
 
+// The Painlevé-type region: where μ|G_NT| > G_NN − the bar from μ = 4/3 on − one sliding mode's
+// normal percussion changes sign. The number of Newton + Coulomb solutions is that of the modes of
+// newton_coulomb() that hold (sticking, sliding each way), counted here: on the bar's impacts,
+// with D_NA < 0 and restitution, it is one in every cell, also inside that region.
+int newton_coulomb_solutions(const Delassus& G, double D_NA, double D_TA, double e, double mu) {
+  const double bN = -(1.0 + e) * D_NA, bT = -D_TA, det = G.NN * G.TT - G.NT * G.NT;
+  const double PN = (G.TT * bN - G.NT * bT) / det, PT = (G.NN * bT - G.NT * bN) / det;
+  int count = PN > 0 && std::fabs(PT) <= mu * PN ? 1 : 0;
+  for (const double sigma : {1.0, -1.0}) {
+    const double pn = bN / (G.NN - sigma * mu * G.NT);
+    const double dte = D_TA + pn * (G.NT - sigma * mu * G.TT);
+    count += pn > 0 && sigma * dte > 0 ? 1 : 0;
+  }
+  return count;
+}
+
+TEST(Atlas, NewtonCoulombSolutionCountIsTheClosedFormsInThePainleveRegion) {
+  const int n = 100;
+  const double mu = 2.0;
+  AtlasOptions o = newton_coulomb_map(mu, n);
+  o.solver.check_uniqueness = true;
+  const AtlasResult r = law_atlas(paper_bar(), o);
+  int painleve = 0;
+  for (int i = 0; i < n; ++i) {
+    const Delassus G = bar_delassus(r.theta[i]);
+    painleve += mu * std::fabs(G.NT) > G.NN;
+    for (int j = 0; j < n; ++j) {
+      const std::size_t c = r.config(0, i, j);
+      EXPECT_EQ(r.solutions[c], newton_coulomb_solutions(G, r.D_NA[c], r.D_TA[c], 0.9, mu))
+          << "theta " << r.theta[i] << " psi " << r.psi[j];
+    }
+  }
+  EXPECT_GT(painleve, n / 4);  // a good part of the map lies in the region
+}
+
 // (b) Where Newton + Coulomb creates energy on the bar, from the closed form's P·z.
 TEST(Atlas, NewtonCoulombEnergySignIsTheClosedForm) {
   const int n = 120;
