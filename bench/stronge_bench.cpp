@@ -5,12 +5,19 @@
 //  - BM_Stronge_SolveImpact / BM_NewtonCoulomb_SolveImpact: the public entry point with
 //    validation, the contact space, the result's velocities and the certificate.
 // After timing, each checks its answer against the hand-derived one of tests/unit/stronge_law_test.
+//  - BM_Stronge_ThreeBallChain/eta: one impact of a ball at speed 1 on two touching balls at rest
+//    (masses 1, e* = 1) by the distributing law on the coupled contacts, η = 1 (linear) and 1.5
+//    (Hertz); BM_Stronge_LzbKernel the same integration from G alone. Checked after timing
+//    against the conservation of momentum and of energy, and the middle ball's velocity against
+//    Hertz's contact integrated in time (tests/unit/stronge_lzb_test).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 
 #include "fremond/fremond.hpp"
 #include "laws/stronge/darboux_keller.hpp"
+#include "laws/stronge/lzb.hpp"
 #include "support/fixtures.hpp"
 
 namespace {
@@ -74,5 +81,64 @@ void BM_NewtonCoulomb_SolveImpact(benchmark::State& state) {
   state.counters["P_N"] = r.P_N(0);
 }
 BENCHMARK(BM_NewtonCoulomb_SolveImpact);
+
+// The chain's velocities after: Σ v = 1 and ½ Σ v² = ½ (elastic), each to 1e-9; under Hertz's law
+// (η = 1.5) the middle ball leaves at 0.0764030 (the time integration's 0.07640303907).
+void check_chain(benchmark::State& state, const Eigen::Vector3d& v, double eta) {
+  state.counters["v2"] = v(1);
+  if (!(std::fabs(v.sum() - 1.0) <= 1e-9 && std::fabs(0.5 * v.squaredNorm() - 0.5) <= 1e-9))
+    state.SkipWithError("the chain's momentum or energy is not kept");
+  if (eta == 1.5 && !(std::fabs(v(1) - 0.07640303907) <= 1e-6))
+    state.SkipWithError("the middle ball's velocity differs from Hertz's in time");
+}
+
+ImpactProblem three_ball_chain() {
+  ImpactProblem pb;
+  pb.M = Eigen::Matrix3d::Identity();
+  pb.W_N = Eigen::MatrixXd(3, 2);
+  pb.W_N << -1.0, 0.0, 1.0, -1.0, 0.0, 1.0;  // D_N = ẋ_2 − ẋ_1, ẋ_3 − ẋ_2
+  pb.qdot_A = Eigen::Vector3d(1.0, 0.0, 0.0);
+  return pb;
+}
+
+void BM_Stronge_ThreeBallChain(benchmark::State& state) {
+  const double eta = static_cast<double>(state.range(0)) / 10.0;
+  const ImpactProblem pb = three_ball_chain();
+  StrongeLaw stronge;
+  stronge.e = 1.0;
+  stronge.eta = eta;
+  const ImpactLaw law = stronge;
+  ImpactResult r;
+  for (auto _ : state) {
+    r = solve_impact(pb, law);
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.counters["steps"] = r.solver.iterations;
+  if (r.solver.status != SolverStatus::converged) state.SkipWithError("not converged");
+  check_chain(state, r.qdot_E, eta);
+}
+BENCHMARK(BM_Stronge_ThreeBallChain)->Arg(10)->Arg(15)->Unit(benchmark::kMicrosecond);
+
+void BM_Stronge_LzbKernel(benchmark::State& state) {
+  const double eta = static_cast<double>(state.range(0)) / 10.0;
+  Eigen::Matrix2d G;
+  G << 2.0, -1.0, -1.0, 2.0;
+  const Eigen::Vector2d D_A(-1.0, 0.0);
+  std::array<detail::LzbContact, 2> contacts{};
+  for (auto& c : contacts) {
+    c.e = 1.0;
+    c.eta = eta;
+  }
+  detail::LzbOptions options;
+  options.tolerance = 1e-13;  // what solve_impact uses at the default tolerance
+  detail::LzbAnswer a;
+  for (auto _ : state) {
+    a = detail::lzb_impact(G, D_A, contacts, options);
+    benchmark::DoNotOptimize(a.P_N.data());
+  }
+  state.counters["steps"] = a.steps;
+  check_chain(state, Eigen::Vector3d(1.0 - a.P_N(0), a.P_N(0) - a.P_N(1), a.P_N(1)), eta);
+}
+BENCHMARK(BM_Stronge_LzbKernel)->Arg(10)->Arg(15)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config ccache
-  libeigen3-dev libnlopt-dev libnlopt-cxx-dev
+  libeigen3-dev libnlopt-dev libnlopt-cxx-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev libsiconos-kernel-dev
   pybind11-dev python3-dev python3-pybind11 python3-numpy python3-matplotlib python3-pil

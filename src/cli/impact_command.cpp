@@ -185,7 +185,8 @@ void add_impact_command(CLI::App& app) {
                 "Print every solution found: {\"count\": N, \"solutions\": [...]}");
   cmd->add_option("--method", args->method,
                   "Solver method: automatic, trivial, closed_form, scalar_newton, "
-                  "mode_enumeration, lemke, semismooth_newton, proximal, nlopt")
+                  "mode_enumeration, lemke, semismooth_newton, proximal, nlopt, "
+                  "impulse_integration")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance,
                   "Relative tolerance on the law's residual, in [1e-16, 1e-2]")

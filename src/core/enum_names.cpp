@@ -25,7 +25,7 @@ constexpr EnumNames<SolverStatus, 7> kStatus{{{SolverStatus::not_run, "not_run"}
                                               {SolverStatus::no_solution, "no_solution"},
                                               {SolverStatus::failed, "failed"},
                                               {SolverStatus::unsupported, "unsupported"}}};
-constexpr EnumNames<SolverMethod, 9> kMethods{
+constexpr EnumNames<SolverMethod, 10> kMethods{
     {{SolverMethod::automatic, "automatic"},
      {SolverMethod::trivial, "trivial"},
      {SolverMethod::closed_form, "closed_form"},
@@ -34,7 +34,8 @@ constexpr EnumNames<SolverMethod, 9> kMethods{
      {SolverMethod::lemke, "lemke"},
      {SolverMethod::semismooth_newton, "semismooth_newton"},
      {SolverMethod::proximal, "proximal"},
-     {SolverMethod::nlopt, "nlopt"}}};
+     {SolverMethod::nlopt, "nlopt"},
+     {SolverMethod::impulse_integration, "impulse_integration"}}};
 constexpr EnumNames<StopCriterion, 7> kCriteria{{{StopCriterion::none, "none"},
                                                  {StopCriterion::exact, "exact"},
                                                  {StopCriterion::residual, "residual"},

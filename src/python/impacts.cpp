@@ -129,6 +129,23 @@ void bind_impacts(py::module_& m) {
                                  return std::nullopt;
                                });
                              })
+      // Stronge's distributing law on coupled contacts: None for the other laws.
+      .def_property_readonly(
+          "eta",
+          [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
+            return l.visit([](const auto& law) -> std::optional<std::vector<double>> {
+              if constexpr (requires { law.eta; }) return law.eta.values;
+              return std::nullopt;
+            });
+          })
+      .def_property_readonly(
+          "stiffness",
+          [](const ImpactLaw& l) -> std::optional<std::vector<double>> {
+            return l.visit([](const auto& law) -> std::optional<std::vector<double>> {
+              if constexpr (requires { law.stiffness; }) return law.stiffness.values;
+              return std::nullopt;
+            });
+          })
       .def_property_readonly("tangential_potential",
                              [](const ImpactLaw& l) -> std::optional<py::list> {
                                if (!l.has_tangential_potential()) return std::nullopt;

@@ -436,6 +436,8 @@ def test_any_law_from_its_file_schema():
     law = f.ImpactLaw.from_json('{"type": "stronge_coulomb", "e": 0.5, "mu": 0.25}')
     assert law.type == "stronge_coulomb" and law.e == [0.5] and law.mu == [0.25]
     assert law.normal is None
+    assert law.eta == [1.0] and law.stiffness == [1.0]
+    assert f.ImpactLaw.newton(0.5).eta is None
     pb = f.ImpactProblem(M=np.eye(2), W_N=np.array([[0.0], [1.0]]), W_T=np.array([[1.0], [0.0]]),
                          qdot_A=np.array([1.0, -2.0]))
     r = f.solve_impact(pb, law)
@@ -447,3 +449,22 @@ def test_any_law_from_its_file_schema():
         assert "law.e" in str(e)
     else:
         raise AssertionError("e = 2 accepted")
+
+
+def test_stronge_on_coupled_contacts():
+    # A ball in the middle struck from both sides at speed 1 (masses 1): by symmetry it stays at
+    # rest and each outer ball meets a wall, P = 1 + e, whatever eta and the equal stiffnesses.
+    law = f.ImpactLaw.from_json('{"type": "stronge", "e": 0.6, "eta": 1.5, "stiffness": [2, 2]}',
+                                contacts=2)
+    assert law.eta == [1.5] and law.stiffness == [2.0, 2.0]
+    pb = f.ImpactProblem(M=np.eye(3), W_N=np.array([[-1.0, 0.0], [1.0, -1.0], [0.0, 1.0]]),
+                         qdot_A=np.array([1.0, 0.0, -1.0]))
+    r = f.solve_impact(pb, law)
+    assert r.solver.method == f.SolverMethod.impulse_integration
+    assert abs(r.P_N[0] - 1.6) < 1e-9 and abs(r.P_N[1] - 1.6) < 1e-9
+    try:
+        f.ImpactLaw.from_json('{"type": "stronge", "e": 0.5, "eta": 0}')
+    except ValueError as e:
+        assert "law.eta" in str(e)
+    else:
+        raise AssertionError("eta = 0 accepted")

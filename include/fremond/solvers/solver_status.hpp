@@ -24,16 +24,18 @@ enum class SolverStatus : std::uint8_t {
 enum class SolverMethod : std::uint8_t {
   automatic,  ///< options only: let the driver choose (closed form → Newton → prox → NLopt).
   trivial,    ///< no contact takes part (all D_NA > 0): no percussion.
-  closed_form,        ///< piecewise-linear law on one contact, or a single exact prox.
-  scalar_newton,      ///< one decoupled contact: one scalar root per mode; or, Frémond's law
-                      ///< without Coulomb on one degree of freedom where every other method
-                      ///< failed, the velocity-space problem's root by bisection on ∂F.
-  mode_enumeration,   ///< contact modes tried: every one (small problems; finds all solutions),
-                      ///< or, Frémond + Coulomb on 2-4 contacts, until one satisfies the law.
-  lemke,              ///< lexicographic Lemke on the law's LCP (classical laws).
-  semismooth_newton,  ///< Newton on the prox-based (natural-map) residual, with a line search.
-  proximal,           ///< accelerated proximal-gradient iteration in contact space.
-  nlopt,              ///< NLopt on the velocity-space minimisation (value and subgradient only).
+  closed_form,          ///< piecewise-linear law on one contact, or a single exact prox.
+  scalar_newton,        ///< one decoupled contact: one scalar root per mode; or, Frémond's law
+                        ///< without Coulomb on one degree of freedom where every other method
+                        ///< failed, the velocity-space problem's root by bisection on ∂F.
+  mode_enumeration,     ///< contact modes tried: every one (small problems; finds all solutions),
+                        ///< or, Frémond + Coulomb on 2-4 contacts, until one satisfies the law.
+  lemke,                ///< lexicographic Lemke on the law's LCP (classical laws).
+  semismooth_newton,    ///< Newton on the prox-based (natural-map) residual, with a line search.
+  proximal,             ///< accelerated proximal-gradient iteration in contact space.
+  nlopt,                ///< NLopt on the velocity-space minimisation (value and subgradient only).
+  impulse_integration,  ///< Stronge's law on coupled contacts: the impact integrated in impulse
+                        ///< space with Liu, Zhao and Brogliato's distributing law.
 };
 
 /// Which stopping criterion fired.
