@@ -1,7 +1,13 @@
 // The preset scenes and the paper's laws (the paper's Fig. 1).
 #include "fremond/scenes/presets.hpp"
 
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/detail/validate.hpp"
 #include "fremond/core/enum_names.hpp"
+#include "fremond/core/error.hpp"
 #include "fremond/potentials/deadzone_power.hpp"
 #include "fremond/potentials/power.hpp"
 
@@ -67,6 +73,30 @@ Scene block_scene(const BlockParameters& block, ImpactLaw law) {
                  ContactPoint{{-w, h}, 0.0}};
   return on_ground(std::move(body), block.gravity, block.initial, std::move(law),
                    "the block's mass, width and height");
+}
+
+Scene ladder_scene(const LadderParameters& ladder, ImpactLaw law) {
+  const double l = ladder.half_length, theta = ladder.angle;
+  if (!(theta > 0.0 && theta < std::numbers::pi / 2))
+    throw InvalidArgument("angle",
+                          "must lie in (0, pi/2) rad, got " + detail::format_number(theta));
+  PlanarBody body;
+  body.mass = ladder.mass;
+  body.inertia = ladder.mass * l * l / 3.0;
+  body.points = {ContactPoint{{-l, 0.0}, 0.0}, ContactPoint{{l, 0.0}, 0.0}};
+  const PlanarState initial{
+      Eigen::Vector3d(ladder.wall - l * std::cos(theta), l * std::sin(theta), theta),
+      ladder.velocity};
+  detail::require_usable_mass_matrix("body", body.mass, body.inertia,
+                                     "the ladder's mass and half_length give ");
+  Scene s;
+  s.body = std::move(body);
+  s.obstacles = {HalfPlane{}, HalfPlane{Eigen::Vector2d(-1.0, 0.0), -ladder.wall}};
+  s.gravity = ladder.gravity;
+  s.initial = initial;
+  s.law = std::move(law);
+  s.validate();
+  return s;
 }
 
 ImpactLaw paper_law(PaperLaw law, double k_N) {

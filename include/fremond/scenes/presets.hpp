@@ -41,6 +41,23 @@ struct BlockParameters {
 };
 Scene block_scene(const BlockParameters& block, ImpactLaw law);
 
+/// A uniform bar of length 2l leaning at angle θ from the ground against a wall on its right: its
+/// lower end (r = (−l, 0)) on the ground y = 0, its upper end (r = (+l, 0)) against the wall x =
+/// `wall`, both touching at the initial state. Obstacles [ground, wall], so contact 0 is the lower
+/// end on the ground and contact 3 the upper end against the wall (scene.hpp). Defaults: θ = 0.2,
+/// both ends approaching at 1 m/s, q̇ = (1, −1, 0): the two-contact impact on which Poisson's law
+/// with Coulomb friction on the ground creates energy (docs/atlas.md), as no single contact can.
+struct LadderParameters {
+  double mass = 1.0;                         ///< kg
+  double half_length = 0.5;                  ///< l (m)
+  double angle = 0.2;                        ///< θ in (0, π/2) (rad)
+  double wall = 1.0;                         ///< the wall's x (m)
+  double gravity = 9.81;                     ///< m/s²
+  Eigen::Vector3d velocity{1.0, -1.0, 0.0};  ///< q̇ at the initial state
+};
+/// Throws InvalidArgument naming `angle` outside (0, π/2), or a field the scene refuses.
+Scene ladder_scene(const LadderParameters& ladder, ImpactLaw law);
+
 /// The five laws of the paper (the paper's Fig. 1), by their command-line names.
 enum class PaperLaw {
   newton,           ///< Newton, e = 0.9, frictionless (§3, Figs. 2-3).
