@@ -10,5 +10,7 @@ void add_impact_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 /// `fremond curve`: the data of Figs. 8 and 9.
 void add_curve_command(CLI::App& app);
+/// `fremond predict DATA --law LAW`: a law beside measured impacts (docs/measurements.md).
+void add_predict_command(CLI::App& app);
 
 }  // namespace fremond::cli
