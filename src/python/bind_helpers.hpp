@@ -68,5 +68,6 @@ void bind_scenes(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_curves(py::module_& m);
 void bind_batch(py::module_& m);
+void bind_fit(py::module_& m);
 
 }  // namespace fremond::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_fremond, m) {
   fp::bind_simulation(m);
   fp::bind_curves(m);
   fp::bind_batch(m);
+  fp::bind_fit(m);
 }
