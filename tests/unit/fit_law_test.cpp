@@ -36,6 +36,8 @@ std::map<std::string, double> truth(LawFamily f) {
       return {{"k", 12.0}, {"p", 2.5}};
     case LawFamily::fremond_coulomb:
       return {{"k", 9.0}, {"p", 2.5}, {"mu", 0.3}};
+    case LawFamily::fremond_deadzone:
+      return {{"k", 15.0}, {"p", 1.8}, {"k_T", 0.8}};
     default:
       return {};
   }
@@ -122,7 +124,7 @@ TEST_P(FitFamily, NoisyDataGiveTheParametersWithinTheirUncertainty) {
 INSTANTIATE_TEST_SUITE_P(Laws, FitFamily,
                          ::testing::Values(LawFamily::newton_coulomb, LawFamily::poisson_coulomb,
                                            LawFamily::stronge_coulomb, LawFamily::fremond,
-                                           LawFamily::fremond_coulomb),
+                                           LawFamily::fremond_coulomb, LawFamily::fremond_deadzone),
                          [](const auto& info) { return std::string(to_string(info.param)); });
 
 TEST(FitLaws, CrossValidationRanksTheLawThatMadeTheDataFirst) {
@@ -151,6 +153,23 @@ TEST(FitLaws, SeededRunsAreIdentical) {
   EXPECT_EQ(a.uncertainties, b.uncertainties);
   EXPECT_EQ(a.heldout_rms, b.heldout_rms);
   EXPECT_TRUE(std::isfinite(a.uncertainties(0)) && a.uncertainties(0) > 0.0);
+}
+
+// The two estimates of the uncertainty agree on a smooth problem with Gaussian noise: the spread
+// of refits on resampled impacts is the curvature's standard deviation, within sampling error.
+TEST(FitLaws, BootstrapAndGaussNewtonAgree) {
+  const auto data = synthetic(LawFamily::stronge_coulomb, 0.01, 13);
+  FitOptions o = quick();
+  const FitResult gn = fit_law(data, LawFamily::stronge_coulomb, o);
+  o.uncertainty = FitUncertainty::bootstrap;
+  o.bootstrap_samples = 40;
+  const FitResult bs = fit_law(data, LawFamily::stronge_coulomb, o);
+  EXPECT_EQ(gn.values, bs.values);  // the same fit; only the uncertainty differs
+  for (Eigen::Index i = 0; i < gn.values.size(); ++i) {
+    EXPECT_GT(bs.uncertainties(i), gn.uncertainties(i) / 2.5) << gn.names[i];
+    EXPECT_LT(bs.uncertainties(i), gn.uncertainties(i) * 2.5) << gn.names[i];
+  }
+  EXPECT_GT(bs.fold_evaluations, 40);
 }
 
 TEST(FitLaws, RobustLossesDownweighOutliers) {
