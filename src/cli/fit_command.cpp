@@ -168,14 +168,20 @@ std::string as_table(const std::vector<FitResult>& results, const FitOptions& o)
       params += (i ? ", " : "") + r.names[i] + " = " +
                 brief(r.values(static_cast<Eigen::Index>(i))) + " ± " +
                 brief(r.uncertainties(static_cast<Eigen::Index>(i)));
+    // No held-out error without folds: a dash, not "nan".
+    const std::string heldout = std::isfinite(r.heldout_rms) ? brief(r.heldout_rms) : "-";
     std::snprintf(line, sizeof line, "%-4d %-17s %-12s %-12s %-7d %s [%s]\n", ++rank,
                   std::string(to_string(r.family)).c_str(), brief(r.training_rms).c_str(),
-                  brief(r.heldout_rms).c_str(), r.evaluations, params.c_str(), r.status.c_str());
+                  heldout.c_str(), r.evaluations, params.c_str(), r.status.c_str());
     t << line;
   }
   t << "RMS in sigmas over " << (results.empty() ? 0 : results[0].measured)
-    << " measured components; held-out: " << o.folds << "-fold cross-validation, seed " << o.seed
-    << "; uncertainties: " << to_string(o.uncertainty) << "\n";
+    << " measured components; held-out: ";
+  if (o.folds >= 2)
+    t << o.folds << "-fold cross-validation, seed " << o.seed;
+  else
+    t << "none (--folds 0; ranked by training RMS)";
+  t << "; uncertainties: " << to_string(o.uncertainty) << "\n";
   return t.str();
 }
 
