@@ -179,6 +179,8 @@ TEST(FitLaws, RobustLossesDownweighOutliers) {
   o.loss = FitLoss::soft_l1;
   const FitResult robust = fit_law(data, LawFamily::newton_coulomb, o);
   EXPECT_NEAR(robust.values(0), 0.6, 0.01);
+  o.loss = FitLoss::huber;
+  EXPECT_NEAR(fit_law(data, LawFamily::newton_coulomb, o).values(0), 0.6, 0.01);
   const FitResult plain = fit_law(data, LawFamily::newton_coulomb, quick());
   EXPECT_GT(std::fabs(plain.values(0) - 0.6), std::fabs(robust.values(0) - 0.6));
 }
