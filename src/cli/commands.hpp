@@ -12,5 +12,9 @@ void add_simulate_command(CLI::App& app);
 void add_curve_command(CLI::App& app);
 /// `fremond atlas`: where each law creates energy over a scene's impact configurations.
 void add_atlas_command(CLI::App& app);
+/// `fremond predict DATA --law LAW`: a law beside measured impacts (docs/measurements.md).
+void add_predict_command(CLI::App& app);
+/// `fremond fit DATA --law NAMES`: law families fitted and ranked (docs/measurements.md).
+void add_fit_command(CLI::App& app);
 
 }  // namespace fremond::cli

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   fremond::cli::add_simulate_command(app);
   fremond::cli::add_curve_command(app);
   fremond::cli::add_atlas_command(app);
+  fremond::cli::add_predict_command(app);
+  fremond::cli::add_fit_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

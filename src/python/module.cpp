@@ -14,4 +14,5 @@ PYBIND11_MODULE(_fremond, m) {
   fp::bind_curves(m);
   fp::bind_batch(m);
   fp::bind_atlas(m);
+  fp::bind_fit(m);
 }
