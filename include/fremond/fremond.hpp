@@ -26,6 +26,7 @@
 #include "fremond/potentials/power.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/potentials/sum.hpp"
+#include "fremond/scenes/ball_chain.hpp"
 #include "fremond/scenes/kinematics.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/scenes/scene.hpp"
