@@ -167,8 +167,9 @@ Space make_space(LawFamily family, const FitOptions& o, std::span<const Measured
   }
   for (const auto& n : names) sp.params.push_back(default_parameter(n));
   for (const auto& [name, b] : o.bounds) {
+    const std::string& wanted = name;  // clang 14 cannot capture a structured binding
     auto it = std::find_if(sp.params.begin(), sp.params.end(),
-                           [&](const Parameter& p) { return p.name == name; });
+                           [&](const Parameter& p) { return p.name == wanted; });
     if (it == sp.params.end())
       throw InvalidArgument(
           "bounds." + name,
