@@ -248,17 +248,22 @@ AtlasResult law_atlas(const Scene& scene, const AtlasOptions& options) {
   // The defaults that come from the scene's first impact: its contact and that contact's speed.
   r.contact = options.contact;
   r.speed = options.speed;
+  // A contact given is checked before anything reads its frame.
+  auto require_contact = [&] {
+    if (r.contact >= scene.contact_count())
+      throw InvalidArgument("contact", "must lie in [0, " + std::to_string(scene.contact_count()) +
+                                           "), got " + std::to_string(r.contact));
+  };
+  require_contact();
   if (r.contact < 0 || r.speed == 0.0) {
     const FirstImpact first = scene_first_impact(scene, r.contact < 0 ? "contact" : "speed");
     if (r.contact < 0) r.contact = first.contacts[0];
+    require_contact();
     if (r.speed == 0.0) {
       const ContactFrame f = contact_frame(scene, r.contact, first.state.q);
       r.speed = std::hypot(f.W_N.dot(first.state.qdot), f.W_T.dot(first.state.qdot));
     }
   }
-  if (r.contact >= scene.contact_count())
-    throw InvalidArgument("contact", "must lie in [0, " + std::to_string(scene.contact_count()) +
-                                         "), got " + std::to_string(r.contact));
 
   // Frémond's k_N per value: given, or calibrated to e at the scene's first impact (the paper's).
   const bool sweeps_e = options.parameter == AtlasParameter::e;
