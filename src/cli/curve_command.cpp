@@ -50,12 +50,6 @@ struct TangentialArguments {
   std::optional<double> k_N, p, D_NA, k_T, q, r;
 };
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 // A short number for the comment lines.
 std::string brief(double v) {
   char buf[32];
@@ -94,7 +88,7 @@ void check_common(const CommonArguments& a, int default_points, double default_m
     throw InvalidArgument("--points", "must lie in [2, 1000000], got " + std::to_string(points));
   max_speed = a.max_speed.value_or(default_max);
   if (!std::isfinite(max_speed) || !(max_speed > 0.0))
-    throw InvalidArgument("--max-speed", "must be a finite number > 0, got " + number(max_speed));
+    throw InvalidArgument("--max-speed", "must be a finite number > 0, got " + number17(max_speed));
 }
 
 // Runs `body`, turning a refusal into exit status 1 with the message on stderr.
@@ -171,10 +165,10 @@ void run_normal(const NormalArguments& a) {
                    " (paper)";
       for (const CurvePoint& pt : curve) {
         all_converged = all_converged && pt.status == SolverStatus::converged;
-        rows << to_string(scaling) << ',' << number(par.p) << ',' << number(par.k) << ','
-             << number(std::fabs(pt.D_NA)) << ',' << number(pt.D_NA) << ',' << number(pt.D_NE)
-             << ',' << number(pt.P_N) << ',' << number(pt.P_N_reaction) << ','
-             << number(pt.energy_change) << ',' << (pt.admissible ? 1 : 0) << ','
+        rows << to_string(scaling) << ',' << number17(par.p) << ',' << number17(par.k) << ','
+             << number17(std::fabs(pt.D_NA)) << ',' << number17(pt.D_NA) << ',' << number17(pt.D_NE)
+             << ',' << number17(pt.P_N) << ',' << number17(pt.P_N_reaction) << ','
+             << number17(pt.energy_change) << ',' << (pt.admissible ? 1 : 0) << ','
              << to_string(pt.failed) << ',' << to_string(pt.status) << '\n';
       }
     }
@@ -231,11 +225,11 @@ void run_tangential(const TangentialArguments& a) {
            "failed,status\n";
     for (const CurvePoint& pt : curve) {
       all_converged = all_converged && pt.status == SolverStatus::converged;
-      csv << to_string(scaling) << ',' << number(par.k_T) << ',' << number(par.q) << ','
-          << number(par.r) << ',' << number(par.k_N) << ',' << number(par.p) << ','
-          << number(pt.D_TA) << ',' << number(pt.D_TE) << ',' << number(pt.P_T) << ','
-          << number(pt.D_NA) << ',' << number(pt.D_NE) << ',' << number(pt.P_N) << ','
-          << (pt.in_dead_zone ? 1 : 0) << ',' << number(pt.energy_change) << ','
+      csv << to_string(scaling) << ',' << number17(par.k_T) << ',' << number17(par.q) << ','
+          << number17(par.r) << ',' << number17(par.k_N) << ',' << number17(par.p) << ','
+          << number17(pt.D_TA) << ',' << number17(pt.D_TE) << ',' << number17(pt.P_T) << ','
+          << number17(pt.D_NA) << ',' << number17(pt.D_NE) << ',' << number17(pt.P_N) << ','
+          << (pt.in_dead_zone ? 1 : 0) << ',' << number17(pt.energy_change) << ','
           << (pt.admissible ? 1 : 0) << ',' << to_string(pt.failed) << ',' << to_string(pt.status)
           << '\n';
     }

@@ -17,6 +17,7 @@
 #include "cli/measured_input.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/fit/fit_law.hpp"
+#include "io/detail/json_number.hpp"
 
 namespace fremond::cli {
 
@@ -119,10 +120,7 @@ std::string brief(double v) {
   return buf;
 }
 
-// A number for JSON: null where not finite (JSON has no NaN or infinity).
-nlohmann::ordered_json json_number(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
+using io::detail::json_number;
 
 std::string as_json(const std::vector<FitResult>& results) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();

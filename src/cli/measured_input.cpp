@@ -45,12 +45,6 @@ std::map<std::string, double> named_values(const std::vector<std::string>& items
   return out;
 }
 
-std::string number17(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void write_text(const std::string& out, const std::string& text) {
   if (out.empty()) {
     if (!write_stdout(text))

@@ -1,6 +1,6 @@
 #pragma once
 // What `fremond predict` and `fremond fit` share: the measured-impact file read from a path or
-// standard input, lists of NAME=VALUE, numbers written to read back, the output written whole.
+// standard input, lists of NAME=VALUE, the output written whole.
 #include <map>
 #include <string>
 #include <vector>
@@ -16,9 +16,6 @@ std::vector<MeasuredImpact> read_measured(const std::string& file);
 /// "e=0.9,mu=0.3" as {{"e", 0.9}, {"mu", 0.3}}; throws InvalidArgument naming `option`.
 std::map<std::string, double> named_values(const std::vector<std::string>& items,
                                            const std::string& option);
-
-/// %.17g: reads back to the same double.
-std::string number17(double v);
 
 /// `text` to `out` (complete or absent) or to standard output when `out` is empty; throws
 /// InvalidArgument naming what could not be written.

@@ -47,4 +47,10 @@ bool write_stdout(const std::string& text) {
          std::fflush(stdout) == 0;
 }
 
+std::string number17(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
 }  // namespace fremond::cli

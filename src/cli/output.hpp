@@ -14,4 +14,7 @@ void write_atomically(const std::filesystem::path& dir, const std::string& name,
 /// (a full disk, a closed pipe, a size limit), so the caller can exit non-zero.
 bool write_stdout(const std::string& text);
 
+/// A number as text with %.17g, which reads back to the same double.
+std::string number17(double v);
+
 }  // namespace fremond::cli

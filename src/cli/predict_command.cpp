@@ -15,6 +15,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/measured_input.hpp"
+#include "cli/output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/fit/law_family.hpp"
 #include "fremond/fit/predict.hpp"

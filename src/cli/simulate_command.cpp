@@ -36,6 +36,7 @@
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/unresisted_slide.hpp"
+#include "io/detail/json_number.hpp"
 
 namespace fremond::cli {
 
@@ -197,14 +198,12 @@ Setup load(const SimulateArguments& a) {
 
 // ---- recording the run ------------------------------------------------------------------------
 
-ojson number(double v) {
-  return std::isfinite(v) ? ojson(v) : ojson(nullptr);
-}
+using io::detail::json_number;
 
 template <class V>
 ojson numbers(const V& v, Eigen::Index n) {
   ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < n; ++i) a.push_back(number(v(i)));
+  for (Eigen::Index i = 0; i < n; ++i) a.push_back(json_number(v(i)));
   return a;
 }
 
@@ -212,7 +211,7 @@ ojson impact_json(const ImpactRecord& r) {
   const Eigen::Index n = r.contact_count;
   ojson j;
   j["index"] = r.index;
-  j["t"] = number(r.t);
+  j["t"] = json_number(r.t);
   j["kind"] = std::string(to_string(r.kind));
   ojson contacts = ojson::array();
   for (int i = 0; i < r.contact_count; ++i) contacts.push_back(r.contacts[i]);
@@ -226,21 +225,22 @@ ojson impact_json(const ImpactRecord& r) {
   j["D_NE"] = numbers(r.D_NE, n);
   j["D_TA"] = numbers(r.D_TA, n);
   j["D_TE"] = numbers(r.D_TE, n);
-  j["energy_A"] = number(r.energy_A);
-  j["energy_E"] = number(r.energy_E);
+  j["energy_A"] = json_number(r.energy_A);
+  j["energy_E"] = json_number(r.energy_E);
   j["admissible"] = r.admissible;
   j["failed"] = std::string(to_string(r.failed));
   j["failed_contact"] = r.failed_contact;
-  j["violation"] = number(r.violation);
+  j["violation"] = json_number(r.violation);
   j["unique"] = r.unique;
   ojson solver;
   solver["method"] = std::string(to_string(r.solver.method));
   solver["status"] = std::string(to_string(r.solver.status));
   solver["iterations"] = r.solver.iterations;
-  solver["residual"] = number(r.solver.residual);
+  solver["residual"] = json_number(r.solver.residual);
   solver["message"] = std::string(r.solver.message);
   j["solver"] = solver;
-  if (r.kind == ImpactKind::accumulation) j["accumulation_limit"] = number(r.accumulation_limit);
+  if (r.kind == ImpactKind::accumulation)
+    j["accumulation_limit"] = json_number(r.accumulation_limit);
   return j;
 }
 
@@ -263,7 +263,7 @@ class Recorder final : public SimulationObserver {
   void on_impact(const ImpactRecord& r) override { impacts_.push_back(impact_json(r)); }
   void on_phase(double t, Phase from, Phase to, std::string_view why) override {
     ojson j;
-    j["t"] = number(t);
+    j["t"] = json_number(t);
     j["from"] = std::string(to_string(from));
     j["to"] = std::string(to_string(to));
     j["why"] = std::string(why);
@@ -312,29 +312,29 @@ ojson summary_json(const Setup& s, const SimulationResult& r,
   j["scene"] = s.name;
   j["law"] = s.scene.law.describe();
   j["integrator"] = std::string(to_string(s.options.integrator));
-  j["t_end"] = number(s.options.t_end);
-  j["step"] = number(s.options.step);
+  j["t_end"] = json_number(s.options.t_end);
+  j["step"] = json_number(s.options.step);
   j["status"] = std::string(to_string(r.status));
   j["message"] = std::string(r.message);
-  j["t"] = number(r.t);
+  j["t"] = json_number(r.t);
   j["q"] = numbers(r.state.q, 3);
   j["qdot"] = numbers(r.state.qdot, 3);
   j["phase"] = std::string(to_string(r.phase));
-  j["energy_initial"] = number(r.energy_initial);
-  j["energy_final"] = number(r.energy_final);
-  j["max_energy_rise"] = number(r.max_energy_rise);
+  j["energy_initial"] = json_number(r.energy_initial);
+  j["energy_final"] = json_number(r.energy_final);
+  j["max_energy_rise"] = json_number(r.max_energy_rise);
   j["impacts"] = r.impacts;
   j["event_impacts"] = r.event_impacts;
   j["inadmissible_impacts"] = r.inadmissible_impacts;
-  j["first_inadmissible_time"] = number(r.first_inadmissible_time);
+  j["first_inadmissible_time"] = json_number(r.first_inadmissible_time);
   j["accumulations"] = r.accumulations;
-  j["first_accumulation_time"] = number(r.first_accumulation_time);
+  j["first_accumulation_time"] = json_number(r.first_accumulation_time);
   j["moreau_jean_steps"] = r.steps;
   j["phase_switches"] = r.phase_switches;
   if (slide) {
     ojson sl;
     sl["contact"] = slide->contact;
-    sl["D_T"] = number(slide->speed);
+    sl["D_T"] = json_number(slide->speed);
     j["unresisted_slide"] = sl;
   } else {
     j["unresisted_slide"] = nullptr;

@@ -11,6 +11,7 @@
 #include "fremond/core/error.hpp"
 #include "fremond/core/types.hpp"
 #include "io/detail/json_law.hpp"
+#include "io/detail/json_number.hpp"
 #include "io/detail/json_reader.hpp"
 
 namespace fremond::io {
@@ -95,16 +96,12 @@ namespace {
 
 using ojson = nlohmann::ordered_json;  // keeps the order of docs/problem-file.md in the output
 
-// JSON has no NaN or infinity: a value that is not finite (a residual that was never computed,
-// a failed solve) is null, so that any JSON reader accepts the output.
-ojson number(double v) {
-  return std::isfinite(v) ? ojson(v) : ojson(nullptr);
-}
+using detail::json_number;
 
 template <class Derived>
 ojson numbers(const Eigen::MatrixBase<Derived>& v) {
   ojson a = ojson::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(number(static_cast<double>(v(i))));
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(json_number(static_cast<double>(v(i))));
   return a;
 }
 
@@ -118,20 +115,20 @@ ojson flags(const Eigen::MatrixBase<Derived>& v) {
 template <int C>
 ojson admissibility_json(const AdmissibilityReportT<C>& a) {
   ojson j;
-  j["total"] = number(a.total);
+  j["total"] = json_number(a.total);
   j["per_contact"] = numbers(a.per_contact);
-  j["reaction"] = number(a.reaction);
-  j["dissipation"] = number(a.dissipation);
-  j["complementarity"] = number(a.complementarity);
-  j["penetration"] = number(a.penetration);
-  j["fenchel_young_gap"] = number(a.fenchel_young_gap);
-  j["tolerance"] = number(a.tolerance);
+  j["reaction"] = json_number(a.reaction);
+  j["dissipation"] = json_number(a.dissipation);
+  j["complementarity"] = json_number(a.complementarity);
+  j["penetration"] = json_number(a.penetration);
+  j["fenchel_young_gap"] = json_number(a.fenchel_young_gap);
+  j["tolerance"] = json_number(a.tolerance);
   j["admissible"] = a.admissible;
   j["failed"] = std::string(to_string(a.failed));
   j["failed_contact"] = a.failed_contact;
-  j["violation"] = number(a.violation);
-  j["energy_change"] = number(a.energy_change);
-  j["kinetic_energy_A"] = number(a.kinetic_energy_A);
+  j["violation"] = json_number(a.violation);
+  j["energy_change"] = json_number(a.energy_change);
+  j["kinetic_energy_A"] = json_number(a.kinetic_energy_A);
   return j;
 }
 
@@ -141,7 +138,7 @@ ojson solver_json(const SolverReport& s) {
   j["status"] = std::string(to_string(s.status));
   j["criterion"] = std::string(to_string(s.criterion));
   j["iterations"] = s.iterations;
-  j["residual"] = number(s.residual);
+  j["residual"] = json_number(s.residual);
   j["message"] = std::string(s.message);
   j["native_code"] = s.native_code;
   j["fallbacks"] = s.fallbacks;
@@ -152,7 +149,7 @@ ojson solver_json(const SolverReport& s) {
     one["method"] = std::string(to_string(a.method));
     one["start"] = std::string(to_string(a.start));
     one["status"] = std::string(to_string(a.status));
-    one["residual"] = number(a.residual);
+    one["residual"] = json_number(a.residual);
     attempts.push_back(one);
   }
   j["attempts"] = attempts;
@@ -177,7 +174,7 @@ ojson result_json(const ImpactResultT<N, C>& r) {
   else
     j["P_N_reaction"] = numbers(r.P_N_reaction);
   j["takes_part"] = flags(r.takes_part);
-  j["energy_change"] = number(r.energy_change);
+  j["energy_change"] = json_number(r.energy_change);
   if (r.has_phases) {  // Poisson: the end of compression (docs/laws.md)
     j["P_NC"] = numbers(r.P_NC);
     j["P_TC"] = numbers(r.P_TC);
