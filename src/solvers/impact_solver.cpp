@@ -58,6 +58,7 @@ struct PreparedStage {
   /// solve_impact_in_own_storage after its validation: the same stages on the same data.
   void solve(const ImpactLaw& law, const SolverOptions& options) {
     build_contact_space(pb, tangential_rows(law), cs);
+    out = ImpactResultT<N, C>{};
     solve_on_contact_space(pb, law, options, cs, out);
   }
 };

@@ -58,7 +58,6 @@ template <int N, int C>
 void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                     const SolverOptions& options, ContactSpaceT<N, C>& cs,
                                     ImpactResultT<N, C>& out) {
-  out = ImpactResultT<N, C>{};
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
   // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
   // and one contact does not even make the call (its frame holds three problems' storage).

@@ -11,8 +11,8 @@ namespace fremond::detail {
 
 /// Solves a validated problem whose contact space `cs` was built on the approaching contacts: the
 /// law's chain (by independent groups), again on every contact where the answer drives a
-/// separating one into its obstacle (cs is then rebuilt), and the certificate. `out` is
-/// overwritten whole.
+/// separating one into its obstacle (cs is then rebuilt), and the certificate, into `out`, which
+/// must be a result as default-constructed (the chain reads its attempt log and flags).
 template <int N, int C>
 void solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                             const SolverOptions& options, ContactSpaceT<N, C>& cs,
