@@ -39,7 +39,8 @@ export FREMOND_STRESS_HANG=${FREMOND_STRESS_HANG:-120}
 exclude='^(packaging\.|format$)'
 if [ "$mode" != --full ]; then
   # CI's share leaves out the tests of the test suite's own reference (ReferenceSelfTest: no
-  # library code) and the simulation's long sweeps; check-long.sh runs them too.
-  exclude='^(packaging\.|format$|ReferenceSelfTest\.|SimulationSweep\.)'
+  # library code), the simulation's long sweeps and Siconos's large problems; check-long.sh runs
+  # them too.
+  exclude='^(packaging\.|format$|ReferenceSelfTest\.|SimulationSweep\.|SiconosLarge\.)'
 fi
 stage sanitize-ctest ctest --test-dir "$build" --output-on-failure -j"$jobs" -E "$exclude"

@@ -25,7 +25,7 @@ constexpr EnumNames<SolverStatus, 7> kStatus{{{SolverStatus::not_run, "not_run"}
                                               {SolverStatus::no_solution, "no_solution"},
                                               {SolverStatus::failed, "failed"},
                                               {SolverStatus::unsupported, "unsupported"}}};
-constexpr EnumNames<SolverMethod, 10> kMethods{
+constexpr EnumNames<SolverMethod, 11> kMethods{
     {{SolverMethod::automatic, "automatic"},
      {SolverMethod::trivial, "trivial"},
      {SolverMethod::closed_form, "closed_form"},
@@ -35,7 +35,8 @@ constexpr EnumNames<SolverMethod, 10> kMethods{
      {SolverMethod::semismooth_newton, "semismooth_newton"},
      {SolverMethod::proximal, "proximal"},
      {SolverMethod::nlopt, "nlopt"},
-     {SolverMethod::impulse_integration, "impulse_integration"}}};
+     {SolverMethod::impulse_integration, "impulse_integration"},
+     {SolverMethod::nsgs, "nsgs"}}};
 constexpr EnumNames<StopCriterion, 7> kCriteria{{{StopCriterion::none, "none"},
                                                  {StopCriterion::exact, "exact"},
                                                  {StopCriterion::residual, "residual"},

@@ -21,10 +21,11 @@ void bind_enums(py::module_& m) {
                 S::unsupported},
                &solver_status_from_string);
   using M = SolverMethod;
-  bind_enum<M>(m, "SolverMethod", doc::kSolverMethod,
-               {M::automatic, M::trivial, M::closed_form, M::scalar_newton, M::mode_enumeration,
-                M::lemke, M::semismooth_newton, M::proximal, M::nlopt, M::impulse_integration},
-               &solver_method_from_string);
+  bind_enum<M>(
+      m, "SolverMethod", doc::kSolverMethod,
+      {M::automatic, M::trivial, M::closed_form, M::scalar_newton, M::mode_enumeration, M::lemke,
+       M::semismooth_newton, M::proximal, M::nlopt, M::impulse_integration, M::nsgs},
+      &solver_method_from_string);
   using A = AttemptStart;
   bind_enum<A>(m, "AttemptStart", "Where a method of the chain started from.",
                {A::none, A::decoupled_guess, A::zero, A::newton_end, A::splitting_end, A::nlopt_end,

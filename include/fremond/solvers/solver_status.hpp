@@ -36,6 +36,8 @@ enum class SolverMethod : std::uint8_t {
   nlopt,                ///< NLopt on the velocity-space minimisation (value and subgradient only).
   impulse_integration,  ///< Stronge's law on coupled contacts: the impact integrated in impulse
                         ///< space with Liu, Zhao and Brogliato's distributing law.
+  nsgs,  ///< nonsmooth Gauss–Seidel over the contacts of a sparse problem, each contact's law
+         ///< solved exactly given the others (sparse/sparse_solver.hpp).
 };
 
 /// Which stopping criterion fired.

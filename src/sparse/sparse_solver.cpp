@@ -1,0 +1,376 @@
+// Newton's law, with or without Coulomb friction, on sparse problems: nonsmooth Gauss–Seidel over
+// the contacts (docs/sparse.md), the natural-map residual and the certificate in contact
+// coordinates, each at a cost linear in the non-zeros of G.
+#include "fremond/sparse/sparse_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/detail/validate.hpp"
+#include "fremond/core/error.hpp"
+#include "sparse/detail/coulomb_contact.hpp"
+#include "sparse/detail/mass_inverse.hpp"
+
+namespace fremond {
+
+namespace {
+
+using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// What the sweeps need of one problem and law, gathered once.
+struct Layout {
+  int contacts = 0;
+  int step = 2;           // rows a contact
+  bool friction = false;  // Coulomb rows solved
+  RowMajorMatrix G;       // row access for the sweeps
+  std::vector<detail::ContactBlock> block;
+  std::vector<double> e, mu;
+  std::vector<double> shift;  // e min(D_NA, 0): the restitution term of each normal row
+  double v_scale = std::numeric_limits<double>::min();
+};
+
+Layout layout(const ContactProblem& pb, const RestitutionLaw& law) {
+  Layout L;
+  L.contacts = pb.contacts();
+  L.step = pb.tangential ? 2 : 1;
+  L.friction = pb.tangential && law.coulomb;
+  L.G = pb.G;
+  L.G.makeCompressed();
+  const auto n = static_cast<std::size_t>(L.contacts);
+  L.block.resize(n);
+  L.e.resize(n);
+  L.mu.resize(n);
+  L.shift.resize(n);
+  for (int i = 0; i < L.contacts; ++i) {
+    const int r = L.step * i;
+    auto& B = L.block[static_cast<std::size_t>(i)];
+    B.a = pb.G.coeff(r, r);
+    if (pb.tangential) {
+      B.b = pb.G.coeff(r, r + 1);
+      B.c = pb.G.coeff(r + 1, r);
+      B.d = pb.G.coeff(r + 1, r + 1);
+    }
+    L.e[static_cast<std::size_t>(i)] = law.e[i];
+    L.mu[static_cast<std::size_t>(i)] = L.friction ? law.mu[i] : 0.0;
+    const double DNA = pb.D_A(r);
+    L.shift[static_cast<std::size_t>(i)] = law.e[i] * std::min(DNA, 0.0);
+    if (DNA <= 0.0)
+      L.v_scale =
+          std::max({L.v_scale, std::fabs(DNA), pb.tangential ? std::fabs(pb.D_A(r + 1)) : 0.0});
+  }
+  return L;
+}
+
+double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {
+  const int* idx = G.innerIndexPtr();
+  const double* val = G.valuePtr();
+  double sum = 0.0, abs_sum = 0.0;
+  for (int k = G.outerIndexPtr()[row]; k < G.outerIndexPtr()[row + 1]; ++k) {
+    const double t = val[k] * P(idx[k]);
+    sum += t;
+    abs_sum += std::fabs(t);
+  }
+  if (size) *size = abs_sum;
+  return sum;
+}
+
+// One Gauss–Seidel sweep; returns the largest change of a contact's velocity it made.
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P) {
+  double change = 0.0;
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    if (L.step == 1) {
+      const double fN = D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * P(r);
+      const double PN = fN < 0.0 ? -fN / A.a : 0.0;
+      change = std::max(change, A.a * std::fabs(PN - P(r)));
+      P(r) = PN;
+      continue;
+    }
+    const detail::ContactPercussion old{P(r), P(r + 1)};
+    const double fN =
+        D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * old.N - A.b * old.T;
+    const double fT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr) - A.c * old.N - A.d * old.T;
+    const auto now = detail::coulomb_contact(A, fN, fT, L.mu[k], old);
+    change = std::max(change,
+                      std::max(A.a * std::fabs(now.N - old.N) + std::fabs(A.b * (now.T - old.T)),
+                               std::fabs(A.c * (now.N - old.N)) + A.d * std::fabs(now.T - old.T)));
+    P(r) = now.N;
+    P(r + 1) = now.T;
+  }
+  return change;
+}
+
+// The law's residual at P: D_E = D_A + G P, each row's rounding 16ε (|D_A| + Σ|G P|).
+struct Measure {
+  double residual = 0.0;          // max |R|, velocity units
+  double excess = 0.0;            // max (|R| − rounding of its rows)
+  Eigen::VectorXd D_E, rounding;  // rows
+};
+
+Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
+  Measure m;
+  const int rows = static_cast<int>(D_A.size());
+  m.D_E.resize(rows);
+  m.rounding.resize(rows);
+  for (int j = 0; j < rows; ++j) {
+    double size = 0.0;
+    m.D_E(j) = D_A(j) + row_times(L.G, j, P, &size);
+    m.rounding(j) = 16 * kEps * (std::fabs(D_A(j)) + size);
+  }
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    const double wN = m.D_E(r) + L.shift[k];
+    const double PN = P(r);
+    double R = std::fabs(std::min(wN, PN == 0.0 ? 0.0 : A.a * PN));
+    double floor = m.rounding(r);
+    if (L.step == 2) {
+      const double PT = P(r + 1), vT = m.D_E(r + 1);
+      const double g = A.d > 0.0 ? A.d : A.a;
+      const double bound = L.mu[k] * std::max(PN, 0.0);
+      const double diff = PT - std::clamp(PT - vT / g, -bound, bound);
+      R = std::max(R, std::fabs(diff == 0.0 ? 0.0 : g * diff));
+      floor = std::max(floor, m.rounding(r + 1));
+    }
+    m.residual = std::max(m.residual, R);
+    m.excess = std::max(m.excess, R - floor);
+  }
+  return m;
+}
+
+// The certificate of a classical law in contact coordinates (docs/concepts.md): (15) in sum and
+// per contact, and non-penetration, each to how well the energies and velocities are known.
+void certify(const Layout& L, const Measure& m, ImpactResult& r, double kinetic_A,
+             const SparseSolverOptions& options) {
+  auto& rep = r.admissibility;
+  const int c = L.contacts;
+  rep.kinetic_energy_A = kinetic_A;
+  rep.energy_change = r.energy_change;
+  rep.per_contact.setZero(c);
+  double p_scale = 0.0, energy_rounding = 0.0, pen = 0.0;
+  int worst = -1;
+  double worst_value = 0.0;
+  for (int i = 0; i < c; ++i) {
+    const int row = L.step * i;
+    p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
+    const double zN = 0.5 * r.D_NA(i) + 0.5 * r.D_NE(i), zT = 0.5 * r.D_TA(i) + 0.5 * r.D_TE(i);
+    const double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
+    rep.per_contact(i) = pc;
+    if (pc < worst_value && r.takes_part(i)) {
+      worst_value = pc;
+      worst = i;
+    }
+    const double rounding = std::max(m.rounding(row), L.step == 2 ? m.rounding(row + 1) : 0.0);
+    const double dz = std::max(rounding, std::max(8 * kEps, 2 * options.tolerance) * L.v_scale);
+    energy_rounding += (std::fabs(r.P_N(i)) + std::fabs(r.P_T(i))) * dz;
+    const double dv = std::max(rounding, std::max(8 * kEps, options.tolerance) * L.v_scale);
+    pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / L.v_scale);
+  }
+  rep.total = rep.per_contact.sum();
+  rep.dissipation = rep.total;
+  rep.penetration = pen;
+  const double reference = std::isfinite(kinetic_A) ? kinetic_A : p_scale * L.v_scale;
+  rep.tolerance = std::max(std::max(options.admissibility_tolerance, 64 * kEps) *
+                               std::max(reference, std::numeric_limits<double>::min()),
+                           energy_rounding);
+  const double tol = rep.tolerance;
+  auto fail = [&rep](Inequality what, double by, int contact = -1) {
+    rep.failed = what;
+    rep.violation = by;
+    rep.failed_contact = contact;
+  };
+  if (!std::isfinite(rep.total) || rep.total < -tol)
+    fail(Inequality::total_15, rep.total);
+  else if (worst >= 0 && worst_value < -tol)
+    fail(Inequality::per_contact_15, worst_value, worst);
+  else if (pen > std::max(options.admissibility_tolerance, 1e-12))
+    fail(Inequality::non_penetration, pen);
+  rep.admissible = rep.failed == Inequality::none;
+}
+
+// The rows of P and D into the result's per-contact vectors.
+void scatter(const Layout& L, const ContactProblem& pb, const Eigen::VectorXd& P,
+             const Eigen::VectorXd& D_E, ImpactResult& r) {
+  const int c = L.contacts;
+  for (auto* v : {&r.P_N, &r.P_T, &r.D_NA, &r.D_TA, &r.D_NE, &r.D_TE, &r.P_N_reaction})
+    v->setZero(c);
+  r.takes_part.resize(c);
+  for (int i = 0; i < c; ++i) {
+    const int row = L.step * i;
+    r.P_N(i) = P(row);
+    r.D_NA(i) = pb.D_A(row);
+    r.D_NE(i) = D_E(row);
+    r.takes_part(i) = pb.D_A(row) <= 0.0;
+    if (L.step == 1) continue;
+    r.P_T(i) = P(row + 1);
+    r.D_TA(i) = pb.D_A(row + 1);
+    r.D_TE(i) = D_E(row + 1);
+  }
+}
+
+// The percussions of `start` as rows; `clip` keeps the normal ones ≥ 0 (a starting point).
+Eigen::VectorXd rows_of(const ContactProblem& pb, const ImpactResult* start, bool clip) {
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(pb.rows());
+  if (!start) return P;
+  const int c = pb.contacts();
+  if (start->P_N.size() != c || (pb.tangential && start->P_T.size() != c))
+    throw InvalidArgument("start", "must hold the percussions of the problem's " +
+                                       std::to_string(c) + " contacts, got " +
+                                       std::to_string(start->P_N.size()));
+  for (int i = 0; i < c; ++i) {
+    const double PN = start->P_N(i), PT = pb.tangential ? start->P_T(i) : 0.0;
+    if (!std::isfinite(PN) || !std::isfinite(PT))
+      throw InvalidArgument("start",
+                            "contact " + std::to_string(i) + ": the percussions must be finite");
+    P(pb.tangential ? 2 * i : i) = clip ? std::max(PN, 0.0) : PN;
+    if (pb.tangential) P(2 * i + 1) = PT;
+  }
+  return P;
+}
+
+ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
+                   const SparseSolverOptions& options, const ImpactResult* start,
+                   double kinetic_A) {
+  options.validate();
+  const int c = pb.contacts();
+  law.validate(c);
+  ImpactResult r;
+  r.solver.method = SolverMethod::nsgs;
+  const RestitutionLaw* classical = law.get_if<RestitutionLaw>();
+  const bool newton_like =
+      classical && (classical->kind == RestitutionLaw::Kind::newton ||
+                    std::all_of(classical->e.values.begin(), classical->e.values.end(),
+                                [](double e) { return e == 0.0; }));
+  if (!newton_like) {
+    r.solver.status = SolverStatus::unsupported;
+    r.solver.criterion = StopCriterion::none;
+    r.solver.message =
+        "sparse problems are solved under Newton's law, with or without Coulomb friction (and "
+        "Poisson's with e = 0, the same law); other laws need the dense solvers (solve_impact on "
+        "an ImpactProblem)";
+    r.solver.record(SolverMethod::nsgs, AttemptStart::none, SolverStatus::unsupported,
+                    std::numeric_limits<double>::quiet_NaN());
+    return r;
+  }
+  Eigen::VectorXd P = rows_of(pb, start, true);
+  const Layout L = layout(pb, *classical);
+  const double target = options.tolerance * L.v_scale;
+  Measure m;
+  int sweeps = 0;
+  double best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
+  r.solver.status = SolverStatus::max_iterations;
+  r.solver.criterion = StopCriterion::iterations;
+  r.solver.message = "the sweep budget (max_sweeps) ran out with the residual above tolerance";
+  // A sweep's largest velocity change bounds what the next can still move; the residual, which
+  // costs a sweep, is measured only when that change is small, and every 64 sweeps to see a
+  // stall: 16 measures in a row without a 1 % gain.
+  while (sweeps < options.max_sweeps) {
+    const double change = sweep(L, pb.D_A, P);
+    ++sweeps;
+    if (!std::isfinite(change)) {
+      r.solver.status = SolverStatus::failed;
+      r.solver.criterion = StopCriterion::none;
+      r.solver.message = "the sweeps produced non-finite percussions";
+      break;
+    }
+    if (change > target && sweeps % 64 != 0) continue;
+    m = measure(L, pb.D_A, P);
+    if (m.residual <= target || m.excess <= target) {
+      r.solver.status = SolverStatus::converged;
+      r.solver.criterion = m.residual <= target ? StopCriterion::residual : StopCriterion::rounding;
+      r.solver.message = m.residual <= target
+                             ? "the residual is within tolerance"
+                             : "each contact's residual is within the rounding of its velocities";
+      break;
+    }
+    if (m.residual < 0.99 * best) {
+      best = m.residual;
+      since_best = 0;
+    } else if (++since_best >= 16) {
+      r.solver.status = SolverStatus::stalled;
+      r.solver.criterion = StopCriterion::step;
+      r.solver.message = "the sweeps no longer reduce the residual";
+      break;
+    }
+  }
+  if (m.D_E.size() != pb.rows() || r.solver.status == SolverStatus::max_iterations)
+    m = measure(L, pb.D_A, P);
+  r.solver.iterations = sweeps;
+  r.solver.residual = m.residual / L.v_scale;
+  r.solver.record(SolverMethod::nsgs, start ? AttemptStart::none : AttemptStart::zero,
+                  r.solver.status, r.solver.residual);
+  scatter(L, pb, P, m.D_E, r);
+  // T_E − T_A = P·z for fixed obstacles (eq. 9); solve_impact replaces it by the velocities'.
+  r.energy_change = r.P_N.dot(0.5 * (r.D_NA + r.D_NE)) + r.P_T.dot(0.5 * (r.D_TA + r.D_TE));
+  certify(L, m, r, kinetic_A, options);
+  return r;
+}
+
+}  // namespace
+
+bool SparseSolverOptions::is_valid(std::string* why) const {
+  auto no = [why](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (!(tolerance >= 1e-16 && tolerance <= 1e-2))
+    return no("tolerance: must lie in [1e-16, 1e-2], got " + detail::format_number(tolerance));
+  if (max_sweeps < 1) return no("max_sweeps: must be >= 1, got " + std::to_string(max_sweeps));
+  if (!(admissibility_tolerance >= 0.0 && admissibility_tolerance < 1.0))
+    return no("admissibility_tolerance: must lie in [0, 1), got " +
+              detail::format_number(admissibility_tolerance));
+  return true;
+}
+
+void SparseSolverOptions::validate() const {
+  std::string why;
+  if (is_valid(&why)) return;
+  const auto colon = why.find(':');
+  throw InvalidArgument(why.substr(0, colon), why.substr(colon + 2));
+}
+
+ImpactResult solve_contact_problem(const ContactProblem& problem, const ImpactLaw& law,
+                                   const SparseSolverOptions& options, const ImpactResult* start) {
+  validate(problem);
+  return solve(problem, law, options, start, std::numeric_limits<double>::quiet_NaN());
+}
+
+ImpactResult solve_impact(const SparseImpactProblem& problem, const ImpactLaw& law,
+                          const SparseSolverOptions& options, const ImpactResult* start) {
+  const SparseMatrix X = inverse_mass_times_jacobian(problem);  // validates
+  const SparseMatrix W = detail::interleaved_jacobian(problem.W_N, problem.W_T);
+  const ContactProblem cp = detail::contact_form(problem, W, X);
+  const int c = problem.contacts(), step = cp.tangential ? 2 : 1;
+  const double T_A = 0.5 * problem.qdot_A.dot(problem.M * problem.qdot_A);
+  ImpactResult r = solve(cp, law, options, start, T_A);
+  if (r.solver.status == SolverStatus::unsupported) return r;
+  Eigen::VectorXd P(cp.rows());
+  for (int i = 0; i < c; ++i) {
+    P(step * i) = r.P_N(i);
+    if (cp.tangential) P(step * i + 1) = r.P_T(i);
+  }
+  const Eigen::VectorXd dq = X * P;
+  r.qdot_E = problem.qdot_A + dq;
+  r.energy_change = 0.5 * dq.dot(problem.M * (r.qdot_E + problem.qdot_A));
+  r.admissibility.energy_change = r.energy_change;
+  return r;
+}
+
+double contact_residual(const ContactProblem& problem, const ImpactLaw& law,
+                        const ImpactResult& result) {
+  validate(problem);
+  const RestitutionLaw* classical = law.get_if<RestitutionLaw>();
+  if (!classical) throw InvalidArgument("law", "contact_residual measures Newton's law only");
+  const Eigen::VectorXd P = rows_of(problem, &result, false);
+  const Layout L = layout(problem, *classical);
+  return measure(L, problem.D_A, P).residual / L.v_scale;
+}
+
+}  // namespace fremond

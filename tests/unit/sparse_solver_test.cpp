@@ -1,0 +1,275 @@
+// The sparse path (sparse/sparse_solver.hpp): against hand-derived answers, against the dense
+// solvers on the same problems, and on Siconos's granular problems, where each contact's law is
+// checked here from D_E = D_A + G P, independently of the solver's own residual.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "fremond/fremond.hpp"
+#include "fremond/io/siconos_file.hpp"
+#include "fremond/sparse/sparse_solver.hpp"
+#include "support/test_problems.hpp"
+
+namespace fremond {
+namespace {
+
+SparseMatrix sparse(const Eigen::MatrixXd& A) {
+  return A.sparseView(0.0, 0.0);
+}
+
+SparseImpactProblem to_sparse(const ImpactProblem& pb) {
+  SparseImpactProblem s;
+  s.M = sparse(pb.M);
+  s.W_N = sparse(pb.W_N);
+  s.W_T = pb.has_tangential() ? sparse(pb.W_T) : SparseMatrix(pb.dofs(), 0);
+  s.w_N = pb.w_N;
+  s.w_T = pb.has_tangential() ? pb.w_T : Eigen::VectorXd();
+  s.qdot_A = pb.qdot_A;
+  return s;
+}
+
+// Three equal disks (m = 1, J = 0.1, radius 0.5) stacked on the ground, all falling at v = 2:
+// q = (x, y, θ) per disk; contact 0 the ground under disk 0, contact k disk k−1 under disk k.
+// Normal rows: y of the upper body minus y of the lower; tangent rows: x plus the rolling terms.
+SparseImpactProblem falling_stack(double v, double spin = 0.0) {
+  const int n = 9;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), WN = Eigen::MatrixXd::Zero(n, 3),
+                  WT = Eigen::MatrixXd::Zero(n, 3);
+  for (int b = 0; b < 3; ++b) M.block(3 * b, 3 * b, 3, 3).diagonal() << 1.0, 1.0, 0.1;
+  const double r = 0.5;
+  WN(1, 0) = 1.0;  // ground under disk 0: its lowest point's velocity x − r θ̇
+  WT(0, 0) = 1.0;
+  WT(2, 0) = -r;
+  for (int k = 1; k < 3; ++k) {
+    const int lo = 3 * (k - 1), hi = 3 * k;
+    WN(hi + 1, k) = 1.0;
+    WN(lo + 1, k) = -1.0;
+    WT(hi, k) = 1.0;  // slip of the upper disk's lowest point on the lower disk's highest
+    WT(hi + 2, k) = -r;
+    WT(lo, k) = -1.0;
+    WT(lo + 2, k) = -r;
+  }
+  SparseImpactProblem pb;
+  pb.M = sparse(M);
+  pb.W_N = sparse(WN);
+  pb.W_T = sparse(WT);
+  pb.qdot_A = Eigen::VectorXd::Zero(n);
+  for (int b = 0; b < 3; ++b) {
+    pb.qdot_A(3 * b + 1) = -v;
+    pb.qdot_A(3 * b + 2) = spin;
+  }
+  return pb;
+}
+
+// Falling together at v with e = 0, the stack stops as one: the ground takes 3 m v, the contact
+// above it 2 m v, the top one m v; nothing slides, so no tangential percussion; T_E − T_A = −T_A.
+TEST(SparseSolver, FallingStackStopsAsOneBody) {
+  const SparseImpactProblem pb = falling_stack(2.0);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::newton_coulomb(0.0, 0.5));
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_EQ(r.solver.method, SolverMethod::nsgs);
+  const double expected[3] = {6.0, 4.0, 2.0};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r.P_N(k), expected[k], 1e-9) << k;
+    EXPECT_NEAR(r.P_T(k), 0.0, 1e-12) << k;
+  }
+  EXPECT_LE(r.qdot_E.cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(r.energy_change, -6.0, 1e-9);
+  EXPECT_NEAR(r.admissibility.kinetic_energy_A, 6.0, 1e-15);
+  EXPECT_TRUE(r.admissibility.admissible);
+}
+
+// Newton's law with e = 1 on the same stack, frictionless: equal masses in a column exchange
+// velocities (the 1-D chain: G = tridiag(−1, 2, −1) without the ground's end) — here every
+// contact closes at once, and momentum with the ground's percussion and energy balance:
+// M(q̇_E − q̇_A) = W P, T_E = T_A.
+TEST(SparseSolver, ElasticStackKeepsEnergyAndBalancesMomentum) {
+  SparseImpactProblem pb = falling_stack(1.0);
+  pb.W_T.resize(pb.dofs(), 0);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::newton(1.0), {.tolerance = 1e-14});
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  const Eigen::VectorXd balance =
+      Eigen::MatrixXd(pb.M) * (r.qdot_E - pb.qdot_A) - Eigen::MatrixXd(pb.W_N) * r.P_N;
+  EXPECT_LE(balance.cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_NEAR(r.energy_change, 0.0, 1e-12);
+  // Every contact leaves as fast as it approached (D_NA = −1 at the ground, 0 between disks).
+  EXPECT_NEAR(r.D_NE(0), 1.0, 1e-12);
+}
+
+// The same answers as the dense solvers on random problems (12 dofs, 3-5 contacts, Newton +
+// Coulomb), wherever the dense answer is unique; G is then positive definite, so Gauss–Seidel
+// converges to it.
+TEST(SparseSolver, AgreesWithTheDenseSolvers) {
+  int compared = 0;
+  for (int index = 0; index < 120; ++index) {
+    const int c = 3 + index % 3;
+    const ImpactProblem dense = fixtures::random_problem_any(12, c, index, true);
+    const ImpactLaw law = ImpactLaw::newton_coulomb(0.5, 0.3);
+    const ImpactResult d = solve_impact(dense, law);
+    if (!d.ok() || !d.unique) continue;
+    const ImpactResult s = solve_impact(to_sparse(dense), law, {.tolerance = 1e-15});
+    ASSERT_TRUE(s.ok()) << index << ": " << s.solver.message;
+    const double scale = 1.0 + d.P_N.cwiseAbs().maxCoeff();
+    EXPECT_LE((s.P_N - d.P_N).cwiseAbs().maxCoeff(), 1e-11 * scale) << index;
+    EXPECT_LE((s.P_T - d.P_T).cwiseAbs().maxCoeff(), 1e-11 * scale) << index;
+    EXPECT_LE((s.qdot_E - d.qdot_E).cwiseAbs().maxCoeff(), 1e-11 * scale) << index;
+    EXPECT_NEAR(s.energy_change, d.energy_change, 1e-11 * scale * scale) << index;
+    EXPECT_EQ(s.admissibility.admissible, d.admissibility.admissible) << index;
+    ++compared;
+  }
+  EXPECT_GE(compared, 30);
+}
+
+// A warm start from the answer is already the answer: the first sweep changes nothing.
+TEST(SparseSolver, WarmStartFromTheAnswerTakesOneSweep) {
+  const SparseImpactProblem pb = falling_stack(2.0, 3.0);
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.2, 0.5);
+  const ImpactResult cold = solve_impact(pb, law, {.tolerance = 1e-14});
+  ASSERT_TRUE(cold.ok());
+  const ImpactResult warm = solve_impact(pb, law, {.tolerance = 1e-14}, &cold);
+  ASSERT_TRUE(warm.ok());
+  EXPECT_EQ(warm.solver.iterations, 1);
+  EXPECT_LE((warm.P_N - cold.P_N).cwiseAbs().maxCoeff(), 1e-13);
+}
+
+TEST(SparseSolver, OtherLawsAreUnsupportedAndSaySo) {
+  const SparseImpactProblem pb = falling_stack(1.0);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::poisson_coulomb(0.5, 0.3));
+  EXPECT_EQ(r.solver.status, SolverStatus::unsupported);
+  EXPECT_NE(std::string(r.solver.message).find("Newton"), std::string::npos);
+  // Poisson's law with e = 0 is Newton's.
+  EXPECT_TRUE(solve_impact(pb, ImpactLaw::poisson_coulomb(0.0, 0.3)).ok());
+}
+
+TEST(SparseSolver, RefusesBadInputNamingIt) {
+  auto name = [](auto&& f) {
+    try {
+      f();
+    } catch (const InvalidArgument& e) {
+      return e.name();
+    }
+    return std::string("accepted");
+  };
+  SparseImpactProblem pb = falling_stack(1.0);
+  const ImpactLaw law = ImpactLaw::newton(0.0);
+  EXPECT_EQ(name([&] { solve_impact(pb, law, {.tolerance = 0.5}); }), "tolerance");
+  EXPECT_EQ(name([&] { solve_impact(pb, law, {.max_sweeps = 0}); }), "max_sweeps");
+  SparseImpactProblem bad = pb;
+  bad.M.coeffRef(2, 2) = -1.0;
+  EXPECT_EQ(name([&] { solve_impact(bad, law); }), "M");
+  bad = pb;
+  bad.M.coeffRef(0, 1) = 0.5;
+  EXPECT_EQ(name([&] { solve_impact(bad, law); }), "M");  // not symmetric
+  bad = pb;
+  bad.qdot_A(3) = std::nan("");
+  EXPECT_EQ(name([&] { solve_impact(bad, law); }), "qdot_A");
+  bad = pb;
+  bad.W_T.resize(9, 2);
+  EXPECT_EQ(name([&] { solve_impact(bad, law); }), "W_T");
+  EXPECT_EQ(name([&] { solve_impact(pb, ImpactLaw::newton(PerContact({0.1, 0.2}))); }), "law.e");
+  ContactProblem cp = contact_problem(pb);
+  cp.D_A.conservativeResize(5);
+  EXPECT_EQ(name([&] { solve_contact_problem(cp, law); }), "D_A");
+}
+
+// --- Siconos's granular problems -------------------------------------------------------------
+// SiconosLarge: seconds in a Release build, minutes under the sanitizers (CI's sanitized share
+// leaves them to scripts/check-long.sh).
+
+io::SiconosProblem read_siconos(const std::string& name) {
+  std::ifstream in(std::string(FREMOND_SICONOS_DATA) + "/" + name);
+  std::stringstream text;
+  text << in.rdbuf();
+  return io::parse_siconos_file(text.str());
+}
+
+// The largest violation of Newton (e = 0) + Coulomb at (P, D_E = D_A + G P), in velocity units,
+// computed here: P_N ≥ 0, D_NE ≥ 0, P_N D_NE = 0, |P_T| ≤ μ P_N, and P_T = −μ P_N sign(D_TE) where
+// the contact slides. Percussions enter through the contact's own G_NN, G_TT.
+double law_violation(const ContactProblem& pb, const std::vector<double>& mu,
+                     const ImpactResult& r) {
+  Eigen::VectorXd P(pb.rows());
+  for (int i = 0; i < pb.contacts(); ++i) {
+    P(2 * i) = r.P_N(i);
+    P(2 * i + 1) = r.P_T(i);
+  }
+  const Eigen::VectorXd D = pb.D_A + pb.G * P;
+  double worst = 0.0;
+  for (int i = 0; i < pb.contacts(); ++i) {
+    const double a = pb.G.coeff(2 * i, 2 * i), d = pb.G.coeff(2 * i + 1, 2 * i + 1);
+    const double PN = P(2 * i), PT = P(2 * i + 1), DN = D(2 * i), DT = D(2 * i + 1);
+    const double m = mu[static_cast<std::size_t>(i)];
+    worst = std::max({worst, a * std::max(0.0, -PN), std::max(0.0, -DN),
+                      std::min(a * std::fabs(PN), std::fabs(DN)),
+                      d * std::max(0.0, std::fabs(PT) - m * PN)});
+    // Sticking (|P_T| < μ P_N) needs D_TE = 0; sliding needs P_T against D_TE.
+    const double slack = d * (m * PN - std::fabs(PT));
+    worst = std::max(worst, std::min(slack, std::fabs(DT)));
+    if (DT != 0.0)
+      worst =
+          std::max(worst, std::min(std::fabs(DT), d * std::fabs(PT + m * PN * (DT > 0 ? 1 : -1))));
+  }
+  double v_scale = 0.0;
+  for (int i = 0; i < pb.contacts(); ++i)
+    if (pb.D_A(2 * i) <= 0.0)
+      v_scale = std::max({v_scale, std::fabs(pb.D_A(2 * i)), std::fabs(pb.D_A(2 * i + 1))});
+  return worst / v_scale;
+}
+
+// 667 grains at the start of the flow (q of order 1e-19): solved to 1e-8 of that scale.
+TEST(SiconosProblems, GranularFlowOf667Contacts) {
+  const auto file = read_siconos("fc2d_granularflowonwall_00667_00000.dat");
+  ASSERT_EQ(file.contacts(), 667);
+  const ImpactResult r = solve_contact_problem(file.contact, file.law(), {.tolerance = 1e-10});
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_LE(law_violation(file.contact, file.mu, r), 1e-9);
+  EXPECT_LE(r.solver.residual, 1e-10);
+}
+
+// 2,020 and 7,002 grains: the files keep 6 significant digits of G, which leaves it indefinite
+// (its smallest eigenvalues near −1e-3 beside diagonal entries near 1e3), so the law holds to
+// about 1e-6 of the velocities and no further; Siconos's own NSGS stops there too.
+TEST(SiconosLarge, GranularFlowsOf2020And7002Contacts) {
+  for (const auto& [name, bound] :
+       {std::pair<const char*, double>{"fc2d_granularflowonwall_02020_00213.dat", 5e-6},
+        {"fc2d_granularflowonwall_07002_00801.dat", 5e-6}}) {
+    const auto file = read_siconos(name);
+    const ImpactResult r = solve_contact_problem(file.contact, file.law(), {.tolerance = 1e-8});
+    EXPECT_TRUE(r.ok() || r.solver.status == SolverStatus::stalled) << name;
+    EXPECT_LE(r.solver.residual, bound) << name;
+    EXPECT_LE(law_violation(file.contact, file.mu, r), bound) << name;
+    EXPECT_TRUE(r.P_N.allFinite() && r.P_T.allFinite()) << name;
+  }
+}
+
+// The global problems (M, H, q, b): the sparse path and the dense solvers (Lemke on 900 degrees
+// of freedom) agree.
+TEST(SiconosLarge, GlobalProblemAgreesWithTheDenseSolvers) {
+  const auto file = read_siconos("gfc2d_granularflowonwall_00069_00350.dat");
+  ASSERT_EQ(file.form, io::SiconosProblem::Form::global);
+  ASSERT_EQ(file.contacts(), 69);
+  const SparseImpactProblem& s = file.impact;
+  const ImpactResult sparse_answer = solve_impact(s, file.law(), {.tolerance = 1e-14});
+  ASSERT_TRUE(sparse_answer.ok()) << sparse_answer.solver.message;
+  ImpactProblem d;
+  d.M = Eigen::MatrixXd(s.M);
+  d.W_N = Eigen::MatrixXd(s.W_N);
+  d.W_T = Eigen::MatrixXd(s.W_T);
+  d.w_N = s.w_N;
+  d.w_T = s.w_T;
+  d.qdot_A = s.qdot_A;
+  SolverOptions o;
+  o.check_uniqueness = false;
+  o.method = SolverMethod::lemke;
+  const ImpactResult dense_answer = solve_impact(d, file.law(), o);
+  ASSERT_TRUE(dense_answer.ok()) << dense_answer.solver.message;
+  const double scale = dense_answer.P_N.cwiseAbs().maxCoeff();
+  EXPECT_LE((sparse_answer.P_N - dense_answer.P_N).cwiseAbs().maxCoeff(), 1e-9 * scale);
+  EXPECT_LE((sparse_answer.qdot_E - dense_answer.qdot_E).cwiseAbs().maxCoeff(),
+            1e-9 * dense_answer.qdot_E.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+}  // namespace fremond
