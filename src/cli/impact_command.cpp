@@ -23,8 +23,10 @@
 #include "cli/watchdog.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/io/problem_file.hpp"
+#include "fremond/io/siconos_file.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "fremond/sparse/sparse_solver.hpp"
 
 namespace fremond::cli {
 
@@ -42,6 +44,7 @@ struct ImpactArguments {
   bool all_solutions = false;
   std::string method = "automatic";
   double tolerance = SolverOptions{}.tolerance;
+  bool tolerance_given = false;  // a Siconos file's default is SparseSolverOptions's
   bool pretty = false;
   bool require_admissible = false;
   double time_limit = 0.0;  // seconds; 0: none
@@ -114,12 +117,93 @@ void report_inadmissible(const ImpactResult& r, const ImpactArguments& args) {
   if (args.require_admissible) exit_with(kExitInadmissible);
 }
 
+// Exits like a JSON problem's solve: the result printed, then the status.
+void finish(const ImpactResult& result, const ImpactArguments& args) {
+  print(io::result_to_json(result, args.pretty ? 2 : -1));
+  if (!result.ok()) {
+    std::fprintf(stderr, "fremond impact: the solver did not converge (status %s: %s)\n",
+                 std::string(to_string(result.solver.status)).c_str(),
+                 std::string(result.solver.message).c_str());
+    exit_with(kExitNotConverged);
+  }
+  report_inadmissible(result, args);
+}
+
+// The options of a sparse solve (docs/sparse.md), refusing what the sparse path does not have.
+SparseSolverOptions sparse_options(const ImpactArguments& args, const char* what) {
+  if (args.all_solutions)
+    throw InvalidArgument("--all-solutions", std::string("is not available for ") + what +
+                                                 ", solved sparse (one solution)");
+  if (args.method != "automatic" && args.method != "nsgs")
+    throw InvalidArgument(
+        "--method",
+        std::string(what) + " is solved sparse, by nsgs (or automatic), got " + args.method);
+  SparseSolverOptions options;
+  if (args.tolerance_given) options.tolerance = args.tolerance;
+  return options;
+}
+
+// A Siconos friction-contact file (docs/sparse.md): solved sparse, by nonsmooth Gauss-Seidel.
+void run_siconos(const std::string& text, const ImpactArguments& args) {
+  io::SiconosProblem file;
+  SparseSolverOptions options;
+  try {
+    options = sparse_options(args, "a Siconos file");
+    try {
+      file = io::parse_siconos_file(text);
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(input_name(args.file) + ": " + e.name(),
+                            std::string(e.what()).substr(e.name().size() + 2));
+    }
+  } catch (const InvalidArgument& e) {
+    std::fprintf(stderr, "fremond impact: error: %s\n", e.what());
+    exit_with(kExitRefused);
+  }
+  const std::string size = std::to_string(file.contacts()) + " contacts (Siconos file)";
+  std::optional<Watchdog> watchdog;
+  watchdog.emplace("fremond impact", size, args.time_limit, kExitTimeLimit);
+  const ImpactResult result = file.form == io::SiconosProblem::Form::local
+                                  ? solve_contact_problem(file.contact, file.law(), options)
+                                  : solve_impact(file.impact, file.law(), options);
+  watchdog.reset();
+  finish(result, args);
+}
+
+// A problem file with sparse matrices (docs/sparse.md), solved sparse when its law allows; false
+// sends it to the dense solvers.
+bool run_sparse(const std::string& text, const ImpactArguments& args) {
+  io::SparseProblemFile file;
+  SparseSolverOptions options;
+  try {
+    try {
+      file = io::parse_sparse_problem_file(text, PotentialRegistry::with_builtins());
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(input_name(args.file) + ": " + e.name(),
+                            std::string(e.what()).substr(e.name().size() + 2));
+    }
+    if (!solved_sparse(file.law)) return false;
+    options = sparse_options(args, "a problem with sparse matrices and this law");
+  } catch (const InvalidArgument& e) {
+    std::fprintf(stderr, "fremond impact: error: %s\n", e.what());
+    exit_with(kExitRefused);
+  }
+  const std::string size = std::to_string(file.problem.contacts()) + " contacts, sparse";
+  std::optional<Watchdog> watchdog;
+  watchdog.emplace("fremond impact", size, args.time_limit, kExitTimeLimit);
+  const ImpactResult result = solve_impact(file.problem, file.law, options);
+  watchdog.reset();
+  finish(result, args);
+  return true;
+}
+
 void run(const ImpactArguments& args) {
   io::ProblemFile file;
   SolverOptions options;
   try {
     options = solver_options(args);
     const std::string text = read_input(args.file);
+    if (io::looks_like_siconos_file(text)) return run_siconos(text, args);
+    if (io::writes_sparse_matrices(text) && run_sparse(text, args)) return;
     try {
       file = io::parse_problem_file(text, PotentialRegistry::with_builtins());
     } catch (const InvalidArgument& e) {  // name the file, then the key
@@ -158,19 +242,13 @@ void run(const ImpactArguments& args) {
 
   const auto result = solve_impact(file.problem, file.law, options);
   watchdog.reset();
-  print(io::result_to_json(result, indent));
   if (result.solver.status == SolverStatus::no_solution) {
+    print(io::result_to_json(result, indent));
     std::fprintf(stderr, "fremond impact: the law has no solution for these data (%s)\n",
                  std::string(result.solver.message).c_str());
     exit_with(kExitNoSolution);
   }
-  if (!result.ok()) {
-    std::fprintf(stderr, "fremond impact: the solver did not converge (status %s: %s)\n",
-                 std::string(to_string(result.solver.status)).c_str(),
-                 std::string(result.solver.message).c_str());
-    exit_with(kExitNotConverged);
-  }
-  report_inadmissible(result, args);
+  finish(result, args);
 }
 
 }  // namespace
@@ -179,18 +257,22 @@ void add_impact_command(CLI::App& app) {
   auto args = std::make_shared<ImpactArguments>();
   auto* cmd = app.add_subcommand(
       "impact", "Solve one impact problem (docs/problem-file.md) and print the result as JSON");
-  cmd->add_option("FILE", args->file, "The impact-problem file (JSON), or - for standard input")
+  cmd->add_option("FILE", args->file,
+                  "The impact-problem file (JSON), a Siconos 2-D friction-contact file "
+                  "(docs/sparse.md), or - for standard input")
       ->required();
   cmd->add_flag("--all-solutions", args->all_solutions,
                 "Print every solution found: {\"count\": N, \"solutions\": [...]}");
   cmd->add_option("--method", args->method,
                   "Solver method: automatic, trivial, closed_form, scalar_newton, "
                   "mode_enumeration, lemke, semismooth_newton, proximal, nlopt, "
-                  "impulse_integration")
+                  "impulse_integration; nsgs for a Siconos file")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance,
-                  "Relative tolerance on the law's residual, in [1e-16, 1e-2]")
-      ->capture_default_str();
+                  "Relative tolerance on the law's residual, in [1e-16, 1e-2] (a Siconos file: "
+                  "1e-10 unless given)")
+      ->capture_default_str()
+      ->each([args](const std::string&) { args->tolerance_given = true; });
   cmd->add_flag("--pretty", args->pretty, "Indent the JSON output");
   cmd->add_option("--time-limit", args->time_limit,
                   "Seconds the solve may take (0: no limit); past it, exit status 6 and nothing "

@@ -28,13 +28,15 @@ std::string dims(Eigen::Index r, Eigen::Index c) {
 // whether it was given, so a present key of the wrong size is refused rather than read as absent.
 // W_T is checked against W_N before validate() (which would otherwise blame w_T for a W_T given
 // empty), but only once W_N has the rows of M, so that the first message names the first mistake.
-void check_given_W_T(const ImpactProblem& pb, const json& doc) {
+template <class Problem>
+void check_given_W_T(const Problem& pb, const json& doc) {
   const auto n = pb.W_N.rows(), c = pb.W_N.cols();
   if (doc.contains("W_T") && n == pb.M.rows() && (pb.W_T.rows() != n || pb.W_T.cols() != c))
     throw InvalidArgument(
         "W_T", "must be " + dims(n, c) + " like W_N, got " + dims(pb.W_T.rows(), pb.W_T.cols()));
 }
-void check_given_w(const ImpactProblem& pb, const json& doc) {
+template <class Problem>
+void check_given_w(const Problem& pb, const json& doc) {
   const auto c = pb.W_N.cols();
   for (const char* key : {"w_N", "w_T"}) {
     const auto size = std::string(key) == "w_N" ? pb.w_N.size() : pb.w_T.size();
@@ -52,21 +54,27 @@ ImpactLaw parse_law(std::string_view json_text, int contacts, const PotentialReg
   return detail::law_from_json(detail::parse_json(json_text, "law"), contacts, registry, "law");
 }
 
-ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry) {
-  const json doc = detail::parse_json(json_text, "problem");
+namespace {
+
+// The document, its keys checked: unknown keys before anything else, so that a misspelt optional
+// key (say "w_n") does not leave its default in place silently (docs/problem-file.md).
+json problem_document(std::string_view json_text) {
+  json doc = detail::parse_json(json_text, "problem");
   detail::require_object(doc, "problem");
-  // Unknown keys before anything else: a misspelt optional key (say "w_n") must not leave its
-  // default in place silently (docs/problem-file.md).
   detail::check_keys(doc, "", {"M", "W_N", "W_T", "w_N", "w_T", "qdot_A", "law"},
                      "the impact-problem file");
   for (const char* key : {"M", "W_N", "qdot_A", "law"}) detail::required_key(doc, "", key);
+  return doc;
+}
 
-  ProblemFile out;
-  ImpactProblem& pb = out.problem;
-  pb.M = detail::matrix_from_json(doc["M"], "M");
-  pb.W_N = detail::matrix_from_json(doc["W_N"], "W_N");
+// The members of a dense or a sparse problem, `matrix` reading each matrix; validated, with the
+// obstacles' terms stored (zero when absent) so that every user of the problem sees c entries.
+template <class Problem, class ReadMatrix>
+void read_members(const json& doc, Problem& pb, ReadMatrix matrix) {
+  pb.M = matrix(doc["M"], "M");
+  pb.W_N = matrix(doc["W_N"], "W_N");
   if (const json* j = detail::optional_key(doc, "W_T"))
-    pb.W_T = detail::matrix_from_json(*j, "W_T");
+    pb.W_T = matrix(*j, "W_T");
   else
     pb.W_T.resize(pb.W_N.rows(), 0);  // frictionless: no tangential rows (docs/problem-file.md)
   if (const json* j = detail::optional_key(doc, "w_N"))
@@ -77,13 +85,42 @@ ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegist
   check_given_W_T(pb, doc);
   validate(pb);  // sizes, symmetry, positive definiteness; messages name M, W_N, ...
   check_given_w(pb, doc);
-  // Fixed obstacles by default (docs/concepts.md: w_N, w_T are zero for a fixed obstacle); stored
-  // explicitly so that every user of the problem sees c entries.
+  // Fixed obstacles by default (docs/concepts.md: w_N, w_T are zero for a fixed obstacle).
   if (pb.w_N.size() == 0) pb.w_N.setZero(pb.W_N.cols());
   if (pb.w_T.size() == 0 && pb.has_tangential()) pb.w_T.setZero(pb.W_N.cols());
+}
 
-  out.law = detail::law_from_json(doc["law"], pb.contacts(), registry, "law");
+}  // namespace
+
+ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry) {
+  const json doc = problem_document(json_text);
+  ProblemFile out;
+  read_members(doc, out.problem, detail::matrix_from_json);
+  out.law = detail::law_from_json(doc["law"], out.problem.contacts(), registry, "law");
   return out;
+}
+
+SparseProblemFile parse_sparse_problem_file(std::string_view json_text,
+                                            const PotentialRegistry& registry) {
+  const json doc = problem_document(json_text);
+  SparseProblemFile out;
+  read_members(doc, out.problem, detail::sparse_matrix_from_json);
+  out.law = detail::law_from_json(doc["law"], out.problem.contacts(), registry, "law");
+  return out;
+}
+
+bool writes_sparse_matrices(std::string_view json_text) {
+  json doc;
+  try {
+    doc = detail::parse_json(json_text, "problem");
+  } catch (const InvalidArgument&) {
+    return false;
+  }
+  if (!doc.is_object()) return false;
+  for (const char* key : {"M", "W_N", "W_T"})
+    if (const json* j = detail::optional_key(doc, key); j && detail::is_sparse_matrix_json(*j))
+      return true;
+  return false;
 }
 
 ProblemFile read_problem_file(std::istream& in, const PotentialRegistry& registry) {

@@ -2,6 +2,7 @@
 // numerics library writes (dimension, contacts, matrices as NumericsMatrix prints them, vectors).
 #include "fremond/io/siconos_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -213,12 +214,24 @@ ImpactLaw SiconosProblem::law() const {
 }
 
 bool looks_like_siconos_file(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return false;
-  const auto end = text.find('\n', first);
-  std::string_view line = text.substr(first, end == std::string_view::npos ? end : end - first);
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-  return line == "2" || line == "3";
+  // The dimension on the first line, the number of contacts on the second: a JSON document
+  // holding a bare number has no second line.
+  std::string_view line[2];
+  std::size_t pos = 0;
+  for (auto& l : line) {
+    while (true) {
+      if (pos >= text.size()) return false;
+      const auto end = std::min(text.find('\n', pos), text.size());
+      l = text.substr(pos, end - pos);
+      pos = end + 1;
+      const auto a = l.find_first_not_of(" \t\r");
+      if (a == std::string_view::npos) continue;
+      l = l.substr(a, l.find_last_not_of(" \t\r") + 1 - a);
+      break;
+    }
+  }
+  return (line[0] == "2" || line[0] == "3") && !line[1].empty() &&
+         line[1].find_first_not_of("0123456789") == std::string_view::npos;
 }
 
 SiconosProblem parse_siconos_file(std::string_view text) {

@@ -243,11 +243,7 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   ImpactResult r;
   r.solver.method = SolverMethod::nsgs;
   const RestitutionLaw* classical = law.get_if<RestitutionLaw>();
-  const bool newton_like =
-      classical && (classical->kind == RestitutionLaw::Kind::newton ||
-                    std::all_of(classical->e.values.begin(), classical->e.values.end(),
-                                [](double e) { return e == 0.0; }));
-  if (!newton_like) {
+  if (!solved_sparse(law)) {
     r.solver.status = SolverStatus::unsupported;
     r.solver.criterion = StopCriterion::none;
     r.solver.message =
@@ -314,6 +310,13 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
 }
 
 }  // namespace
+
+bool solved_sparse(const ImpactLaw& law) {
+  const RestitutionLaw* classical = law.get_if<RestitutionLaw>();
+  return classical && (classical->kind == RestitutionLaw::Kind::newton ||
+                       std::all_of(classical->e.values.begin(), classical->e.values.end(),
+                                   [](double e) { return e == 0.0; }));
+}
 
 bool SparseSolverOptions::is_valid(std::string* why) const {
   auto no = [why](const std::string& reason) {

@@ -70,6 +70,8 @@ TEST(SiconosFile, TellsItsFilesFromJson) {
   EXPECT_TRUE(looks_like_siconos_file("\n 2\r\n1\n"));
   EXPECT_FALSE(looks_like_siconos_file("{\"M\": [[1]]}"));
   EXPECT_FALSE(looks_like_siconos_file(""));
+  EXPECT_FALSE(looks_like_siconos_file("3"));  // a JSON document holding a number
+  EXPECT_FALSE(looks_like_siconos_file("2\n[1]\n"));
 }
 
 std::string refusal(const std::string& text) {

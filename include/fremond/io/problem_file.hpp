@@ -25,6 +25,7 @@
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/potentials/registry.hpp"
 #include "fremond/solvers/impact_result.hpp"
+#include "fremond/sparse/sparse_problem.hpp"
 
 namespace fremond::io {
 
@@ -36,10 +37,27 @@ struct ProblemFile {
 
 /// Reads an impact-problem file from its text. Keys (docs/problem-file.md): `M` (n×n), `W_N` (n×c),
 /// `qdot_A` (n) and `law` are required; `W_T` (n×c; without it the problem is frictionless and P_T
-/// = 0), `w_N`, `w_T` (c; zero when absent) are optional. Matrices are lists of rows. Throws
-/// InvalidArgument naming the key and the reason; a message without a key (empty input, a document
-/// that is not an object) is named "problem".
+/// = 0), `w_N`, `w_T` (c; zero when absent) are optional. Matrices are lists of rows, or sparse
+/// (`{"rows": m, "cols": n, "triplets": [[i, j, value], ...]}`). Throws InvalidArgument naming the
+/// key and the reason; a message without a key (empty input, a document that is not an object) is
+/// named "problem".
 ProblemFile parse_problem_file(std::string_view json_text, const PotentialRegistry& registry);
+
+/// What one impact-problem file holds, stored sparse (docs/sparse.md).
+struct SparseProblemFile {
+  SparseImpactProblem problem;  ///< validated; w_N, w_T are zero if not given.
+  ImpactLaw law;                ///< validated for problem.contacts().
+};
+
+/// The same file read into sparse storage, each matrix in either form, with the same checks and
+/// messages.
+SparseProblemFile parse_sparse_problem_file(std::string_view json_text,
+                                            const PotentialRegistry& registry);
+
+/// True when the file writes M, W_N or W_T in the sparse form: `fremond impact` then reads it with
+/// parse_sparse_problem_file and solves it sparse where the law allows (docs/sparse.md). False for
+/// text that is not a JSON object (the readers say what is wrong with it).
+bool writes_sparse_matrices(std::string_view json_text);
 
 /// Reads a law alone, the `law` object of the problem file (e.g. `{"type": "stronge_coulomb", "e":
 /// 0.9, "mu": 1}`), validated for `contacts` contacts: any law of law_list.hpp by its name.

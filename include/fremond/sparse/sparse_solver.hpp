@@ -29,6 +29,10 @@ struct SparseSolverOptions {
   void validate() const;
 };
 
+/// True for the laws the sparse path solves: Newton's, with or without Coulomb friction, and
+/// Poisson's with every e = 0 (the same law).
+bool solved_sparse(const ImpactLaw& law);
+
 /// Solves Newton's law (`newton`, `newton_coulomb`; e and μ one value or one per contact) on a
 /// problem in contact coordinates. `start`, when given, is a previous answer of the same
 /// contacts whose percussions start the sweeps (a warm start). The result's qdot_E is empty

@@ -2,6 +2,8 @@
 #include "io/detail/json_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -258,6 +260,7 @@ VectorX vector_from_json(const json& j, const std::string& key) {
 }
 
 MatrixX matrix_from_json(const json& j, const std::string& key) {
+  if (is_sparse_matrix_json(j)) return MatrixX(sparse_matrix_from_json(j, key));
   if (!j.is_array())
     throw InvalidArgument(key, "must be a matrix (a list of rows), got " + describe_json(j));
   const auto rows = static_cast<Eigen::Index>(j.size());
@@ -281,6 +284,63 @@ MatrixX matrix_from_json(const json& j, const std::string& key) {
           j[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)],
           index_path(index_path(key, static_cast<std::size_t>(r)), static_cast<std::size_t>(c)));
   return m;
+}
+
+bool is_sparse_matrix_json(const json& j) {
+  return j.is_object();
+}
+
+SparseMatrix sparse_matrix_from_json(const json& j, const std::string& key) {
+  if (!is_sparse_matrix_json(j)) return MatrixX(matrix_from_json(j, key)).sparseView(0.0, 0.0);
+  check_keys(j, key, {"rows", "cols", "triplets"}, "a sparse matrix");
+  auto size = [&](std::string_view name) {
+    const std::string k = key_path(key, name);
+    const double v = number_from_json(required_key(j, key, name), k);
+    if (!(v >= 0 && v <= 1e8 && v == std::floor(v)))
+      throw InvalidArgument(
+          k, "must be a whole number in [0, 1e8], got " + fremond::detail::format_number(v));
+    return static_cast<int>(v);
+  };
+  const int rows = size("rows"), cols = size("cols");
+  const json& list = required_key(j, key, "triplets");
+  const std::string list_key = key_path(key, "triplets");
+  if (!list.is_array())
+    throw InvalidArgument(list_key, "must be a list of [i, j, value], got " + describe_json(list));
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(list.size());
+  for (std::size_t t = 0; t < list.size(); ++t) {
+    const std::string k = index_path(list_key, t);
+    const json& e = list[t];
+    if (!e.is_array() || e.size() != 3)
+      throw InvalidArgument(k, "must be [i, j, value], got " + describe_json(e));
+    int at[2];
+    for (std::size_t d = 0; d < 2; ++d) {
+      const double v = number_from_json(e[d], index_path(k, d));
+      const int limit = d == 0 ? rows : cols;
+      if (!(v >= 0 && v < limit && v == std::floor(v)))
+        throw InvalidArgument(index_path(k, d), std::string(d == 0 ? "a row" : "a column") +
+                                                    " index must be a whole number in [0, " +
+                                                    std::to_string(limit) + "), got " +
+                                                    fremond::detail::format_number(v));
+      at[d] = static_cast<int>(v);
+    }
+    entries.emplace_back(at[0], at[1], number_from_json(e[2], index_path(k, 2)));
+  }
+  // Each entry once: a repeated (i, j) is refused, not summed.
+  std::vector<std::size_t> order(entries.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto place = [&](std::size_t t) { return std::pair(entries[t].col(), entries[t].row()); };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return place(a) < place(b); });
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (place(order[k]) == place(order[k - 1]))
+      throw InvalidArgument(index_path(list_key, order[k]),
+                            "the entry (" + std::to_string(entries[order[k]].row()) + ", " +
+                                std::to_string(entries[order[k]].col()) + ") is also " +
+                                index_path("triplets", order[k - 1]));
+  SparseMatrix A(rows, cols);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
 }
 
 }  // namespace fremond::io::detail

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fremond/core/types.hpp"
+#include "fremond/sparse/sparse_problem.hpp"
 
 namespace fremond::io::detail {
 
@@ -53,7 +54,14 @@ std::vector<double> number_or_list(const json& j, const std::string& key, int co
 /// A list of finite numbers.
 VectorX vector_from_json(const json& j, const std::string& key);
 /// A list of rows, each a list of finite numbers, all of one length (docs/problem-file.md: matrices
-/// are lists of rows). `[]` is the 0×0 matrix; `[[], []]` is 2×0.
+/// are lists of rows). `[]` is the 0×0 matrix; `[[], []]` is 2×0. Or the sparse form of
+/// sparse_matrix_from_json, made dense.
 MatrixX matrix_from_json(const json& j, const std::string& key);
+/// True when `j` is a matrix in the sparse form (an object; docs/problem-file.md).
+bool is_sparse_matrix_json(const json& j);
+/// `{"rows": m, "cols": n, "triplets": [[i, j, value], ...]}` (0-based, each (i, j) at most once,
+/// entries not listed zero), or a list of rows as matrix_from_json reads it. Keys named
+/// `key.rows`, `key.triplets[3][1]`, ...
+SparseMatrix sparse_matrix_from_json(const json& j, const std::string& key);
 
 }  // namespace fremond::io::detail
