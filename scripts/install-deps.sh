@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev libnlopt-dev libnlopt-cxx-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev libsiconos-kernel-dev
-  pybind11-dev python3-dev python3-pybind11 python3-numpy python3-matplotlib python3-pil
+  pybind11-dev python3-dev python3-pybind11 python3-numpy python3-scipy python3-matplotlib python3-pil
   python3-nbclient python3-nbformat python3-ipykernel python3-pytest
   python3-mpmath         # tests/python/test_cli_against_mpmath.py: the 40-digit references
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer and clang's sanitizer runtimes

@@ -70,5 +70,6 @@ void bind_curves(py::module_& m);
 void bind_batch(py::module_& m);
 void bind_atlas(py::module_& m);
 void bind_fit(py::module_& m);
+void bind_sparse(py::module_& m);
 
 }  // namespace fremond::python

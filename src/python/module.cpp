@@ -15,4 +15,5 @@ PYBIND11_MODULE(_fremond, m) {
   fp::bind_batch(m);
   fp::bind_atlas(m);
   fp::bind_fit(m);
+  fp::bind_sparse(m);
 }
