@@ -12,6 +12,7 @@ simulation_work_precision.csv) and machine.txt, and writes into the same directo
   - work_precision.png: time per solve against the actual error, one panel per case of the suite,
     one line per method (filled markers: converged; open: not);
   - work_precision_summary.png: the same for four representative cases, larger;
+  - sparse_scaling.png: time per sparse solve against contacts, ours and Siconos's, log-log;
   - scaling.png: time per solve against the number of contacts (plate) and of degrees of freedom
     (random bodies), ours and Siconos's;
   - simulation_work_precision.png: Moreau-Jean's errors against the step, and its cost per
@@ -654,6 +655,64 @@ def grid(table, xs, first):
     return md_table([first] + [str(x) for x in xs], rows)
 
 
+def sparse_runs(runs):
+    """The sparse benchmarks (bench/sparse_bench.cpp): the disk piles and Siconos's files, ours and
+    Siconos's, as rows of (kind, contacts, ms, sweeps or iterations, residual by our measure)."""
+    out = []
+    for b in runs:
+        if b["file"] != "sparse_bench.json" or b.get("error_occurred"):
+            continue
+        name = b["name"]
+        if name.startswith("BM_Sparse_ReadFile"):
+            continue
+        ours = name.startswith("BM_Sparse_")
+        what = "pile" if "Pile" in name else name.split("/")[-1].replace(".dat", "")
+        solver = "ours: nsgs" if ours else "Siconos: " + words(b.get("label", "")).get(
+            "solver", "?").replace("fc2d_", "")
+        out.append(dict(what=what, solver=solver, contacts=int(b.get("contacts", 0)),
+                        ms=cpu_ns(b) / 1e6,
+                        sweeps=int(b.get("sweeps", b.get("iterations", 0)) or 0),
+                        residual=b.get("residual", b.get("our_residual"))))
+    return out
+
+
+def plot_sparse(outdir, rows):
+    """sparse_scaling.png: time per solve against contacts, log-log, ours and Siconos's."""
+    if not rows:
+        return None
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    slope = None
+    for solver, style in (("ours: nsgs", "-o"), ("Siconos: nsgs", "--x")):
+        pts = sorted((r["contacts"], r["ms"]) for r in rows if r["what"] == "pile" and r["solver"] == solver)
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=f"{solver}, disk piles")
+        if solver.startswith("ours") and len(pts) >= 2:
+            xs = [math.log(p[0]) for p in pts]
+            ys = [math.log(p[1]) for p in pts]
+            mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+            slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    files = [r for r in rows if r["what"] != "pile"]
+    for solver, marker in (("ours: nsgs", "s"), ("Siconos: nsgs", "^"), ("Siconos: cpg", "v"),
+                           ("Siconos: enumeration", "D")):
+        pts = sorted((r["contacts"], r["ms"]) for r in files if r["solver"] == solver)
+        if pts:
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker, ms=6,
+                    label=f"{solver}, Siconos's granular files")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("contacts")
+    ax.set_ylabel("CPU ms per solve (to 1e-8)")
+    ax.grid(True, lw=0.3)
+    ax.legend(fontsize=7)
+    if slope is not None:
+        ax.set_title(f"Sparse problems: our cost grows as contacts^{slope:.2f}")
+    fig.tight_layout()
+    fig.savefig(os.path.join(outdir, "sparse_scaling.png"), dpi=110)
+    plt.close(fig)
+    return slope
+
+
 def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
     lines = []
     machine = ""
@@ -740,6 +799,23 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                       "wall clock):", "", md_table(["law", "1 thread", "2 threads", "speed-up"], trows), ""]
         lines += ["![scaling](scaling.png)", ""]
 
+    srows = sparse_runs(runs)
+    if srows:
+        slope = plot_sparse(outdir, srows)
+        table = [(r["what"], r["contacts"], r["solver"], f"{r['ms']:.3g}", r["sweeps"],
+                  fmt_err(num(str(r["residual"]))) if r["residual"] is not None else "–")
+                 for r in sorted(srows, key=lambda r: (r["what"] != "pile", r["contacts"], r["solver"]))]
+        lines += ["## Sparse problems", "",
+                  "Newton + Coulomb (e = 0) on disk piles (square packings, G singular) and on "
+                  "Siconos's own granular-flow files (docs/sparse.md), to 1e-8 of the velocity "
+                  "scale (Siconos: its own 1e-8, or 1e-6 on 2,020 contacts; the two largest files "
+                  "keep 6 digits of G and stop near 1e-6). `residual`: every answer measured by our "
+                  "residual (contact_residual)." +
+                  (f" Our cost grows as contacts^{slope:.2f} on the piles." if slope else ""), "",
+                  md_table(["problem", "contacts", "solver", "CPU ms", "sweeps / iterations",
+                            "residual"], table), "",
+                  "![sparse scaling](sparse_scaling.png)", ""]
+
     if sim:
         srow = []
         for r in sim:
@@ -768,13 +844,16 @@ def update_docs(page, outdir, report):
     Siconos and work-precision sections, with the plots copied to perf/ beside the page."""
     docs = os.path.join(os.path.dirname(os.path.abspath(page)), "perf")
     os.makedirs(docs, exist_ok=True)
-    for png in ("work_precision_summary.png", "scaling.png", "simulation_work_precision.png"):
+    for png in ("work_precision_summary.png", "scaling.png", "simulation_work_precision.png",
+                "sparse_scaling.png"):
         if os.path.exists(os.path.join(outdir, png)):
             shutil.copy(os.path.join(outdir, png), os.path.join(docs, png))
     keep = []
     for sec in re.split(r"(?=^## )", report, flags=re.M):
-        if sec.startswith(("## Machine", "## Targets", "## Against Siconos", "## Work-precision")):
+        if sec.startswith(("## Machine", "## Targets", "## Against Siconos", "## Work-precision",
+                           "## Sparse problems")):
             keep.append(sec.replace("](work_precision_summary.png)", "](perf/work_precision_summary.png)")
+                        .replace("](sparse_scaling.png)", "](perf/sparse_scaling.png)")
                         .replace("![work-precision, every case](work_precision.png)\n", ""))
     text = ("# Performance\n\nThe figures below were measured on the machine described under "
             "\"Machine\". `bash\nscripts/perf-report.sh` regenerates all of them (and more: "

@@ -181,6 +181,45 @@ SolveInfo FrictionContact2d::solve(const double* M, const double* q, const doubl
   return info_of(info, impl_->options);
 }
 
+struct Fc2dFile::Impl {
+  FrictionContactProblem* problem = nullptr;
+  NumericsMatrix* dense = nullptr;
+  NumericsMatrix* original = nullptr;
+  SolverOptions* options = nullptr;
+};
+
+Fc2dFile::Fc2dFile(const std::string& path, Fc2dSolver solver, double tolerance, int max_iterations)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->problem = frictionContact_new_from_filename(path.c_str());
+  if (!impl_->problem) throw std::runtime_error("Siconos cannot read " + path);
+  const int n = 2 * impl_->problem->numberOfContacts;
+  impl_->dense = NM_create(NM_DENSE, n, n);
+  NM_to_dense(impl_->problem->M, impl_->dense);
+  impl_->original = impl_->problem->M;
+  impl_->problem->M = impl_->dense;
+  impl_->options = solver_options_create(fc2d_id(solver));
+  set_tolerance(impl_->options, tolerance, max_iterations);
+}
+
+Fc2dFile::~Fc2dFile() {
+  solver_options_delete(impl_->options);
+  impl_->problem->M = impl_->original;
+  NM_free(impl_->dense);
+  frictionContactProblem_free(impl_->problem);
+}
+
+int Fc2dFile::contacts() const {
+  return impl_->problem->numberOfContacts;
+}
+
+SolveInfo Fc2dFile::solve(std::vector<double>& r, std::vector<double>& u) {
+  const std::size_t n = 2 * static_cast<std::size_t>(contacts());
+  r.assign(n, 0.0);
+  u.assign(n, 0.0);
+  const int info = fc2d_driver(impl_->problem, r.data(), u.data(), impl_->options);
+  return info_of(info, impl_->options);
+}
+
 // --------------------------------------------------------------------------------------------
 // Moreau-Jean on the bar
 

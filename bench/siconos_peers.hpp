@@ -78,6 +78,23 @@ class FrictionContact2d {
   std::unique_ptr<Impl> impl_;
 };
 
+/// A friction-contact file read by Siconos's own reader (frictionContact_new_from_filename) and
+/// put in dense storage, which its 2-D drivers need; solve() runs fc2d_driver from r = 0.
+class Fc2dFile {
+ public:
+  Fc2dFile(const std::string& path, Fc2dSolver solver, double tolerance, int max_iterations);
+  ~Fc2dFile();
+  Fc2dFile(const Fc2dFile&) = delete;
+  Fc2dFile& operator=(const Fc2dFile&) = delete;
+  int contacts() const;
+  /// Writes r and u (2c each, rows (normal, tangent) per contact).
+  SolveInfo solve(std::vector<double>& r, std::vector<double>& u);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Siconos Kernel's Moreau-Jean on the bar of the paper's Fig. 1: a LagrangianLinearTIDS q = (x, y,
 /// θ) with M = diag(m, m, m l²/3) and weight −m g on y, one Interaction per end (a
 /// LagrangianScleronomousR with h = y ± l sin θ and the Jacobian rows W_Nᵀ, W_Tᵀ of the paper's

@@ -1,0 +1,251 @@
+// Sparse problems of hundreds and thousands of contacts (docs/sparse.md): Siconos's own 2-D
+// granular-flow problems, solved by our nonsmooth Gauss-Seidel and, from the same files, by
+// Siconos's 2-D solvers. Each benchmark reports the contacts, the sweeps or iterations, and the
+// residual of its answer by one measure, ours (contact_residual), beside Siconos's own.
+#include <benchmark/benchmark.h>
+
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fremond/fremond.hpp"
+#ifdef FREMOND_HAVE_SICONOS
+#include "siconos_peers.hpp"
+#endif
+
+namespace fremond::bench {
+namespace {
+
+const std::vector<std::string>& files() {
+  static const std::vector<std::string> names{
+      "gfc2d_granularflowonwall_00069_00350.dat", "gfc2d_granularflowonwall_00230_00206.dat",
+      "fc2d_granularflowonwall_00667_00000.dat", "fc2d_granularflowonwall_02020_00213.dat",
+      "fc2d_granularflowonwall_07002_00801.dat"};
+  return names;
+}
+
+std::string path(const std::string& name) {
+  return std::string(FREMOND_SICONOS_DATA) + "/" + name;
+}
+
+const io::SiconosProblem& problem(const std::string& name) {
+  static std::map<std::string, io::SiconosProblem> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  std::ifstream in(path(name));
+  std::stringstream text;
+  text << in.rdbuf();
+  return cache.emplace(name, io::parse_siconos_file(text.str())).first->second;
+}
+
+ContactProblem contact_form(const io::SiconosProblem& p) {
+  return p.form == io::SiconosProblem::Form::local ? p.contact : contact_problem(p.impact);
+}
+
+// Ours from the file's data, to 1e-8 of the velocity scale (the files' G keeps 6 digits: the two
+// largest stop near 1e-6, docs/sparse.md).
+void BM_Sparse_Nsgs(benchmark::State& state, const std::string& name) {
+  const io::SiconosProblem& p = problem(name);
+  const SparseSolverOptions options{.tolerance = 1e-8};
+  ImpactResult r;
+  for (auto _ : state) {
+    r = p.form == io::SiconosProblem::Form::local
+            ? solve_contact_problem(p.contact, p.law(), options)
+            : solve_impact(p.impact, p.law(), options);
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.counters["contacts"] = p.contacts();
+  state.counters["sweeps"] = r.solver.iterations;
+  state.counters["residual"] = r.solver.residual;
+  state.counters["admissible"] = r.admissibility.admissible;
+  state.SetLabel(std::string(to_string(r.solver.status)) + " " + name);
+}
+
+// Reading the file (the reader's cost beside the solve's).
+void BM_Sparse_ReadFile(benchmark::State& state, const std::string& name) {
+  std::ifstream in(path(name));
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  for (auto _ : state) benchmark::DoNotOptimize(io::parse_siconos_file(s).mu.data());
+  state.counters["MB"] = static_cast<double>(s.size()) / 1e6;
+  state.SetLabel(name);
+}
+
+// A pile of s × s equal disks (radius 0.5, m = 1, J = 1/8) in a square packing on the ground, every
+// neighbour touching: (s − 1) s contacts side by side, s (s − 1) one above another, s on the
+// ground, 2s² − s in all, more contact rows than degrees of freedom (G singular, as in granular
+// media). The disks fall at about 1 m/s with random spreads (seeded), Newton + Coulomb, e = 0, μ =
+// 0.5: the cost of a solve against the number of contacts.
+SparseImpactProblem disk_pile(int s) {
+  const int disks = s * s, n = 3 * disks;
+  auto at = [s](int i, int j) { return 3 * (j * s + i); };  // column i, row j
+  std::vector<Eigen::Triplet<double>> M, WN, WT;
+  for (int d = 0; d < disks; ++d) {
+    M.emplace_back(3 * d, 3 * d, 1.0);
+    M.emplace_back(3 * d + 1, 3 * d + 1, 1.0);
+    M.emplace_back(3 * d + 2, 3 * d + 2, 0.125);
+  }
+  int c = 0;
+  // Contact of disk b on disk a along the unit normal (nx, ny) from a to b; tangent (−ny, nx);
+  // the contact point's velocity on each disk is v + ω × (±r n).
+  auto touch = [&](int a, int b, double nx, double ny) {
+    const double r = 0.5, tx = -ny, ty = nx;
+    WN.emplace_back(b, c, nx);
+    WN.emplace_back(b + 1, c, ny);
+    WT.emplace_back(b, c, tx);
+    WT.emplace_back(b + 1, c, ty);
+    WT.emplace_back(b + 2, c, -r);  // ω × (−r n) of b, along t
+    if (a >= 0) {
+      WN.emplace_back(a, c, -nx);
+      WN.emplace_back(a + 1, c, -ny);
+      WT.emplace_back(a, c, -tx);
+      WT.emplace_back(a + 1, c, -ty);
+      WT.emplace_back(a + 2, c, -r);  // minus ω × (r n) of a, along t
+    }
+    ++c;
+  };
+  for (int j = 0; j < s; ++j)
+    for (int i = 0; i < s; ++i) {
+      if (i > 0) touch(at(i - 1, j), at(i, j), 1.0, 0.0);
+      touch(j > 0 ? at(i, j - 1) : -1, at(i, j), 0.0, 1.0);
+    }
+  SparseImpactProblem pb;
+  pb.M.resize(n, n);
+  pb.M.setFromTriplets(M.begin(), M.end());
+  pb.W_N.resize(n, c);
+  pb.W_N.setFromTriplets(WN.begin(), WN.end());
+  pb.W_T.resize(n, c);
+  pb.W_T.setFromTriplets(WT.begin(), WT.end());
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  pb.qdot_A.resize(n);
+  for (int d = 0; d < disks; ++d) {
+    pb.qdot_A(3 * d) = 0.1 * u(rng);
+    pb.qdot_A(3 * d + 1) = -1.0 + 0.2 * u(rng);
+    pb.qdot_A(3 * d + 2) = 0.5 * u(rng);
+  }
+  return pb;
+}
+
+const std::vector<int>& pile_sides() {
+  static const std::vector<int> sides{3, 6, 12, 19, 32, 59};  // 15 to 6,903 contacts
+  return sides;
+}
+
+void BM_Sparse_Pile(benchmark::State& state) {
+  const SparseImpactProblem pb = disk_pile(static_cast<int>(state.range(0)));
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
+  ImpactResult r;
+  for (auto _ : state) {
+    r = solve_impact(pb, law, {.tolerance = 1e-8});
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.counters["contacts"] = pb.contacts();
+  state.counters["nonzeros_G"] = static_cast<double>(contact_problem(pb).G.nonZeros());
+  state.counters["sweeps"] = r.solver.iterations;
+  state.counters["residual"] = r.solver.residual;
+  state.SetLabel(std::string(to_string(r.solver.status)));
+}
+
+#ifdef FREMOND_HAVE_SICONOS
+// Siconos's 2-D NSGS on the same pile, from the dense contact form its 2-D driver takes (q = D_A:
+// e = 0); `our_residual` measures its answer as ours is measured.
+void BM_Siconos_Pile(benchmark::State& state) {
+  const SparseImpactProblem pb = disk_pile(static_cast<int>(state.range(0)));
+  const ContactProblem cp = contact_problem(pb);
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
+  const int c = cp.contacts();
+  const Eigen::MatrixXd G(cp.G);
+  const std::vector<double> mu(static_cast<std::size_t>(c), 0.5);
+  std::vector<double> r(2 * static_cast<std::size_t>(c)), u(r.size());
+  siconos::FrictionContact2d peer(c, siconos::Fc2dSolver::nsgs, 1e-8, 100000);
+  siconos::SolveInfo info;
+  for (auto _ : state) {
+    info = peer.solve(G.data(), cp.D_A.data(), mu.data(), r.data(), u.data());
+    benchmark::DoNotOptimize(r.data());
+  }
+  ImpactResult answer;
+  answer.P_N.resize(c);
+  answer.P_T.resize(c);
+  for (int i = 0; i < c; ++i) {
+    answer.P_N(i) = r[2 * static_cast<std::size_t>(i)];
+    answer.P_T(i) = r[2 * static_cast<std::size_t>(i) + 1];
+  }
+  state.counters["contacts"] = c;
+  state.counters["iterations"] = info.iterations;
+  state.counters["our_residual"] = contact_residual(cp, law, answer);
+  state.SetLabel("solver=fc2d_nsgs info=" + std::to_string(info.info));
+}
+
+// Siconos's 2-D driver on the same file, read by Siconos's own reader; `our_residual` measures its
+// answer as ours is measured.
+void BM_Siconos_Fc2dFile(benchmark::State& state, const std::string& name,
+                         siconos::Fc2dSolver solver, double tolerance) {
+  siconos::Fc2dFile peer(path(name), solver, tolerance, 100000);
+  std::vector<double> r, u;
+  siconos::SolveInfo info;
+  for (auto _ : state) {
+    info = peer.solve(r, u);
+    benchmark::DoNotOptimize(r.data());
+  }
+  const io::SiconosProblem& p = problem(name);
+  ImpactResult answer;
+  answer.P_N.resize(p.contacts());
+  answer.P_T.resize(p.contacts());
+  for (int i = 0; i < p.contacts(); ++i) {
+    answer.P_N(i) = r[2 * static_cast<std::size_t>(i)];
+    answer.P_T(i) = r[2 * static_cast<std::size_t>(i) + 1];
+  }
+  state.counters["contacts"] = p.contacts();
+  state.counters["iterations"] = info.iterations;
+  state.counters["siconos_residual"] = info.residual;
+  state.counters["our_residual"] = contact_residual(contact_form(p), p.law(), answer);
+  state.SetLabel(std::string("solver=fc2d_") + siconos::to_string(solver) +
+                 " info=" + std::to_string(info.info) + " " + name);
+}
+#endif
+
+const bool registered = [] {
+  for (const int side : pile_sides())
+    benchmark::RegisterBenchmark("BM_Sparse_Pile", BM_Sparse_Pile)
+        ->Arg(side)
+        ->Unit(benchmark::kMillisecond);
+#ifdef FREMOND_HAVE_SICONOS
+  // The dense form beyond 703 contacts costs Siconos seconds a solve.
+  for (const int side : pile_sides())
+    if (side <= 19)
+      benchmark::RegisterBenchmark("BM_Siconos_Pile", BM_Siconos_Pile)
+          ->Arg(side)
+          ->Unit(benchmark::kMillisecond);
+#endif
+  for (const auto& name : files()) {
+    benchmark::RegisterBenchmark(("BM_Sparse_Nsgs/" + name).c_str(), BM_Sparse_Nsgs, name)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_Sparse_ReadFile/" + name).c_str(), BM_Sparse_ReadFile, name)
+        ->Unit(benchmark::kMillisecond);
+  }
+#ifdef FREMOND_HAVE_SICONOS
+  using S = siconos::Fc2dSolver;
+  const std::string small = "fc2d_granularflowonwall_00667_00000.dat";
+  for (const S s : {S::nsgs, S::cpg, S::enumeration})
+    benchmark::RegisterBenchmark(
+        ("BM_Siconos_Fc2dFile/" + std::string(siconos::to_string(s)) + "/" + small).c_str(),
+        BM_Siconos_Fc2dFile, small, s, 1e-8)
+        ->Unit(benchmark::kMillisecond);
+  // Siconos's NSGS needs about 70 s to reach its own 1e-6 on 2,020 contacts (1e-8: past 5
+  // minutes): one run.
+  const std::string large = "fc2d_granularflowonwall_02020_00213.dat";
+  benchmark::RegisterBenchmark(("BM_Siconos_Fc2dFile/nsgs/" + large).c_str(), BM_Siconos_Fc2dFile,
+                               large, S::nsgs, 1e-6)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
+#endif
+  return true;
+}();
+
+}  // namespace
+}  // namespace fremond::bench
