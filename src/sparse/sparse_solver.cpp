@@ -19,6 +19,9 @@ namespace {
 
 using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Stalled: this many residual measures (64 sweeps apart) in a row without a 1 % gain. Piles of
+// disks plateau for thousands of sweeps before converging (703 contacts: 30,000 sweeps).
+constexpr int kStallChecks = 128;
 
 // What the sweeps need of one problem and law, gathered once.
 struct Layout {
@@ -77,10 +80,12 @@ double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, dou
   return sum;
 }
 
-// One Gauss–Seidel sweep; returns the largest change of a contact's velocity it made.
-double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P) {
+// One Gauss–Seidel sweep, over the contacts in order or `backward`; returns the largest change of
+// a contact's velocity it made.
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward) {
   double change = 0.0;
-  for (int i = 0; i < L.contacts; ++i) {
+  for (int step = 0; step < L.contacts; ++step) {
+    const int i = backward ? L.contacts - 1 - step : step;
     const auto k = static_cast<std::size_t>(i);
     const auto& A = L.block[k];
     const int r = L.step * i;
@@ -266,9 +271,10 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   r.solver.message = "the sweep budget (max_sweeps) ran out with the residual above tolerance";
   // A sweep's largest velocity change bounds what the next can still move; the residual, which
   // costs a sweep, is measured only when that change is small, and every 64 sweeps to see a
-  // stall: 16 measures in a row without a 1 % gain.
+  // stall (kStallChecks).
   while (sweeps < options.max_sweeps) {
-    const double change = sweep(L, pb.D_A, P);
+    // Forward, then backward: a blow crosses a pile in one sweep either way.
+    const double change = sweep(L, pb.D_A, P, sweeps % 2 == 1);
     ++sweeps;
     if (!std::isfinite(change)) {
       r.solver.status = SolverStatus::failed;
@@ -289,7 +295,7 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
     if (m.residual < 0.99 * best) {
       best = m.residual;
       since_best = 0;
-    } else if (++since_best >= 16) {
+    } else if (++since_best >= kStallChecks) {
       r.solver.status = SolverStatus::stalled;
       r.solver.criterion = StopCriterion::step;
       r.solver.message = "the sweeps no longer reduce the residual";

@@ -228,20 +228,24 @@ TEST(SiconosProblems, GranularFlowOf667Contacts) {
   EXPECT_LE(r.solver.residual, 1e-10);
 }
 
-// 2,020 and 7,002 grains: the files keep 6 significant digits of G, which leaves it indefinite
-// (its smallest eigenvalues near −1e-3 beside diagonal entries near 1e3), so the law holds to
-// about 1e-6 of the velocities and no further; Siconos's own NSGS stops there too.
-TEST(SiconosLarge, GranularFlowsOf2020And7002Contacts) {
-  for (const auto& [name, bound] :
-       {std::pair<const char*, double>{"fc2d_granularflowonwall_02020_00213.dat", 5e-6},
-        {"fc2d_granularflowonwall_07002_00801.dat", 5e-6}}) {
-    const auto file = read_siconos(name);
-    const ImpactResult r = solve_contact_problem(file.contact, file.law(), {.tolerance = 1e-8});
-    EXPECT_TRUE(r.ok() || r.solver.status == SolverStatus::stalled) << name;
-    EXPECT_LE(r.solver.residual, bound) << name;
-    EXPECT_LE(law_violation(file.contact, file.mu, r), bound) << name;
-    EXPECT_TRUE(r.P_N.allFinite() && r.P_T.allFinite()) << name;
-  }
+// 2,020 grains: the file keeps 6 significant digits of G, which leaves it indefinite (its smallest
+// eigenvalues near −1e-3 beside diagonal entries near 1e3), so the law holds to about 1e-6 of the
+// velocities and no further; Siconos's own NSGS stops there too.
+TEST(SiconosLarge, GranularFlowOf2020ContactsToWhatItsDigitsAllow) {
+  const auto file = read_siconos("fc2d_granularflowonwall_02020_00213.dat");
+  const ImpactResult r = solve_contact_problem(file.contact, file.law(), {.tolerance = 1e-8});
+  EXPECT_TRUE(r.ok() || r.solver.status == SolverStatus::stalled) << r.solver.message;
+  EXPECT_LE(r.solver.residual, 3e-6);
+  EXPECT_LE(law_violation(file.contact, file.mu, r), 3e-6);
+}
+
+// 7,002 grains, the same digits: solved to 1e-8 all the same.
+TEST(SiconosLarge, GranularFlowOf7002Contacts) {
+  const auto file = read_siconos("fc2d_granularflowonwall_07002_00801.dat");
+  const ImpactResult r = solve_contact_problem(file.contact, file.law(), {.tolerance = 1e-8});
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_LE(r.solver.residual, 1e-8);
+  EXPECT_LE(law_violation(file.contact, file.mu, r), 1e-8);
 }
 
 // The global problems (M, H, q, b): the sparse path and the dense solvers (Lemke on 900 degrees
