@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fremond/fremond.hpp"
+#include "support/why.hpp"
 
 namespace fremond {
 namespace {
@@ -96,14 +97,7 @@ TEST(BallChain, BallDroppedOnARestingBall) {
 
 TEST(BallChain, RefusesBadBallsNamingThem) {
   const std::vector<double> one{1.0}, two{1.0, 1.0}, bad{1.0, -2.0};
-  auto name = [](auto&& f) {
-    try {
-      f();
-    } catch (const InvalidArgument& e) {
-      return e.name();
-    }
-    return std::string("accepted");
-  };
+  auto name = [](auto&& f) { return testing::refused_name(f); };
   EXPECT_EQ(name([&] { ball_chain(one, one); }), "masses");
   EXPECT_EQ(name([&] { ball_chain(bad, two); }), "masses[1]");
   EXPECT_EQ(name([&] { ball_chain(two, one); }), "velocity");

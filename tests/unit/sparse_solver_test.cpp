@@ -11,6 +11,7 @@
 #include "fremond/io/siconos_file.hpp"
 #include "fremond/sparse/sparse_solver.hpp"
 #include "support/test_problems.hpp"
+#include "support/why.hpp"
 
 namespace fremond {
 namespace {
@@ -144,14 +145,7 @@ TEST(SparseSolver, OtherLawsAreUnsupportedAndSaySo) {
 }
 
 TEST(SparseSolver, RefusesBadInputNamingIt) {
-  auto name = [](auto&& f) {
-    try {
-      f();
-    } catch (const InvalidArgument& e) {
-      return e.name();
-    }
-    return std::string("accepted");
-  };
+  auto name = [](auto&& f) { return testing::refused_name(f); };
   SparseImpactProblem pb = falling_stack(1.0);
   const ImpactLaw law = ImpactLaw::newton(0.0);
   EXPECT_EQ(name([&] { solve_impact(pb, law, {.tolerance = 0.5}); }), "tolerance");
