@@ -47,12 +47,14 @@ void require_symmetric(const std::string& name, const SparseMatrix& A, double re
   for (int j = 0; j < D.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(D, j); it; ++it)
       if (std::fabs(it.value()) > limit) {
-        const auto i = it.row();
+        // Named upper triangle first, as the dense problem's check names it.
+        const Eigen::Index i = std::min<Eigen::Index>(it.row(), j);
+        const Eigen::Index k = std::max<Eigen::Index>(it.row(), j);
         throw InvalidArgument(name, "must be symmetric; " + name + "[" + std::to_string(i) + "][" +
-                                        std::to_string(j) +
-                                        "] = " + detail::format_number(A.coeff(i, j)) + " but " +
-                                        name + "[" + std::to_string(j) + "][" + std::to_string(i) +
-                                        "] = " + detail::format_number(A.coeff(j, i)));
+                                        std::to_string(k) +
+                                        "] = " + detail::format_number(A.coeff(i, k)) + " but " +
+                                        name + "[" + std::to_string(k) + "][" + std::to_string(i) +
+                                        "] = " + detail::format_number(A.coeff(k, i)));
       }
 }
 
