@@ -28,6 +28,7 @@
 #include "fremond/potentials/sum.hpp"
 #include "fremond/scenes/ball_chain.hpp"
 #include "fremond/scenes/kinematics.hpp"
+#include "fremond/scenes/multibody.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/scenes/scene.hpp"
 #include "fremond/simulation/calibration.hpp"
