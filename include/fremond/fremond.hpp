@@ -36,6 +36,7 @@
 #include "fremond/simulation/free_flight.hpp"
 #include "fremond/simulation/persistent_contact.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "fremond/simulation/simulate_bodies.hpp"
 #include "fremond/simulation/simulation_options.hpp"
 #include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solve_batch.hpp"
