@@ -167,7 +167,7 @@ MultiBodyScene ball_on_ball_scene(const BallOnBallParameters& drop, ImpactLaw la
   s.initial.qdot = Eigen::VectorXd::Zero(6);
   s.initial.q(1) = r;
   s.initial.q(4) = 3.0 * r + drop.drop_height;
-  s.initial.qdot(4) = -drop.speed;
+  s.initial.qdot(4) = 0.0 - drop.speed;  // +0 at rest, not −0
   s.law = std::move(law);
   s.validate();
   return s;
