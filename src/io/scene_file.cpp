@@ -196,8 +196,8 @@ void options_from_json(const json& doc, SimulationOptions& o) {
 SceneFile scene_from_json(const json& doc, const PotentialRegistry& registry) {
   if (detail::optional_key(doc, "bodies"))
     throw InvalidArgument("bodies",
-                          "a scene of several bodies: read it with "
-                          "parse_any_scene_file or parse_multibody_scene_file");
+                          "a scene of several bodies, where one body is expected (`body` and "
+                          "`initial`); fremond simulate runs it");
   detail::check_keys(
       doc, "", {"body", "obstacles", "gravity", "initial", "law", "t_end", "integrator", "output"},
       "the scene file");
