@@ -465,16 +465,16 @@ class BodiesRecorder final : public MultiBodyObserver {
   }
   void on_sample(const MultiBodySample& s) override {
     char cell[32];
-    const auto add = [&](double v) {
-      const int n = std::snprintf(cell, sizeof cell, "%.17g", v);
+    const auto add = [&](double v) {  // ",v"
+      const int n = std::snprintf(cell, sizeof cell, ",%.17g", v);
       csv_.append(cell, static_cast<std::size_t>(n));
     };
-    add(s.t);
+    const int n = std::snprintf(cell, sizeof cell, "%.17g", s.t);
+    csv_.append(cell, static_cast<std::size_t>(n));
     for (Eigen::Index i = 0; i < s.state.q.size() / 3; ++i) {
-      for (int c = 0; c < 3; ++c) csv_ += ',', add(s.state.q(3 * i + c));
-      for (int c = 0; c < 3; ++c) csv_ += ',', add(s.state.qdot(3 * i + c));
+      for (int c = 0; c < 3; ++c) add(s.state.q(3 * i + c));
+      for (int c = 0; c < 3; ++c) add(s.state.qdot(3 * i + c));
     }
-    csv_ += ',';
     add(s.energy);
     csv_ += '\n';
     ++rows_;
