@@ -57,6 +57,30 @@ assert abs(sum(v) - 1) < 1e-12 and abs(0.5 * sum(x * x for x in v) - 0.5) < 1e-9
 assert v[4] > 0.9 and s["impacts"] == 1, v
 ' "$TMP/five"
 
+# Every preset under every law of --law: the run ends at t_end, energy is never created (the
+# impacts are head-on: friction has no slip to act on), and no ball goes into another or the ground.
+for preset in cradle3 cradle5 ball-on-ball; do
+  for law in newton newton_coulomb poisson_coulomb fremond_coulomb fremond_viscous stronge_coulomb; do
+    "$FREMOND" simulate --preset "$preset" --law "$law" --t-end 2 --out "$TMP/$preset-$law" \
+      --no-progress >"$TMP/stdout" 2>&1 && pass || fail "$preset $law: $(cat "$TMP/stdout")"
+    check "$preset $law" '
+assert s["status"] == "completed" and s["t"] == 2 and s["impacts"] >= 1, s
+assert s["max_energy_rise"] <= 1e-12 and s["energy_final"] <= s["energy_initial"] + 1e-12, s
+for i in imp:
+    assert i["energy_E"] <= i["energy_A"] * (1 + 1e-9) + 1e-12, i
+n = s["bodies"]
+for r in rows:
+    for a in range(n):
+        if n == 2:
+            assert r[1 + 6 * a + 1] >= 0.1 - 1e-9, r
+        for b in range(a + 1, n):
+            dx = r[1 + 6 * b] - r[1 + 6 * a]
+            dy = r[1 + 6 * b + 1] - r[1 + 6 * a + 1]
+            assert math.hypot(dx, dy) >= 0.2 - 1e-9, (a, b, r)
+' "$TMP/$preset-$law"
+  done
+done
+
 # Refused naming the key, nothing written.
 refused() {
   local name=$1 key=$2 reason=$3
