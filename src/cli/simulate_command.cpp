@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -35,6 +36,7 @@
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/calibration.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "fremond/simulation/simulate_bodies.hpp"
 #include "fremond/simulation/unresisted_slide.hpp"
 #include "io/detail/json_number.hpp"
 
@@ -84,10 +86,38 @@ extern "C" void stop_the_run(int sig) {
 
 struct Setup {
   Scene scene;
+  std::optional<MultiBodyScene> bodies;  // a scene of several bodies instead of `scene`
   SimulationOptions options;
   std::string name;  // for the summary
   std::string note;  // said on standard error before the run, when not empty
 };
+
+// The presets of several bodies. Frémond's k_N gives the paper's e = 0.9 to two free balls of the
+// preset meeting at the speed of its first impact (the normal law alone).
+MultiBodyScene bodies_preset(const std::string& preset, PaperLaw law) {
+  const bool fremond = law == PaperLaw::fremond_coulomb || law == PaperLaw::fremond_viscous;
+  const auto k_N = [&](double mass, double radius, double speed) {
+    if (!fremond) return 0.0;
+    CradleParameters two;
+    two.balls = 2;
+    two.mass = mass;
+    two.radius = radius;
+    two.speed = speed;
+    const MultiBodyScene pair = cradle_scene(two, ImpactLaw::newton(PaperConstants::e));
+    const std::vector<int> contact{0};
+    return calibrate_normal_stiffness(to_small(impact_problem(pair, pair.initial, contact)),
+                                      PaperConstants::p, PaperConstants::e)
+        .k_N;
+  };
+  if (preset == "cradle3" || preset == "cradle5") {
+    CradleParameters c;
+    c.balls = preset == "cradle3" ? 3 : 5;
+    return cradle_scene(c, paper_law(law, k_N(c.mass, c.radius, c.speed)));
+  }
+  BallOnBallParameters b;
+  const double v = std::sqrt(b.speed * b.speed + 2.0 * b.gravity * b.drop_height);
+  return ball_on_ball_scene(b, paper_law(law, k_N(b.mass, b.radius, v)));
+}
 
 Setup preset_scene(const std::string& preset, const std::string& law_name) {
   if (law_name.empty())
@@ -116,9 +146,12 @@ Setup preset_scene(const std::string& preset, const std::string& law_name) {
     s.scene = with_law(ball_scene, BallParameters{});
   else if (preset == "block")
     s.scene = with_law(block_scene, BlockParameters{});
+  else if (preset == "cradle3" || preset == "cradle5" || preset == "ball-on-ball")
+    s.bodies = bodies_preset(preset, law);
   else
-    throw InvalidArgument("--preset",
-                          "unknown preset '" + preset + "' (one of: paper-bar, ball, block)");
+    throw InvalidArgument("--preset", "unknown preset '" + preset +
+                                          "' (one of: paper-bar, ball, block, cradle3, cradle5, "
+                                          "ball-on-ball)");
   return s;
 }
 
@@ -137,9 +170,15 @@ Setup load(const SimulateArguments& a) {
     if (std::filesystem::is_directory(a.scene_file, ec))
       throw InvalidArgument(a.scene_file, "is a directory, not a scene file");
     try {
-      io::SceneFile f = io::read_scene_file(a.scene_file, PotentialRegistry::with_builtins());
-      s.scene = std::move(f.scene);
-      s.options = f.options;
+      auto f = io::read_any_scene_file(a.scene_file, PotentialRegistry::with_builtins());
+      if (auto* one = std::get_if<io::SceneFile>(&f)) {
+        s.scene = std::move(one->scene);
+        s.options = one->options;
+      } else {
+        auto& several = std::get<io::MultiBodySceneFile>(f);
+        s.bodies = std::move(several.scene);
+        s.options = several.options;
+      }
     } catch (const InvalidArgument& e) {  // name the file, then the key
       if (e.name() == a.scene_file) throw;
       throw InvalidArgument(a.scene_file + ": " + e.name(),
@@ -385,6 +424,149 @@ void print_summary(const Setup& s, const SimulationResult& r,
   std::fflush(stdout);
 }
 
+// ---- a scene of several bodies -------------------------------------------------------------
+
+ojson bodies_impact_json(const MultiBodyImpact& r) {
+  const Eigen::Index n = r.P_N.size();
+  ojson j;
+  j["index"] = r.index;
+  j["t"] = json_number(r.t);
+  j["kind"] = std::string(to_string(r.kind));
+  j["contacts"] = r.contacts;
+  j["q"] = numbers(r.q, r.q.size());
+  j["qdot_A"] = numbers(r.qdot_A, r.qdot_A.size());
+  j["qdot_E"] = numbers(r.qdot_E, r.qdot_E.size());
+  j["P_N"] = numbers(r.P_N, n);
+  j["P_T"] = numbers(r.P_T, n);
+  j["D_NA"] = numbers(r.D_NA, n);
+  j["D_NE"] = numbers(r.D_NE, n);
+  j["energy_A"] = json_number(r.energy_A);
+  j["energy_E"] = json_number(r.energy_E);
+  j["admissible"] = r.admissible;
+  ojson solver;
+  solver["method"] = std::string(to_string(r.solver.method));
+  solver["status"] = std::string(to_string(r.solver.status));
+  solver["iterations"] = r.solver.iterations;
+  solver["residual"] = json_number(r.solver.residual);
+  solver["message"] = std::string(r.solver.message);
+  j["solver"] = solver;
+  return j;
+}
+
+// trajectory.csv: t, then x_i, y_i, theta_i, xdot_i, ydot_i, thetadot_i of each body i, energy.
+class BodiesRecorder final : public MultiBodyObserver {
+ public:
+  explicit BodiesRecorder(int bodies) {
+    csv_ = "t";
+    for (int i = 0; i < bodies; ++i)
+      for (const char* c : {"x", "y", "theta", "xdot", "ydot", "thetadot"})
+        csv_.append(",").append(c).append(std::to_string(i));
+    csv_.append(",energy\n");
+  }
+  void on_sample(const MultiBodySample& s) override {
+    char cell[32];
+    const auto add = [&](double v) {  // ",v"
+      const int n = std::snprintf(cell, sizeof cell, ",%.17g", v);
+      csv_.append(cell, static_cast<std::size_t>(n));
+    };
+    const int n = std::snprintf(cell, sizeof cell, "%.17g", s.t);
+    csv_.append(cell, static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < s.state.q.size() / 3; ++i) {
+      for (int c = 0; c < 3; ++c) add(s.state.q(3 * i + c));
+      for (int c = 0; c < 3; ++c) add(s.state.qdot(3 * i + c));
+    }
+    add(s.energy);
+    csv_ += '\n';
+    ++rows_;
+  }
+  void on_impact(const MultiBodyImpact& r) override { impacts_.push_back(bodies_impact_json(r)); }
+  bool stop_requested() override { return g_stop_signal != 0; }
+
+  const std::string& csv() const { return csv_; }
+  long rows() const { return rows_; }
+  const ojson& impacts() const { return impacts_; }
+
+ private:
+  std::string csv_;
+  long rows_ = 0;
+  ojson impacts_ = ojson::array();
+};
+
+void write_run(const std::filesystem::path& dir, const std::string& csv, const ojson& impact_list,
+               const ojson& summary) {
+  write_atomically(dir, "trajectory.csv", csv);
+  // One impact a line: a list that reads as a table and still parses as JSON.
+  std::string impacts = "[";
+  for (std::size_t i = 0; i < impact_list.size(); ++i)
+    impacts += (i ? ",\n " : "\n ") + impact_list[i].dump();
+  impacts += impact_list.empty() ? "]\n" : "\n]\n";
+  write_atomically(dir, "impacts.json", impacts);
+  write_atomically(dir, "summary.json", summary.dump(1) + "\n");
+}
+
+// Exits as run() does for the status of a finished run.
+void exit_for(SimulationStatus status, double t, std::string_view message) {
+  if (status == SimulationStatus::interrupted) {
+    std::fprintf(stderr,
+                 "fremond simulate: interrupted at t = %.9g s; the files hold the run up to "
+                 "there\n",
+                 t);
+    exit_with(128 + static_cast<int>(g_stop_signal));
+  }
+  if (status != SimulationStatus::completed && status != SimulationStatus::max_impacts) {
+    std::fprintf(stderr, "fremond simulate: the run stopped at t = %.9g s: %s (%s)\n", t,
+                 std::string(to_string(status)).c_str(), std::string(message).c_str());
+    exit_with(kExitRunFailed);
+  }
+}
+
+void run_bodies(const Setup& setup, const std::filesystem::path& dir) {
+  const MultiBodyScene& scene = *setup.bodies;
+  BodiesRecorder rec(static_cast<int>(scene.bodies.size()));
+  MultiBodyResult r;
+  try {
+    r = simulate(scene, setup.options, &rec);
+  } catch (const InvalidArgument& e) {
+    refuse(e.what());
+  }
+  ojson j;
+  j["scene"] = setup.name;
+  j["bodies"] = scene.bodies.size();
+  j["law"] = scene.law.describe();
+  j["integrator"] = std::string(to_string(setup.options.integrator));
+  j["t_end"] = json_number(setup.options.t_end);
+  j["status"] = std::string(to_string(r.status));
+  j["message"] = std::string(r.message);
+  j["t"] = json_number(r.t);
+  j["q"] = numbers(r.state.q, r.state.q.size());
+  j["qdot"] = numbers(r.state.qdot, r.state.qdot.size());
+  j["energy_initial"] = json_number(r.energy_initial);
+  j["energy_final"] = json_number(r.energy_final);
+  j["max_energy_rise"] = json_number(r.max_energy_rise);
+  j["impacts"] = r.impacts;
+  j["inadmissible_impacts"] = r.inadmissible_impacts;
+  j["accumulations"] = r.accumulations;
+  try {
+    write_run(dir, rec.csv(), rec.impacts(), j);
+  } catch (const InvalidArgument& e) {
+    std::fprintf(stderr, "fremond simulate: error: %s\n", e.what());
+    exit_with(kExitWriteFailed);
+  }
+  std::printf("scene:        %s (%zu bodies)\n", setup.name.c_str(), scene.bodies.size());
+  std::printf("law:          %s\n", scene.law.describe().c_str());
+  std::printf("status:       %s (%s) at t = %.9g s\n", std::string(to_string(r.status)).c_str(),
+              std::string(r.message).c_str(), r.t);
+  std::printf("impacts:      %ld (%ld fail the admissibility certificate), %d accumulations\n",
+              r.impacts, r.inadmissible_impacts, r.accumulations);
+  std::printf("energy:       %.12g J -> %.12g J (largest rise outside flagged impacts %.3g J)\n",
+              r.energy_initial, r.energy_final, r.max_energy_rise);
+  std::printf("wrote:        %s (%ld rows), %s (%zu impacts), %s\n",
+              (dir / "trajectory.csv").c_str(), rec.rows(), (dir / "impacts.json").c_str(),
+              rec.impacts().size(), (dir / "summary.json").c_str());
+  std::fflush(stdout);
+  exit_for(r.status, r.t, r.message);
+}
+
 void run(const SimulateArguments& args) {
   Setup setup;
   std::filesystem::path dir;
@@ -400,9 +582,13 @@ void run(const SimulateArguments& args) {
   }
 
   if (!setup.note.empty()) std::fprintf(stderr, "fremond simulate: note: %s\n", setup.note.c_str());
-  Recorder rec(!args.no_progress);
   std::signal(SIGINT, stop_the_run);
   std::signal(SIGTERM, stop_the_run);
+  if (setup.bodies) {
+    run_bodies(setup, dir);
+    return;
+  }
+  Recorder rec(!args.no_progress);
   SimulationResult result;
   try {
     result = simulate(setup.scene, setup.options, &rec);
@@ -416,32 +602,13 @@ void run(const SimulateArguments& args) {
   try {
     ojson summary = summary_json(setup, result, slide);
     summary["phases"] = rec.phases();
-    write_atomically(dir, "trajectory.csv", rec.csv());
-    // One impact a line: a list that reads as a table and still parses as JSON.
-    std::string impacts = "[";
-    for (std::size_t i = 0; i < rec.impacts().size(); ++i)
-      impacts += (i ? ",\n " : "\n ") + rec.impacts()[i].dump();
-    impacts += rec.impacts().empty() ? "]\n" : "\n]\n";
-    write_atomically(dir, "impacts.json", impacts);
-    write_atomically(dir, "summary.json", summary.dump(1) + "\n");
+    write_run(dir, rec.csv(), rec.impacts(), summary);
   } catch (const InvalidArgument& e) {
     std::fprintf(stderr, "fremond simulate: error: %s\n", e.what());
     exit_with(kExitWriteFailed);
   }
   print_summary(setup, result, slide, dir, rec);
-  if (result.status == SimulationStatus::interrupted) {
-    std::fprintf(stderr,
-                 "fremond simulate: interrupted at t = %.9g s; the files hold the run up to "
-                 "there\n",
-                 result.t);
-    exit_with(128 + static_cast<int>(g_stop_signal));
-  }
-  if (!result.ok()) {
-    std::fprintf(stderr, "fremond simulate: the run stopped at t = %.9g s: %s (%s)\n", result.t,
-                 std::string(to_string(result.status)).c_str(),
-                 std::string(result.message).c_str());
-    exit_with(kExitRunFailed);
-  }
+  exit_for(result.status, result.t, result.message);
 }
 
 }  // namespace
@@ -450,14 +617,17 @@ void add_simulate_command(CLI::App& app) {
   auto args = std::make_shared<SimulateArguments>();
   auto* cmd = app.add_subcommand(
       "simulate",
-      "Simulate a scene (a planar rigid body against half-planes): trajectory, every impact, "
-      "accumulations");
+      "Simulate a scene (a planar rigid body, or several, against half-planes and each other): "
+      "trajectory, every impact, accumulations");
   cmd->add_option("SCENE", args->scene_file, "The scene file (JSON)");
   cmd->add_option("--preset", args->preset,
-                  "A ready-made scene: paper-bar (the paper's Fig. 1), ball, block");
+                  "A ready-made scene: paper-bar (the paper's Fig. 1), ball, block; of several "
+                  "bodies: cradle3, cradle5 (Newton's cradle), ball-on-ball (a ball dropped on a "
+                  "resting ball)");
   cmd->add_option("--law", args->law,
                   "With --preset: newton, newton_coulomb, poisson_coulomb, fremond_coulomb, "
-                  "fremond_viscous, with the paper's parameters (the paper's Fig. 1)");
+                  "fremond_viscous, stronge_coulomb, with the paper's parameters (the paper's "
+                  "Fig. 1)");
   cmd->add_option("--out", args->out,
                   "The directory to write trajectory.csv, impacts.json and "
                   "summary.json into (created if needed)");

@@ -10,6 +10,7 @@
 #include "fremond/core/error.hpp"
 #include "fremond/scenes/presets.hpp"
 #include "fremond/simulation/simulate.hpp"
+#include "fremond/simulation/simulate_bodies.hpp"
 #include "io/detail/json_law.hpp"
 #include "io/detail/json_reader.hpp"
 
@@ -47,24 +48,32 @@ Eigen::Vector3d vector3(const json& j, const std::string& key) {
   return v;
 }
 
-PlanarBody body_from_json(const json& j) {
-  const std::string where = "body";
+// A body at `where` ("body", or "bodies[i]" of a scene of several bodies, whose bodies also hold
+// their state: `state_keys` are allowed beside the body's own and read by the caller).
+PlanarBody body_from_json(const json& j, const std::string& where,
+                          const std::vector<std::string_view>& state_keys = {}) {
   detail::require_object(j, where);
+  const auto keys = [&](std::initializer_list<std::string_view> own, const char* context) {
+    std::vector<std::string_view> allowed(own);
+    allowed.insert(allowed.end(), state_keys.begin(), state_keys.end());
+    detail::refuse_unknown_keys(j, where, allowed, std::string("unknown key of ") + context);
+  };
   const json* shape = detail::optional_key(j, "shape");
   // The presets' bodies, through the presets themselves so that both agree.
   const auto preset_body = [](const Scene& s) { return s.body; };
   const ImpactLaw any = ImpactLaw::newton(0.0);
   if (!shape) {
-    detail::check_keys(j, where, {"mass", "inertia", "points"}, "a body");
+    keys({"mass", "inertia", "points"}, "a body");
     PlanarBody b;
     b.mass = number_at(j, where, "mass");
     b.inertia = number_at(j, where, "inertia");
     const json& pts = detail::required_key(j, where, "points");
+    const std::string points = key_path(where, "points");
     if (!pts.is_array() || pts.empty())
       throw InvalidArgument(
-          "body.points", "must be a non-empty list of points, got " + detail::describe_json(pts));
+          points, "must be a non-empty list of points, got " + detail::describe_json(pts));
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const std::string pw = detail::index_path("body.points", i);
+      const std::string pw = detail::index_path(points, i);
       detail::require_object(pts[i], pw);
       detail::check_keys(pts[i], pw, {"r", "radius"}, "a contact point");
       ContactPoint p;
@@ -75,7 +84,7 @@ PlanarBody body_from_json(const json& j) {
     }
     return b;
   }
-  const std::string kind = detail::string_from_json(*shape, "body.shape");
+  const std::string kind = detail::string_from_json(*shape, key_path(where, "shape"));
   // Dimensions are checked here, before the presets compute with them.
   const auto positive = [&](std::string_view key) {
     const double v = number_at(j, where, key);
@@ -83,36 +92,39 @@ PlanarBody body_from_json(const json& j) {
     return v;
   };
   if (kind == "bar") {
-    detail::check_keys(j, where, {"shape", "mass", "half_length"}, "a bar");
+    keys({"shape", "mass", "half_length"}, "a bar");
     BarParameters p;
     p.mass = positive("mass");
     p.half_length = positive("half_length");
     return preset_body(bar_scene(p, any));
   }
   if (kind == "ball") {
-    detail::check_keys(j, where, {"shape", "mass", "radius"}, "a ball");
+    keys({"shape", "mass", "radius"}, "a ball");
     BallParameters p;
     p.mass = positive("mass");
     p.radius = positive("radius");
     return preset_body(ball_scene(p, any));
   }
   if (kind == "block") {
-    detail::check_keys(j, where, {"shape", "mass", "width", "height"}, "a block");
+    keys({"shape", "mass", "width", "height"}, "a block");
     BlockParameters p;
     p.mass = positive("mass");
     p.width = positive("width");
     p.height = positive("height");
     return preset_body(block_scene(p, any));
   }
-  throw InvalidArgument("body.shape", "unknown value '" + kind +
-                                          "' (one of: bar, ball, block; or leave it out "
-                                          "and give mass, inertia and points)");
+  throw InvalidArgument(key_path(where, "shape"),
+                        "unknown value '" + kind +
+                            "' (one of: bar, ball, block; or leave it out "
+                            "and give mass, inertia and points)");
 }
 
-std::vector<HalfPlane> obstacles_from_json(const json& j) {
-  if (!j.is_array() || j.empty())
-    throw InvalidArgument(
-        "obstacles", "must be a non-empty list of half-planes, got " + detail::describe_json(j));
+// A scene of several bodies may have no obstacle (`allow_empty`): Newton's cradle.
+std::vector<HalfPlane> obstacles_from_json(const json& j, bool allow_empty = false) {
+  if (!j.is_array() || (j.empty() && !allow_empty))
+    throw InvalidArgument("obstacles", std::string("must be a ") +
+                                           (allow_empty ? "" : "non-empty ") +
+                                           "list of half-planes, got " + detail::describe_json(j));
   std::vector<HalfPlane> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string w = detail::index_path("obstacles", i);
@@ -166,9 +178,26 @@ void integrator_from_json(const json& j, SimulationOptions& o) {
 
 }  // namespace
 
-SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& registry) {
-  const json doc = detail::parse_json(text, "scene");
-  detail::require_object(doc, "scene");
+namespace {
+
+// t_end, integrator and output, shared by both kinds of scene file.
+void options_from_json(const json& doc, SimulationOptions& o) {
+  if (const json* t = detail::optional_key(doc, "t_end"))
+    o.t_end = detail::number_from_json(*t, "t_end");
+  if (const json* i = detail::optional_key(doc, "integrator")) integrator_from_json(*i, o);
+  if (const json* out_opts = detail::optional_key(doc, "output")) {
+    detail::require_object(*out_opts, "output");
+    detail::check_keys(*out_opts, "output", {"sample_interval"}, "the output options");
+    if (const json* v = detail::optional_key(*out_opts, "sample_interval"))
+      o.sample_interval = detail::number_from_json(*v, "output.sample_interval");
+  }
+}
+
+SceneFile scene_from_json(const json& doc, const PotentialRegistry& registry) {
+  if (detail::optional_key(doc, "bodies"))
+    throw InvalidArgument("bodies",
+                          "a scene of several bodies, where one body is expected (`body` and "
+                          "`initial`); fremond simulate runs it");
   detail::check_keys(
       doc, "", {"body", "obstacles", "gravity", "initial", "law", "t_end", "integrator", "output"},
       "the scene file");
@@ -176,7 +205,7 @@ SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& regis
 
   SceneFile out;
   Scene& s = out.scene;
-  s.body = body_from_json(doc["body"]);
+  s.body = body_from_json(doc["body"], "body");
   if (const json* o = detail::optional_key(doc, "obstacles"))
     s.obstacles = obstacles_from_json(*o);
   else
@@ -190,15 +219,7 @@ SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& regis
   s.initial.qdot = vector3(detail::required_key(init, "initial", "qdot"), "initial.qdot");
 
   SimulationOptions& o = out.options;
-  if (const json* t = detail::optional_key(doc, "t_end"))
-    o.t_end = detail::number_from_json(*t, "t_end");
-  if (const json* i = detail::optional_key(doc, "integrator")) integrator_from_json(*i, o);
-  if (const json* out_opts = detail::optional_key(doc, "output")) {
-    detail::require_object(*out_opts, "output");
-    detail::check_keys(*out_opts, "output", {"sample_interval"}, "the output options");
-    if (const json* v = detail::optional_key(*out_opts, "sample_interval"))
-      o.sample_interval = detail::number_from_json(*v, "output.sample_interval");
-  }
+  options_from_json(doc, o);
 
   // Body and obstacles first: the law's per-contact lists are counted against them.
   s.law = ImpactLaw::newton(0.0);
@@ -210,13 +231,92 @@ SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& regis
   return out;
 }
 
-SceneFile read_scene_file(const std::string& path, const PotentialRegistry& registry) {
+MultiBodySceneFile multibody_scene_from_json(const json& doc, const PotentialRegistry& registry) {
+  detail::check_keys(doc, "",
+                     {"bodies", "obstacles", "gravity", "law", "t_end", "integrator", "output"},
+                     "a scene file of several bodies");
+  for (const char* key : {"bodies", "law"}) detail::required_key(doc, "", key);
+  MultiBodySceneFile out;
+  MultiBodyScene& s = out.scene;
+  const json& bodies = doc["bodies"];
+  if (!bodies.is_array() || bodies.empty())
+    throw InvalidArgument(
+        "bodies", "must be a non-empty list of bodies, got " + detail::describe_json(bodies));
+  const int n = static_cast<int>(bodies.size());
+  s.initial.q.resize(3 * n);
+  s.initial.qdot.resize(3 * n);
+  for (int i = 0; i < n; ++i) {
+    const std::string where = detail::index_path("bodies", static_cast<std::size_t>(i));
+    s.bodies.push_back(body_from_json(bodies[i], where, {"q", "qdot"}));
+    const std::string q = key_path(where, "q"), qdot = key_path(where, "qdot");
+    s.initial.q.segment<3>(3 * i) = vector3(detail::required_key(bodies[i], where, "q"), q);
+    if (const json* v = detail::optional_key(bodies[i], "qdot"))
+      s.initial.qdot.segment<3>(3 * i) = vector3(*v, qdot);
+    else
+      s.initial.qdot.segment<3>(3 * i).setZero();
+    for (int c = 0; c < 3; ++c) {
+      fremond::detail::require_finite(q + "[" + std::to_string(c) + "]", s.initial.q(3 * i + c));
+      fremond::detail::require_finite(qdot + "[" + std::to_string(c) + "]",
+                                      s.initial.qdot(3 * i + c));
+    }
+  }
+  if (const json* o = detail::optional_key(doc, "obstacles"))
+    s.obstacles = obstacles_from_json(*o, true);
+  else
+    s.obstacles = {HalfPlane{}};
+  if (const json* g = detail::optional_key(doc, "gravity"))
+    s.gravity = detail::number_from_json(*g, "gravity");
+  options_from_json(doc, out.options);
+  // The bodies and obstacles first: the law's per-contact lists are counted against them.
+  s.law = ImpactLaw::newton(0.0);
+  s.validate();
+  s.law = detail::law_from_json(doc["law"], s.contact_count(), registry, "law");
+  s.validate();
+  out.options.validate();
+  validate_start(s, out.options);
+  return out;
+}
+
+std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidArgument(path, "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InvalidArgument(path, "cannot read the scene file");
-  return parse_scene_file(text.str(), registry);
+  return text.str();
+}
+
+json scene_document(std::string_view text) {
+  json doc = detail::parse_json(text, "scene");
+  detail::require_object(doc, "scene");
+  return doc;
+}
+
+}  // namespace
+
+SceneFile parse_scene_file(std::string_view text, const PotentialRegistry& registry) {
+  return scene_from_json(scene_document(text), registry);
+}
+
+MultiBodySceneFile parse_multibody_scene_file(std::string_view text,
+                                              const PotentialRegistry& registry) {
+  return multibody_scene_from_json(scene_document(text), registry);
+}
+
+std::variant<SceneFile, MultiBodySceneFile> parse_any_scene_file(
+    std::string_view text, const PotentialRegistry& registry) {
+  const json doc = scene_document(text);
+  if (detail::optional_key(doc, "bodies")) return multibody_scene_from_json(doc, registry);
+  return scene_from_json(doc, registry);
+}
+
+std::variant<SceneFile, MultiBodySceneFile> read_any_scene_file(const std::string& path,
+                                                                const PotentialRegistry& registry) {
+  return parse_any_scene_file(read_text(path), registry);
+}
+
+SceneFile read_scene_file(const std::string& path, const PotentialRegistry& registry) {
+  return parse_scene_file(read_text(path), registry);
 }
 
 }  // namespace fremond::io

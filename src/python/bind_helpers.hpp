@@ -65,6 +65,7 @@ void bind_enums(py::module_& m);
 void bind_potentials(py::module_& m);
 void bind_impacts(py::module_& m);
 void bind_scenes(py::module_& m);
+void bind_multibody(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_curves(py::module_& m);
 void bind_batch(py::module_& m);

@@ -11,6 +11,7 @@ PYBIND11_MODULE(_fremond, m) {
   fp::bind_impacts(m);
   fp::bind_scenes(m);
   fp::bind_simulation(m);
+  fp::bind_multibody(m);  // after the simulation options it takes
   fp::bind_curves(m);
   fp::bind_batch(m);
   fp::bind_atlas(m);

@@ -100,7 +100,8 @@ void bind_scenes(py::module_& m) {
       py::dict(py::arg("e") = C::e, py::arg("mu") = C::mu, py::arg("p") = C::p,
                py::arg("k_T") = C::k_T, py::arg("q") = C::q, py::arg("r") = C::r);
 
-  m.def("energy", &energy, py::arg("scene"), py::arg("state"), doc::kEnergy);
+  m.def("energy", static_cast<double (*)(const Scene&, const PlanarState&)>(&energy),
+        py::arg("scene"), py::arg("state"), doc::kEnergy);
   m.def("kinetic_energy", &kinetic_energy, py::arg("body"), py::arg("qdot"));
   m.def(
       "contact_frame",

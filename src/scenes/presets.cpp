@@ -124,4 +124,53 @@ ImpactLaw paper_law(PaperLaw law, double k_N) {
   return ImpactLaw::newton(C::e);
 }
 
+namespace {
+// A ball's body (the one of ball_scene), centred at the origin of its frame.
+PlanarBody ball_body(double mass, double radius) {
+  BallParameters p;
+  p.mass = mass;
+  p.radius = radius;
+  detail::require_finite_above("mass", mass, 0.0);
+  detail::require_finite_above("radius", radius, 0.0);
+  return ball_scene(p, ImpactLaw::newton(0.0)).body;
+}
+}  // namespace
+
+MultiBodyScene cradle_scene(const CradleParameters& cradle, ImpactLaw law) {
+  const int n = cradle.balls;
+  if (n < 2 || n * (n - 1) / 2 > kMaxMultiBodyContacts)
+    throw InvalidArgument("balls", "must be at least 2 and give at most " +
+                                       std::to_string(kMaxMultiBodyContacts) + " pairs, got " +
+                                       std::to_string(n));
+  detail::require_finite("speed", cradle.speed);
+  MultiBodyScene s;
+  s.bodies.assign(static_cast<std::size_t>(n), ball_body(cradle.mass, cradle.radius));
+  s.gravity = 0.0;
+  s.initial.q = Eigen::VectorXd::Zero(3 * n);
+  s.initial.qdot = Eigen::VectorXd::Zero(3 * n);
+  for (int i = 0; i < n; ++i) s.initial.q(3 * i) = 2.0 * cradle.radius * i;
+  s.initial.qdot(0) = cradle.speed;
+  s.law = std::move(law);
+  s.validate();
+  return s;
+}
+
+MultiBodyScene ball_on_ball_scene(const BallOnBallParameters& drop, ImpactLaw law) {
+  detail::require_finite_at_least("drop_height", drop.drop_height, 0.0);
+  detail::require_finite_at_least("speed", drop.speed, 0.0);
+  MultiBodyScene s;
+  s.bodies.assign(2, ball_body(drop.mass, drop.radius));
+  s.obstacles = {HalfPlane{}};
+  s.gravity = drop.gravity;
+  const double r = drop.radius;
+  s.initial.q = Eigen::VectorXd::Zero(6);
+  s.initial.qdot = Eigen::VectorXd::Zero(6);
+  s.initial.q(1) = r;
+  s.initial.q(4) = 3.0 * r + drop.drop_height;
+  s.initial.qdot(4) = 0.0 - drop.speed;  // +0 at rest, not −0
+  s.law = std::move(law);
+  s.validate();
+  return s;
+}
+
 }  // namespace fremond

@@ -47,16 +47,19 @@ void detail::require_usable_mass_matrix(const std::string& name, double mass, do
   }
 }
 
-void Scene::validate() {
-  require_finite_above("body.mass", body.mass, 0.0);
-  require_finite_above("body.inertia", body.inertia, 0.0);
-  detail::require_usable_mass_matrix("body.inertia", body.mass, body.inertia, "");
-  if (body.points.empty()) throw InvalidArgument("body.points", "needs at least one point");
+void detail::validate_body(const std::string& name, const PlanarBody& body) {
+  require_finite_above(name + ".mass", body.mass, 0.0);
+  require_finite_above(name + ".inertia", body.inertia, 0.0);
+  detail::require_usable_mass_matrix(name + ".inertia", body.mass, body.inertia, "");
+  const std::string points = name + ".points";
+  if (body.points.empty()) throw InvalidArgument(points, "needs at least one point");
   for (std::size_t i = 0; i < body.points.size(); ++i) {
-    require_finite_vector(at("body.points", i, "r"), body.points[i].r);
-    require_finite_at_least(at("body.points", i, "radius"), body.points[i].radius, 0.0);
+    require_finite_vector(at(points.c_str(), i, "r"), body.points[i].r);
+    require_finite_at_least(at(points.c_str(), i, "radius"), body.points[i].radius, 0.0);
   }
-  if (obstacles.empty()) throw InvalidArgument("obstacles", "needs at least one obstacle");
+}
+
+void detail::validate_obstacles(std::vector<HalfPlane>& obstacles) {
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     require_finite_vector(at("obstacles", i, "normal"), obstacles[i].normal);
     require_finite(at("obstacles", i, "offset"), obstacles[i].offset);
@@ -64,6 +67,12 @@ void Scene::validate() {
     if (!(norm > 0.0)) throw InvalidArgument(at("obstacles", i, "normal"), "must not be zero");
     obstacles[i].normal /= norm;
   }
+}
+
+void Scene::validate() {
+  detail::validate_body("body", body);
+  if (obstacles.empty()) throw InvalidArgument("obstacles", "needs at least one obstacle");
+  detail::validate_obstacles(obstacles);
   if (contact_count() > kMaxSceneContacts)
     throw InvalidArgument("body.points", "points × obstacles must be at most " +
                                              std::to_string(kMaxSceneContacts) + ", got " +

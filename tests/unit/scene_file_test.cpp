@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <variant>
 
 #include "fremond/core/error.hpp"
 #include "fremond/io/scene_file.hpp"
@@ -187,6 +188,45 @@ TEST(SceneFile, RefusesUnreadableFilesNamingThePath) {
   EXPECT_THROW(io::read_scene_file("/nonexistent/scene.json", registry()), InvalidArgument);
   EXPECT_THROW(io::parse_scene_file("", registry()), InvalidArgument);
   EXPECT_THROW(io::parse_scene_file("[1, 2]", registry()), InvalidArgument);
+}
+
+// A file of several bodies: each body as the single body's, with its q and qdot; the same scene
+// as the preset; told apart from a file of one body by its "bodies" key.
+TEST(SceneFile, ReadsSeveralBodiesAsThePresetMakesThem) {
+  const char* text = R"({
+    "bodies": [
+      {"shape": "ball", "mass": 1, "radius": 0.1, "q": [0, 0.1, 0]},
+      {"mass": 1, "inertia": 0.004, "points": [{"r": [0, 0], "radius": 0.1}],
+       "q": [0, 0.8, 0], "qdot": [0, -2, 0]}
+    ],
+    "law": {"type": "newton", "e": [0.9, 0.8, 0.7]},
+    "gravity": 9.81,
+    "t_end": 2
+  })";
+  const auto any = io::parse_any_scene_file(text, registry());
+  ASSERT_TRUE(std::holds_alternative<io::MultiBodySceneFile>(any));
+  const io::MultiBodySceneFile& f = std::get<io::MultiBodySceneFile>(any);
+  BallOnBallParameters p;
+  p.speed = 2.0;
+  const MultiBodyScene preset = ball_on_ball_scene(p, ImpactLaw::newton(0.9));
+  ASSERT_EQ(f.scene.bodies.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(f.scene.bodies[i].mass, preset.bodies[i].mass);
+    EXPECT_NEAR(f.scene.bodies[i].inertia, preset.bodies[i].inertia, 1e-18);
+    EXPECT_EQ(f.scene.bodies[i].points[0].radius, preset.bodies[i].points[0].radius);
+  }
+  EXPECT_EQ(f.scene.initial.q, preset.initial.q);
+  EXPECT_EQ(f.scene.initial.qdot, preset.initial.qdot);
+  ASSERT_EQ(f.scene.obstacles.size(), 1u);  // the ground by default
+  EXPECT_EQ(f.scene.contact_count(), 3);
+  EXPECT_EQ(f.options.t_end, 2.0);
+  EXPECT_TRUE(std::holds_alternative<io::SceneFile>(io::parse_any_scene_file(kBar, registry())));
+  try {
+    io::parse_scene_file(text, registry());
+    ADD_FAILURE() << "a file of several bodies read as one body";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "bodies");
+  }
 }
 
 }  // namespace

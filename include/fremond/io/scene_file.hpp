@@ -31,8 +31,10 @@
 /// (`initial`).
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "fremond/potentials/registry.hpp"
+#include "fremond/scenes/multibody.hpp"
 #include "fremond/scenes/scene.hpp"
 #include "fremond/simulation/simulation_options.hpp"
 
@@ -44,11 +46,41 @@ struct SceneFile {
   SimulationOptions options;  ///< validated.
 };
 
-/// Reads a scene file from its text. A message without a key (empty input, not an object) is
-/// named "scene".
+/// Reads a scene file of one body from its text (a file with "bodies" is refused naming it). A
+/// message without a key (empty input, not an object) is named "scene".
 SceneFile parse_scene_file(std::string_view json_text, const PotentialRegistry& registry);
 
 /// Reads the scene file at `path`; a file that cannot be read is refused naming the path.
 SceneFile read_scene_file(const std::string& path, const PotentialRegistry& registry);
+
+/// What a scene file of several bodies holds: a "bodies" list instead of "body" and "initial".
+///
+///     {
+///       "bodies": [
+///         {"shape": "ball", "mass": 1, "radius": 0.1, "q": [0, 0.1, 0]},
+///         {"shape": "ball", "mass": 1, "radius": 0.1, "q": [0, 0.8, 0], "qdot": [0, 0, 0]}
+///       ],
+///       "obstacles": [{"normal": [0, 1], "offset": 0}],
+///       "law": {"type": "newton", "e": 0.9}
+///     }
+///
+/// Each body is read as the single body's `body` (a shape, or mass, inertia and points), with its
+/// state: "q" (x, y, θ; required) and "qdot" (optional, zero). Obstacles default to the ground and
+/// may be an empty list. gravity, t_end, integrator and output as above. The law has one value per
+/// contact in the order of MultiBodyScene::contacts(). Errors name the key: `bodies[1].mass`,
+/// `bodies[0].q`, `bodies[2].points[0].radius`, `law.e`; what MultiBodyScene::validate and
+/// validate_start refuse about the state as a whole (disks at one centre, a contact starting in
+/// penetration, an overflowing energy) is named `initial.q` or `initial`.
+struct MultiBodySceneFile {
+  MultiBodyScene scene;       ///< validated.
+  SimulationOptions options;  ///< validated.
+};
+MultiBodySceneFile parse_multibody_scene_file(std::string_view json_text,
+                                              const PotentialRegistry& registry);
+/// Either kind of scene file, told apart by its "bodies" key.
+std::variant<SceneFile, MultiBodySceneFile> parse_any_scene_file(std::string_view json_text,
+                                                                 const PotentialRegistry& registry);
+std::variant<SceneFile, MultiBodySceneFile> read_any_scene_file(const std::string& path,
+                                                                const PotentialRegistry& registry);
 
 }  // namespace fremond::io

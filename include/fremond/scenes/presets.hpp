@@ -3,6 +3,7 @@
 /// each on the ground y = 0, and the laws the paper compares.
 #include <string_view>
 
+#include "fremond/scenes/multibody.hpp"
 #include "fremond/scenes/scene.hpp"
 
 namespace fremond {
@@ -57,6 +58,35 @@ struct LadderParameters {
 };
 /// Throws InvalidArgument naming `angle` outside (0, π/2), or a field the scene refuses.
 Scene ladder_scene(const LadderParameters& ladder, ImpactLaw law);
+
+/// Newton's cradle: `balls` equal balls (solid spheres, J = 2 m ρ²/5) in a row along x, touching,
+/// centres at x = 2ρi, y = 0, the first (ball 0) striking the others at `speed` along +x. The
+/// strings hold the balls against gravity and take no part in the impact: g = 0 and no obstacle,
+/// so the contacts are the pairs of balls (i < j, multibody.hpp's order) and the impact at t = 0
+/// is that of ball_chain(masses, velocity).
+struct CradleParameters {
+  int balls = 3;        ///< ≥ 2
+  double mass = 1.0;    ///< kg
+  double radius = 0.1;  ///< ρ (m)
+  double speed = 1.0;   ///< the struck ball's velocity (m/s)
+};
+/// Throws InvalidArgument naming `balls` (< 2, or more pairs than kMaxMultiBodyContacts) or a
+/// field the scene refuses.
+MultiBodyScene cradle_scene(const CradleParameters& cradle, ImpactLaw law);
+
+/// A ball dropped on an equal ball resting on the ground y = 0 (solid spheres, J = 2 m ρ²/5):
+/// ball 0 at rest on the ground (centre y = ρ), ball 1 above it, its lowest point `drop_height`
+/// above ball 0's top, falling at `speed` (m/s, ≥ 0, downwards). Contacts: ball 0 on the ground,
+/// ball 1 on the ground, the pair (multibody.hpp's order). With drop_height = 0 the impact is at
+/// t = 0 and is that of ball_chain({m, m}, {0, −speed}, ground).
+struct BallOnBallParameters {
+  double mass = 1.0;         ///< kg
+  double radius = 0.1;       ///< ρ (m)
+  double drop_height = 0.5;  ///< m, ≥ 0
+  double speed = 0.0;        ///< m/s, ≥ 0
+  double gravity = 9.81;     ///< m/s²
+};
+MultiBodyScene ball_on_ball_scene(const BallOnBallParameters& drop, ImpactLaw law);
 
 /// The five laws of the paper (the paper's Fig. 1), by their command-line names.
 enum class PaperLaw {

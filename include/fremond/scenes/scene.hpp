@@ -75,6 +75,10 @@ namespace detail {
 /// whose M fails it would be refused at its first impact, after its output had begun.
 void require_usable_mass_matrix(const std::string& name, double mass, double inertia,
                                 const std::string& reason);
+/// Scene::validate's checks of one body, its keys named `<name>.mass`, `<name>.points[i].r`, ...
+void validate_body(const std::string& name, const PlanarBody& body);
+/// Scene::validate's checks of the half-planes (named `obstacles[i]...`); normalises the normals.
+void validate_obstacles(std::vector<HalfPlane>& obstacles);
 }  // namespace detail
 
 /// The largest number of (point, obstacle) pairs a scene may have (the bounded storage of the
