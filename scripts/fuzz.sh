@@ -42,7 +42,7 @@ summary() {
 }
 
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(problem_file_fuzz solver_fuzz scene_file_fuzz)
+[ ${#targets[@]} -eq 0 ] && targets=(problem_file_fuzz solver_fuzz scene_file_fuzz siconos_file_fuzz)
 if ! bash scripts/sanitize.sh --build-only; then
   summary "FAILED (the sanitized tree did not build)"
   exit 1
@@ -90,6 +90,7 @@ for t in "${targets[@]}"; do
       case "$t" in
         solver_fuzz) runs=3000 ;;        # the solvers with every method and solve_impact_all: ~80 inputs/s
         scene_file_fuzz) runs=500000 ;;  # ~15,000 inputs/s
+        siconos_file_fuzz) runs=100000 ;;  # the Siconos reader and the sparse solve
         *) runs=200000 ;;                # the problem-file reader: ~6,000 inputs/s
       esac
     fi
