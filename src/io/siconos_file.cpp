@@ -86,6 +86,7 @@ class Lines {
     return v;
   }
   int integer(std::string_view token, long long lo, long long hi, const std::string& what) const {
+    if (token.find_first_not_of(" \t\r") == std::string_view::npos) fail(what + " is missing");
     const double v = number(token);
     if (!(v == std::floor(v)) || v < static_cast<double>(lo) || v > static_cast<double>(hi))
       fail(what + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
@@ -99,17 +100,17 @@ class Lines {
     if (v.size() != 1) fail(what + " must stand alone on its line");
     return integer(line, lo, hi, what);
   }
-  // `count` numbers, over as many lines as they take.
+  // `count` numbers, over as many lines as they take (kept as read: the file proves the count).
   Eigen::VectorXd vector(int count, const std::string& what) {
-    Eigen::VectorXd out(count);
-    int have = 0;
-    while (have < count) {
+    std::vector<double> out;
+    out.reserve(static_cast<std::size_t>(std::min(count, 1 << 16)));
+    while (static_cast<int>(out.size()) < count) {
       const auto v = numbers(next(what));
-      if (have + static_cast<int>(v.size()) > count)
+      if (out.size() + v.size() > static_cast<std::size_t>(count))
         fail(what + " must have " + std::to_string(count) + " numbers, got more");
-      for (const double x : v) out(have++) = x;
+      out.insert(out.end(), v.begin(), v.end());
     }
-    return out;
+    return Eigen::Map<const Eigen::VectorXd>(out.data(), count);
   }
 
  private:
@@ -118,7 +119,8 @@ class Lines {
   int number_ = 0;
 };
 
-constexpr long long kLargest = 100000000;  // rows, columns, non-zeros: far beyond any file here
+// Rows, columns, non-zeros: far beyond any planar problem file (Siconos's largest: 14,004 rows).
+constexpr long long kLargest = 10000000;
 
 // A matrix as NumericsMatrix writes it: storage type, rows, columns, then column-major values
 // (dense) or a CSparse print (sparse), after the origin of the sparse storage.
@@ -132,6 +134,10 @@ SparseMatrix matrix(Lines& in, const std::string& what) {
   const int cols = in.integer_line(1, kLargest, what + "'s column count");
   std::vector<Eigen::Triplet<double>> entries;
   if (storage == 0) {
+    if (static_cast<long long>(rows) * cols > kLargest)
+      in.fail(what + " is " + std::to_string(rows) + "x" + std::to_string(cols) +
+              ": too large for dense storage (at most " + std::to_string(kLargest) +
+              " entries); store it sparse (type 2)");
     const Eigen::VectorXd v = in.vector(rows * cols, what + "'s values");
     for (int j = 0; j < cols; ++j)
       for (int i = 0; i < rows; ++i)
@@ -145,20 +151,21 @@ SparseMatrix matrix(Lines& in, const std::string& what) {
     const auto nnz_at = header.find("nnz:");
     if (by == std::string_view::npos || nnz_at == std::string_view::npos)
       in.fail(what + ": expected a CSparse size line 'm-by-n, nzmax: ... nnz: ...'");
-    const auto start = triplet ? header.find(':') + 1 : header.find_first_not_of(" \t");
-    const int m = in.integer(header.substr(start, by - start)
-                                 .substr(header.substr(start, by - start).find_first_not_of(" ")),
-                             1, kLargest, what + "'s rows");
-    const auto n_end = header.find(',', by);
-    const int n =
-        in.integer(header.substr(by + 4, n_end - by - 4), 1, kLargest, what + "'s columns");
-    auto nnz_text = header.substr(nnz_at + 4);
-    nnz_text = nnz_text.substr(0, nnz_text.find(','));
-    const int nnz = in.integer(nnz_text, 0, kLargest, what + "'s non-zero count");
+    // header[begin, end), clamped: a malformed line gives an empty field, which integer() refuses.
+    auto field = [&header](std::size_t begin, std::size_t end) {
+      begin = std::min(begin, header.size());
+      end = std::clamp(end, begin, header.size());
+      return header.substr(begin, end - begin);
+    };
+    const std::size_t start = triplet ? header.find("triplet:") + 8 : 0;
+    const int m = in.integer(field(start, by), 1, kLargest, what + "'s rows");
+    const int n = in.integer(field(by + 4, header.find(',', by)), 1, kLargest, what + "'s columns");
+    const int nnz = in.integer(field(nnz_at + 4, header.find(',', nnz_at)), 0, kLargest,
+                               what + "'s non-zero count");
     if (m != rows || n != cols)
       in.fail(what + " is declared " + std::to_string(rows) + "x" + std::to_string(cols) +
               " but stored " + std::to_string(m) + "x" + std::to_string(n));
-    entries.reserve(static_cast<std::size_t>(nnz));
+    entries.reserve(static_cast<std::size_t>(std::min(nnz, 1 << 16)));  // the file proves the rest
     int column = -1;
     while (static_cast<int>(entries.size()) < nnz) {
       const std::string_view line = in.next(what + "'s entries");

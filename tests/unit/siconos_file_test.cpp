@@ -88,7 +88,7 @@ TEST(SiconosFile, RefusesBadFilesNamingTheLine) {
             "line 1: the dimension must be 2 (a planar problem: one normal and one tangential "
             "row a contact), got 3");
   EXPECT_EQ(refusal("2\n0\n"),
-            "line 2: the number of contacts must be an integer in [1, 50000000], got '0'");
+            "line 2: the number of contacts must be an integer in [1, 5000000], got '0'");
   EXPECT_EQ(refusal("2\n1\n0\n2\n2\n2.0 0.5 x 1.0\n"), "line 6: 'x' is not a number");
   EXPECT_EQ(refusal("2\n1\n0\n2\n2\n2.0 0.5 0.5 1.0\n-1 0.25\n"),
             "line 7: the file ends where mu was expected");
@@ -105,6 +105,13 @@ TEST(SiconosFile, RefusesBadFilesNamingTheLine) {
       "2\n1\n2\n2\n2\n2\nCSparse\n2-by-2, nzmax: 1 nnz: 1, 1-norm: 1\n    col 0 : locations 0 "
       "to 0\n      5 : 1\n";
   EXPECT_EQ(refusal(out_of_range), "line 10: the first matrix: entry index out of the 2x2 matrix");
+  // A CSparse size line without its row count (found by fuzzing: it threw out_of_range).
+  EXPECT_EQ(refusal("2\n2\n2\n4\n4\n2\nCSparse\n-by-4, nzmax: 4 nnz: 4, 1-norm: 4\n"),
+            "line 8: the first matrix's rows is missing");
+  // A dense matrix beyond what dense storage may hold.
+  EXPECT_EQ(refusal("2\n1\n0\n10000\n10000\n"),
+            "line 5: the first matrix is 10000x10000: too large for dense storage (at most "
+            "10000000 entries); store it sparse (type 2)");
   // Not symmetric: G's validation names it.
   EXPECT_NE(refusal("2\n1\n0\n2\n2\n2.0 0.5 0.9 1.0\n-1 0.25\n0.3\n").find("G: must be symmetric"),
             std::string::npos);
