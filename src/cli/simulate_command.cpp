@@ -246,6 +246,17 @@ ojson numbers(const V& v, Eigen::Index n) {
   return a;
 }
 
+// How an impact's solve ended, as the impact log writes it.
+ojson solver_json(const SolverReport& r) {
+  ojson solver;
+  solver["method"] = std::string(to_string(r.method));
+  solver["status"] = std::string(to_string(r.status));
+  solver["iterations"] = r.iterations;
+  solver["residual"] = json_number(r.residual);
+  solver["message"] = std::string(r.message);
+  return solver;
+}
+
 ojson impact_json(const ImpactRecord& r) {
   const Eigen::Index n = r.contact_count;
   ojson j;
@@ -271,13 +282,7 @@ ojson impact_json(const ImpactRecord& r) {
   j["failed_contact"] = r.failed_contact;
   j["violation"] = json_number(r.violation);
   j["unique"] = r.unique;
-  ojson solver;
-  solver["method"] = std::string(to_string(r.solver.method));
-  solver["status"] = std::string(to_string(r.solver.status));
-  solver["iterations"] = r.solver.iterations;
-  solver["residual"] = json_number(r.solver.residual);
-  solver["message"] = std::string(r.solver.message);
-  j["solver"] = solver;
+  j["solver"] = solver_json(r.solver);
   if (r.kind == ImpactKind::accumulation)
     j["accumulation_limit"] = json_number(r.accumulation_limit);
   return j;
@@ -443,13 +448,7 @@ ojson bodies_impact_json(const MultiBodyImpact& r) {
   j["energy_A"] = json_number(r.energy_A);
   j["energy_E"] = json_number(r.energy_E);
   j["admissible"] = r.admissible;
-  ojson solver;
-  solver["method"] = std::string(to_string(r.solver.method));
-  solver["status"] = std::string(to_string(r.solver.status));
-  solver["iterations"] = r.solver.iterations;
-  solver["residual"] = json_number(r.solver.residual);
-  solver["message"] = std::string(r.solver.message);
-  j["solver"] = solver;
+  j["solver"] = solver_json(r.solver);
   return j;
 }
 

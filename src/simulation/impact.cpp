@@ -6,6 +6,7 @@
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "simulation/detail/impact_record.hpp"
+#include "simulation/detail/reached_impact.hpp"
 #include "simulation/detail/run.hpp"
 
 namespace fremond::detail {
@@ -41,20 +42,12 @@ void Run::fill(Problem& pb, const PlanarState& s, const int* idx, int n) const {
 template <class Problem>
 bool Run::solve_and_record(double t, PlanarState& s, const int* idx, int n, ImpactKind kind,
                            const Problem& pb, const ImpactLaw& law) {
-  decltype(solve_impact(pb, law, opt_.solver)) r;
-  // Scene::validate refuses what the first impact would refuse, but a state reached later can
-  // still overflow what an impact computes (a fall under g = 1.5e308 m/s² reaches a speed whose
-  // kinetic energy is not a double). That is the run's outcome, not bad input: the run stops
-  // with a status and keeps what it has written.
-  try {
-    r = solve_impact(pb, law, opt_.solver);
-  } catch (const InvalidArgument&) {
-    finish(SimulationStatus::impact_failed,
-           "an impact problem the run reached cannot be posed in double precision (a "
-           "velocity or energy overflows)");
+  const auto r = detail::solve_reached_impact(pb, law, opt_.solver);
+  if (!r) {
+    finish(SimulationStatus::impact_failed, detail::kImpactOverflow);
     return false;
   }
-  return record(t, s, idx, n, kind, r);
+  return record(t, s, idx, n, kind, *r);
 }
 
 template <class Result>

@@ -15,6 +15,7 @@
 #include "fremond/simulation/free_flight.hpp"
 #include "fremond/solvers/solve_impact.hpp"
 #include "simulation/detail/accumulation.hpp"
+#include "simulation/detail/reached_impact.hpp"
 
 namespace fremond {
 
@@ -335,20 +336,11 @@ class BodiesRun {
     after.qdot = st_.qdot - minv.cwiseProduct(pb.W_N * lambda);
     const double e_a = energy(sc_, st_), e_e = energy(sc_, after);
     if (obs_) {
-      MultiBodyImpact rec;
-      rec.index = log_index_;
-      rec.t = t_;
-      rec.kind = ImpactKind::accumulation;
-      rec.contacts = idx;
-      rec.q = st_.q;
-      rec.qdot_A = st_.qdot;
-      rec.qdot_E = after.qdot;
+      MultiBodyImpact rec = record_of(ImpactKind::accumulation, idx, after, e_a, e_e);
       rec.P_N = -lambda;
       rec.P_T = Eigen::VectorXd::Zero(lambda.size());
       rec.D_NA = pb.W_N.transpose() * st_.qdot;
       rec.D_NE = pb.W_N.transpose() * after.qdot;
-      rec.energy_A = e_a;
-      rec.energy_E = e_e;
       rec.solver.method = SolverMethod::closed_form;
       rec.solver.status = SolverStatus::converged;
       rec.solver.message = "accumulation closed";
@@ -361,38 +353,43 @@ class BodiesRun {
     sample(t_, st_);
   }
 
+  // The log's record of an impact of contacts idx at the current state, to `after`, with the
+  // energies before and after: what an event and the closing of an accumulation share.
+  MultiBodyImpact record_of(ImpactKind kind, const std::vector<int>& idx,
+                            const MultiBodyState& after, double e_a, double e_e) const {
+    MultiBodyImpact rec;
+    rec.index = log_index_;
+    rec.t = t_;
+    rec.kind = kind;
+    rec.contacts = idx;
+    rec.q = st_.q;
+    rec.qdot_A = st_.qdot;
+    rec.qdot_E = after.qdot;
+    rec.energy_A = e_a;
+    rec.energy_E = e_e;
+    return rec;
+  }
+
   // Solves the impact of contacts idx with the scene's law; false when the run stops.
   bool impact(const std::vector<int>& idx) {
     const ImpactProblem pb = impact_problem(sc_, st_, idx);
     const ImpactLaw law = law_of(sc_, idx);
-    ImpactResult r;
-    try {
-      r = solve_impact(pb, law, opt_.solver);
-    } catch (const InvalidArgument&) {
-      finish(SimulationStatus::impact_failed,
-             "an impact problem the run reached cannot be posed in double precision (a "
-             "velocity or energy overflows)");
+    const std::optional<ImpactResult> solved = detail::solve_reached_impact(pb, law, opt_.solver);
+    if (!solved) {
+      finish(SimulationStatus::impact_failed, detail::kImpactOverflow);
       return false;
     }
+    const ImpactResult& r = *solved;
     MultiBodyState after = st_;
     if (r.ok()) after.qdot = r.qdot_E;
     const double e_a = energy(sc_, st_), e_e = energy(sc_, after);
     if (obs_) {
-      MultiBodyImpact rec;
-      rec.index = log_index_;
-      rec.t = t_;
-      rec.kind = ImpactKind::event;
-      rec.contacts = idx;
-      rec.q = st_.q;
-      rec.qdot_A = st_.qdot;
-      rec.qdot_E = after.qdot;
+      MultiBodyImpact rec = record_of(ImpactKind::event, idx, after, e_a, e_e);
       rec.P_N = r.P_N;
       rec.P_T = r.P_T;
       if (rec.P_T.size() == 0) rec.P_T.setZero(r.P_N.size());
       rec.D_NA = r.D_NA;
       rec.D_NE = r.D_NE;
-      rec.energy_A = e_a;
-      rec.energy_E = e_e;
       rec.admissible = r.admissibility.admissible;
       rec.solver = r.solver;
       obs_->on_impact(rec);
