@@ -9,7 +9,7 @@ namespace fremond {
 
 namespace {
 using detail::EnumNames;
-constexpr EnumNames<AttemptStart, 8> kStarts{
+constexpr EnumNames<AttemptStart, 9> kStarts{
     {{AttemptStart::none, "none"},
      {AttemptStart::decoupled_guess, "decoupled_guess"},
      {AttemptStart::zero, "zero"},
@@ -17,7 +17,8 @@ constexpr EnumNames<AttemptStart, 8> kStarts{
      {AttemptStart::splitting_end, "splitting_end"},
      {AttemptStart::nlopt_end, "nlopt_end"},
      {AttemptStart::velocity_newton_end, "velocity_newton_end"},
-     {AttemptStart::normal_rows, "normal_rows"}}};
+     {AttemptStart::normal_rows, "normal_rows"},
+     {AttemptStart::sweeps_end, "sweeps_end"}}};
 constexpr EnumNames<SolverStatus, 7> kStatus{{{SolverStatus::not_run, "not_run"},
                                               {SolverStatus::converged, "converged"},
                                               {SolverStatus::max_iterations, "max_iterations"},

@@ -29,7 +29,7 @@ void bind_enums(py::module_& m) {
   using A = AttemptStart;
   bind_enum<A>(m, "AttemptStart", "Where a method of the chain started from.",
                {A::none, A::decoupled_guess, A::zero, A::newton_end, A::splitting_end, A::nlopt_end,
-                A::velocity_newton_end, A::normal_rows},
+                A::velocity_newton_end, A::normal_rows, A::sweeps_end},
                &attempt_start_from_string);
   using C = StopCriterion;
   bind_enum<C>(m, "StopCriterion", doc::kStopCriterion,

@@ -10,144 +10,27 @@
 
 #include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "sparse/detail/coulomb_contact.hpp"
+#include "sparse/detail/contact_rows.hpp"
 #include "sparse/detail/mass_inverse.hpp"
+#include "sparse/detail/mode_newton.hpp"
 
 namespace fremond {
 
 namespace {
 
-using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+using detail::Layout;
+using detail::layout;
+using detail::Measure;
+using detail::measure;
+using detail::row_times;
+using detail::sweep;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Stalled: this many residual measures (64 sweeps apart) in a row without a 1 % gain. Piles of
 // disks plateau for thousands of sweeps before converging (703 contacts: 30,000 sweeps).
 constexpr int kStallChecks = 128;
-
-// What the sweeps need of one problem and law, gathered once.
-struct Layout {
-  int contacts = 0;
-  int step = 2;           // rows a contact
-  bool friction = false;  // Coulomb rows solved
-  RowMajorMatrix G;       // row access for the sweeps
-  std::vector<detail::ContactBlock> block;
-  std::vector<double> e, mu;
-  std::vector<double> shift;  // e min(D_NA, 0): the restitution term of each normal row
-  double v_scale = std::numeric_limits<double>::min();
-};
-
-Layout layout(const ContactProblem& pb, const RestitutionLaw& law) {
-  Layout L;
-  L.contacts = pb.contacts();
-  L.step = pb.tangential ? 2 : 1;
-  L.friction = pb.tangential && law.coulomb;
-  L.G = pb.G;
-  L.G.makeCompressed();
-  const auto n = static_cast<std::size_t>(L.contacts);
-  L.block.resize(n);
-  L.e.resize(n);
-  L.mu.resize(n);
-  L.shift.resize(n);
-  for (int i = 0; i < L.contacts; ++i) {
-    const int r = L.step * i;
-    auto& B = L.block[static_cast<std::size_t>(i)];
-    B.a = pb.G.coeff(r, r);
-    if (pb.tangential) {
-      B.b = pb.G.coeff(r, r + 1);
-      B.c = pb.G.coeff(r + 1, r);
-      B.d = pb.G.coeff(r + 1, r + 1);
-    }
-    L.e[static_cast<std::size_t>(i)] = law.e[i];
-    L.mu[static_cast<std::size_t>(i)] = L.friction ? law.mu[i] : 0.0;
-    const double DNA = pb.D_A(r);
-    L.shift[static_cast<std::size_t>(i)] = law.e[i] * std::min(DNA, 0.0);
-    if (DNA <= 0.0)
-      L.v_scale =
-          std::max({L.v_scale, std::fabs(DNA), pb.tangential ? std::fabs(pb.D_A(r + 1)) : 0.0});
-  }
-  return L;
-}
-
-double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {
-  const int* idx = G.innerIndexPtr();
-  const double* val = G.valuePtr();
-  double sum = 0.0, abs_sum = 0.0;
-  for (int k = G.outerIndexPtr()[row]; k < G.outerIndexPtr()[row + 1]; ++k) {
-    const double t = val[k] * P(idx[k]);
-    sum += t;
-    abs_sum += std::fabs(t);
-  }
-  if (size) *size = abs_sum;
-  return sum;
-}
-
-// One Gauss–Seidel sweep, over the contacts in order or `backward`; returns the largest change of
-// a contact's velocity it made.
-double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward) {
-  double change = 0.0;
-  for (int step = 0; step < L.contacts; ++step) {
-    const int i = backward ? L.contacts - 1 - step : step;
-    const auto k = static_cast<std::size_t>(i);
-    const auto& A = L.block[k];
-    const int r = L.step * i;
-    if (L.step == 1) {
-      const double fN = D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * P(r);
-      const double PN = fN < 0.0 ? -fN / A.a : 0.0;
-      change = std::max(change, A.a * std::fabs(PN - P(r)));
-      P(r) = PN;
-      continue;
-    }
-    const detail::ContactPercussion old{P(r), P(r + 1)};
-    const double fN =
-        D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * old.N - A.b * old.T;
-    const double fT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr) - A.c * old.N - A.d * old.T;
-    const auto now = detail::coulomb_contact(A, fN, fT, L.mu[k], old);
-    change = std::max(change,
-                      std::max(A.a * std::fabs(now.N - old.N) + std::fabs(A.b * (now.T - old.T)),
-                               std::fabs(A.c * (now.N - old.N)) + A.d * std::fabs(now.T - old.T)));
-    P(r) = now.N;
-    P(r + 1) = now.T;
-  }
-  return change;
-}
-
-// The law's residual at P: D_E = D_A + G P, each row's rounding 16ε (|D_A| + Σ|G P|).
-struct Measure {
-  double residual = 0.0;          // max |R|, velocity units
-  double excess = 0.0;            // max (|R| − rounding of its rows)
-  Eigen::VectorXd D_E, rounding;  // rows
-};
-
-Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
-  Measure m;
-  const int rows = static_cast<int>(D_A.size());
-  m.D_E.resize(rows);
-  m.rounding.resize(rows);
-  for (int j = 0; j < rows; ++j) {
-    double size = 0.0;
-    m.D_E(j) = D_A(j) + row_times(L.G, j, P, &size);
-    m.rounding(j) = 16 * kEps * (std::fabs(D_A(j)) + size);
-  }
-  for (int i = 0; i < L.contacts; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const auto& A = L.block[k];
-    const int r = L.step * i;
-    const double wN = m.D_E(r) + L.shift[k];
-    const double PN = P(r);
-    double R = std::fabs(std::min(wN, PN == 0.0 ? 0.0 : A.a * PN));
-    double floor = m.rounding(r);
-    if (L.step == 2) {
-      const double PT = P(r + 1), vT = m.D_E(r + 1);
-      const double g = A.d > 0.0 ? A.d : A.a;
-      const double bound = L.mu[k] * std::max(PN, 0.0);
-      const double diff = PT - std::clamp(PT - vT / g, -bound, bound);
-      R = std::max(R, std::fabs(diff == 0.0 ? 0.0 : g * diff));
-      floor = std::max(floor, m.rounding(r + 1));
-    }
-    m.residual = std::max(m.residual, R);
-    m.excess = std::max(m.excess, R - floor);
-  }
-  return m;
-}
+// Steps of one run of the mode Newton (mode_newton.hpp); a run that has the modes right ends in
+// a few.
+constexpr int kModeNewtonSteps = 12;
 
 // The certificate of a classical law in contact coordinates (docs/concepts.md): (15) in sum and
 // per contact, and non-penetration, each to how well the energies and velocities are known.
@@ -263,12 +146,22 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   const Layout L = layout(pb, *classical);
   const double target = options.tolerance * L.v_scale;
   Measure m;
-  int sweeps = 0;
-  double best = std::numeric_limits<double>::infinity();
+  int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0;
+  double best = std::numeric_limits<double>::infinity(), last = best;
   int since_best = 0;
+  bool by_newton = false;
+  AttemptStart from = start ? AttemptStart::none : AttemptStart::zero;
   r.solver.status = SolverStatus::max_iterations;
   r.solver.criterion = StopCriterion::iterations;
   r.solver.message = "the sweep budget (max_sweeps) ran out with the residual above tolerance";
+  auto converge = [&](bool newton) {
+    by_newton = newton;
+    r.solver.status = SolverStatus::converged;
+    r.solver.criterion = m.residual <= target ? StopCriterion::residual : StopCriterion::rounding;
+    r.solver.message = m.residual <= target
+                           ? "the residual is within tolerance"
+                           : "each contact's residual is within the rounding of its velocities";
+  };
   // A sweep's largest velocity change bounds what the next can still move; the residual, which
   // costs a sweep, is measured only when that change is small, and every 64 sweeps to see a
   // stall (kStallChecks).
@@ -285,12 +178,33 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
     if (change > target && sweeps % 64 != 0) continue;
     m = measure(L, pb.D_A, P);
     if (m.residual <= target || m.excess <= target) {
-      r.solver.status = SolverStatus::converged;
-      r.solver.criterion = m.residual <= target ? StopCriterion::residual : StopCriterion::rounding;
-      r.solver.message = m.residual <= target
-                             ? "the residual is within tolerance"
-                             : "each contact's residual is within the rounding of its velocities";
+      converge(false);
       break;
+    }
+    // Where the sweeps slow down (less than halving the residual between two measures), the
+    // mode Newton tries to finish from their point, at checks ever further apart so that it
+    // costs a fraction of the sweeps: its steps do not grow with the pile, the sweeps do. A run
+    // that does not converge is dropped, and the sweeps go on from their own point.
+    ++checks;
+    const bool slow = checks >= 2 && m.residual > 0.5 * last;
+    last = m.residual;
+    if (options.newton_polish && slow && checks >= 2 * last_newton) {
+      last_newton = checks;
+      r.solver.record(SolverMethod::nsgs, from, SolverStatus::stalled, m.residual / L.v_scale);
+      from = AttemptStart::sweeps_end;
+      Eigen::VectorXd trial = P;
+      Measure trial_m = m;
+      const auto o = detail::mode_newton(L, pb.D_A, trial, trial_m, target, kModeNewtonSteps);
+      newton_steps += o.steps;
+      r.solver.record(SolverMethod::semismooth_newton, AttemptStart::sweeps_end,
+                      o.converged ? SolverStatus::converged : SolverStatus::stalled,
+                      trial_m.residual / L.v_scale);
+      if (o.converged) {
+        P = std::move(trial);
+        m = std::move(trial_m);
+        converge(true);
+        break;
+      }
     }
     if (m.residual < 0.99 * best) {
       best = m.residual;
@@ -304,10 +218,10 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   }
   if (m.D_E.size() != pb.rows() || r.solver.status == SolverStatus::max_iterations)
     m = measure(L, pb.D_A, P);
-  r.solver.iterations = sweeps;
+  r.solver.iterations = sweeps + newton_steps;
   r.solver.residual = m.residual / L.v_scale;
-  r.solver.record(SolverMethod::nsgs, start ? AttemptStart::none : AttemptStart::zero,
-                  r.solver.status, r.solver.residual);
+  r.solver.method = by_newton ? SolverMethod::semismooth_newton : SolverMethod::nsgs;
+  if (!by_newton) r.solver.record(SolverMethod::nsgs, from, r.solver.status, r.solver.residual);
   scatter(L, pb, P, m.D_E, r);
   // T_E − T_A = P·z for fixed obstacles (eq. 9); solve_impact replaces it by the velocities'.
   r.energy_change = r.P_N.dot(0.5 * (r.D_NA + r.D_NE)) + r.P_T.dot(0.5 * (r.D_TA + r.D_TE));

@@ -74,5 +74,12 @@ def test_refusals_name_the_value():
         assert "cannot open" in str(e)
 
 
+def test_newton_polish_is_an_option():
+    o = f.SparseSolverOptions(tolerance=1e-12, newton_polish=False)
+    assert o.newton_polish is False
+    assert f.SparseSolverOptions().newton_polish is True
+    assert f.AttemptStart.sweeps_end.name == "sweeps_end"
+
+
 if __name__ == "__main__":
     run_tests(globals())

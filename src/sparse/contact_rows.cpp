@@ -1,0 +1,107 @@
+// The contact rows of a sparse solve (contact_rows.hpp).
+#include "sparse/detail/contact_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fremond::detail {
+
+namespace {
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+}  // namespace
+
+Layout layout(const ContactProblem& pb, const RestitutionLaw& law) {
+  Layout L;
+  L.contacts = pb.contacts();
+  L.step = pb.tangential ? 2 : 1;
+  L.friction = pb.tangential && law.coulomb;
+  L.G = pb.G;
+  L.G.makeCompressed();
+  const auto n = static_cast<std::size_t>(L.contacts);
+  L.block.resize(n);
+  L.e.resize(n);
+  L.mu.resize(n);
+  L.shift.resize(n);
+  for (int i = 0; i < L.contacts; ++i) {
+    const int r = L.step * i;
+    auto& B = L.block[static_cast<std::size_t>(i)];
+    B.a = pb.G.coeff(r, r);
+    if (pb.tangential) {
+      B.b = pb.G.coeff(r, r + 1);
+      B.c = pb.G.coeff(r + 1, r);
+      B.d = pb.G.coeff(r + 1, r + 1);
+    }
+    L.e[static_cast<std::size_t>(i)] = law.e[i];
+    L.mu[static_cast<std::size_t>(i)] = L.friction ? law.mu[i] : 0.0;
+    const double DNA = pb.D_A(r);
+    L.shift[static_cast<std::size_t>(i)] = law.e[i] * std::min(DNA, 0.0);
+    if (DNA <= 0.0)
+      L.v_scale =
+          std::max({L.v_scale, std::fabs(DNA), pb.tangential ? std::fabs(pb.D_A(r + 1)) : 0.0});
+  }
+  return L;
+}
+
+Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
+  Measure m;
+  const int rows = static_cast<int>(D_A.size());
+  m.D_E.resize(rows);
+  m.rounding.resize(rows);
+  for (int j = 0; j < rows; ++j) {
+    double size = 0.0;
+    m.D_E(j) = D_A(j) + row_times(L.G, j, P, &size);
+    m.rounding(j) = 16 * kEps * (std::fabs(D_A(j)) + size);
+  }
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    const double wN = m.D_E(r) + L.shift[k];
+    const double PN = P(r);
+    double R = std::fabs(std::min(wN, PN == 0.0 ? 0.0 : A.a * PN));
+    double floor = m.rounding(r);
+    if (L.step == 2) {
+      const double PT = P(r + 1), vT = m.D_E(r + 1);
+      const double g = A.d > 0.0 ? A.d : A.a;
+      const double bound = L.mu[k] * std::max(PN, 0.0);
+      const double diff = PT - std::clamp(PT - vT / g, -bound, bound);
+      R = std::max(R, std::fabs(diff == 0.0 ? 0.0 : g * diff));
+      floor = std::max(floor, m.rounding(r + 1));
+    }
+    m.residual = std::max(m.residual, R);
+    m.excess = std::max(m.excess, R - floor);
+  }
+  return m;
+}
+
+// One Gauss–Seidel sweep, over the contacts in order or `backward`; returns the largest change of
+// a contact's velocity it made.
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward) {
+  double change = 0.0;
+  for (int step = 0; step < L.contacts; ++step) {
+    const int i = backward ? L.contacts - 1 - step : step;
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    if (L.step == 1) {
+      const double fN = D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * P(r);
+      const double PN = fN < 0.0 ? -fN / A.a : 0.0;
+      change = std::max(change, A.a * std::fabs(PN - P(r)));
+      P(r) = PN;
+      continue;
+    }
+    const ContactPercussion old{P(r), P(r + 1)};
+    const double fN =
+        D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * old.N - A.b * old.T;
+    const double fT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr) - A.c * old.N - A.d * old.T;
+    const auto now = coulomb_contact(A, fN, fT, L.mu[k], old);
+    change = std::max(change,
+                      std::max(A.a * std::fabs(now.N - old.N) + std::fabs(A.b * (now.T - old.T)),
+                               std::fabs(A.c * (now.N - old.N)) + A.d * std::fabs(now.T - old.T)));
+    P(r) = now.N;
+    P(r + 1) = now.T;
+  }
+  return change;
+}
+
+}  // namespace fremond::detail

@@ -1,0 +1,57 @@
+#pragma once
+/// @file The contact rows of a sparse solve (docs/sparse.md): what the sweeps and the mode
+/// Newton read of one problem and law, and the law's residual at given percussions.
+#include <Eigen/SparseCore>
+#include <limits>
+#include <vector>
+
+#include "fremond/laws/restitution/restitution_law.hpp"
+#include "fremond/sparse/contact_problem.hpp"
+#include "sparse/detail/coulomb_contact.hpp"
+
+namespace fremond::detail {
+
+using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+
+/// What the sweeps need of one problem and law, gathered once.
+struct Layout {
+  int contacts = 0;
+  int step = 2;           ///< rows a contact
+  bool friction = false;  ///< Coulomb rows solved
+  RowMajorMatrix G;       ///< row access
+  std::vector<ContactBlock> block;
+  std::vector<double> e, mu;
+  std::vector<double> shift;  ///< e min(D_NA, 0): the restitution term of each normal row
+  double v_scale = std::numeric_limits<double>::min();
+};
+
+Layout layout(const ContactProblem& pb, const RestitutionLaw& law);
+
+/// Row `row` of G times P; *size, when given, gets Σ|G_rk P_k|.
+inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {
+  const int* idx = G.innerIndexPtr();
+  const double* val = G.valuePtr();
+  double sum = 0.0, abs_sum = 0.0;
+  for (int k = G.outerIndexPtr()[row]; k < G.outerIndexPtr()[row + 1]; ++k) {
+    const double t = val[k] * P(idx[k]);
+    sum += t;
+    abs_sum += std::fabs(t);
+  }
+  if (size) *size = abs_sum;
+  return sum;
+}
+
+/// The law's residual at P: D_E = D_A + G P, each row's rounding 16ε (|D_A| + Σ|G P|).
+struct Measure {
+  double residual = 0.0;          ///< max |R|, velocity units
+  double excess = 0.0;            ///< max (|R| − rounding of its rows)
+  Eigen::VectorXd D_E, rounding;  ///< rows
+};
+
+Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P);
+
+/// One Gauss–Seidel sweep of the contacts' local laws (coulomb_contact), in order or `backward`;
+/// returns the largest change of a contact's velocity it made.
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward);
+
+}  // namespace fremond::detail

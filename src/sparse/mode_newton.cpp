@@ -1,0 +1,209 @@
+// Semismooth Newton on the contacts' modes (mode_newton.hpp, docs/sparse.md#mode-newton).
+#include "sparse/detail/mode_newton.hpp"
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace fremond::detail {
+
+namespace {
+
+enum class Mode : signed char { apart, stick, slide };
+
+// A contact's mode and, sliding, the sign s of P_T = s μ P_N.
+struct ContactMode {
+  Mode mode = Mode::apart;
+  double s = 0.0;
+  bool operator==(const ContactMode&) const = default;
+};
+
+// The modes the natural map reads at P: apart where P_N − w_N/G_NN ≤ 0; else stuck where the
+// tangential point P_T − D_TE/G_TT lies inside μ times the normal one, sliding its way otherwise.
+std::vector<ContactMode> modes_at(const Layout& L, const Eigen::VectorXd& P,
+                                  const Eigen::VectorXd& D_E) {
+  std::vector<ContactMode> modes(static_cast<std::size_t>(L.contacts));
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    const double sigma_N = P(r) - (D_E(r) + L.shift[k]) / A.a;
+    if (!(sigma_N > 0.0)) continue;
+    if (L.step == 1) {
+      modes[k] = {Mode::stick, 0.0};
+      continue;
+    }
+    if (L.mu[k] == 0.0) {
+      modes[k] = {Mode::slide, 0.0};
+      continue;
+    }
+    const double g = A.d > 0.0 ? A.d : A.a;
+    const double sigma_T = P(r + 1) - D_E(r + 1) / g;
+    if (std::fabs(sigma_T) <= L.mu[k] * sigma_N)
+      modes[k] = {Mode::stick, 0.0};
+    else
+      modes[k] = {Mode::slide, sigma_T > 0.0 ? 1.0 : -1.0};
+  }
+  return modes;
+}
+
+// The mode's equations A x = b on the unknowns x (a contact's P_N, and its P_T where it sticks),
+// one equation a row held at zero velocity; the percussions are then P = E x.
+struct ModeSystem {
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b, scale;  // scale: each equation's own G diagonal
+  std::vector<int> unknown;  // contact → its first unknown, −1 apart
+  std::vector<int> row_of;   // unknown → its row of G
+};
+
+ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
+                     const std::vector<ContactMode>& modes) {
+  ModeSystem S;
+  S.unknown.assign(modes.size(), -1);
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (modes[k].mode == Mode::apart) continue;
+    S.unknown[k] = static_cast<int>(S.row_of.size());
+    S.row_of.push_back(L.step * i);
+    if (L.step == 2 && modes[k].mode == Mode::stick) S.row_of.push_back(L.step * i + 1);
+  }
+  const int n = static_cast<int>(S.row_of.size());
+  S.b.resize(n);
+  S.scale.resize(n);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(n) * 12);
+  for (int eq = 0; eq < n; ++eq) {
+    const int R = S.row_of[static_cast<std::size_t>(eq)];
+    const int i = R / L.step;
+    const bool normal = R % L.step == 0;
+    const auto& B = L.block[static_cast<std::size_t>(i)];
+    S.b(eq) = -(D_A(R) + (normal ? L.shift[static_cast<std::size_t>(i)] : 0.0));
+    S.scale(eq) = normal ? B.a : (B.d > 0.0 ? B.d : B.a);
+    for (int p = L.G.outerIndexPtr()[R]; p < L.G.outerIndexPtr()[R + 1]; ++p) {
+      const int j = L.G.innerIndexPtr()[p];
+      const double v = L.G.valuePtr()[p];
+      const auto k = static_cast<std::size_t>(j / L.step);
+      const int u = S.unknown[k];
+      if (u < 0) continue;
+      const bool tangent_column = j % L.step == 1;
+      if (modes[k].mode == Mode::stick)
+        entries.emplace_back(eq, u + (tangent_column ? 1 : 0), v);
+      else if (!tangent_column)
+        entries.emplace_back(eq, u, v);
+      else if (modes[k].s != 0.0)
+        entries.emplace_back(eq, u, v * modes[k].s * L.mu[k]);
+    }
+  }
+  S.A.resize(n, n);
+  S.A.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+// x with A x = b from x (the current point's unknowns): A is singular where G is, and its
+// solutions then differ by percussions that move no velocity, of which the one nearest the
+// current point keeps its signs and cone. (A + δ D) Δ = b − A x, D each equation's G diagonal,
+// repeated: the proximal-point iteration, whose limit is that nearest solution. False when the
+// factorisation fails.
+bool solve_mode(const ModeSystem& S, double target, double delta, Eigen::VectorXd& x) {
+  Eigen::SparseMatrix<double> K = S.A;
+  for (int j = 0; j < K.rows(); ++j) K.coeffRef(j, j) += delta * S.scale(j);
+  K.makeCompressed();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(K);
+  if (lu.info() != Eigen::Success) return false;
+  double last = std::numeric_limits<double>::infinity();
+  for (int step = 0; step < 4 && x.allFinite(); ++step) {
+    const Eigen::VectorXd r = S.b - S.A * x;
+    const double size = r.lpNorm<Eigen::Infinity>();
+    if (size <= 1e-3 * target || !(size < 0.5 * last)) break;
+    last = size;
+    x += lu.solve(r);
+  }
+  return x.allFinite();
+}
+
+// ½ Σ R² over the rows, R the natural map of each row as measure() takes it (zero exactly at a
+// solution): the merit the Newton step descends, since the mode's equations are its Jacobian on
+// the branch read at P.
+double merit(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
+  double sum = 0.0;
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto& A = L.block[k];
+    const int r = L.step * i;
+    const double wN = D_A(r) + row_times(L.G, r, P, nullptr) + L.shift[k];
+    const double RN = std::min(wN, A.a * P(r));
+    sum += RN * RN;
+    if (L.step == 1) continue;
+    const double vT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr);
+    const double g = A.d > 0.0 ? A.d : A.a;
+    const double bound = L.mu[k] * std::max(P(r), 0.0);
+    const double RT = g * (P(r + 1) - std::clamp(P(r + 1) - vT / g, -bound, bound));
+    sum += RT * RT;
+  }
+  return 0.5 * sum;
+}
+
+}  // namespace
+
+ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
+                              Measure& m, double target, int max_steps) {
+  ModeNewtonOutcome out;
+  auto met = [target](const Measure& x) { return x.residual <= target || x.excess <= target; };
+  out.converged = met(m);
+  Eigen::VectorXd at = P;
+  Measure here = m;
+  // The proximal weight δ adapts as Levenberg–Marquardt's does: far from the answer the modes
+  // read are wrong, their equations inconsistent, and a large δ keeps the step short; a full
+  // step accepted shrinks it toward Newton's.
+  double delta = 1e-4;
+  int failures = 0, slow = 0;
+  while (!out.converged && out.steps < max_steps && failures < 4 && slow < 2) {
+    const std::vector<ContactMode> modes = modes_at(L, at, here.D_E);
+    const ModeSystem S = system_of(L, D_A, modes);
+    Eigen::VectorXd x(static_cast<Eigen::Index>(S.row_of.size()));
+    for (std::size_t u = 0; u < S.row_of.size(); ++u)
+      x(static_cast<Eigen::Index>(u)) = at(S.row_of[u]);
+    if (!S.row_of.empty() && !solve_mode(S, target, delta, x)) break;
+    ++out.steps;
+    Eigen::VectorXd next = Eigen::VectorXd::Zero(at.size());
+    for (int i = 0; i < L.contacts; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const int u = S.unknown[k];
+      if (u < 0) continue;
+      const int r = L.step * i;
+      next(r) = x(u);
+      if (L.step == 2)
+        next(r + 1) = modes[k].mode == Mode::stick ? x(u + 1) : modes[k].s * L.mu[k] * x(u);
+    }
+    // Backtracking on the merit (Armijo).
+    const Eigen::VectorXd d = next - at;
+    const double f0 = merit(L, D_A, at);
+    double t = 1.0;
+    for (; t > 0.01; t *= 0.5)
+      if (merit(L, D_A, at + t * d) <= (1.0 - 1e-4 * t) * f0) break;
+    if (!(t > 0.01)) {
+      delta *= 10.0;
+      ++failures;
+      continue;
+    }
+    failures = 0;
+    delta = t == 1.0 ? std::max(0.1 * delta, 1e-12) : std::min(4.0 * delta, 1.0);
+    at += t * d;
+    const double before = here.residual;
+    here = measure(L, D_A, at);
+    // Newton, once its modes are right, ends in a step or two; steps that do not halve the
+    // residual are the sweeps' work, done cheaper by the sweeps.
+    slow = here.residual > 0.5 * before ? slow + 1 : 0;
+    if (here.residual < m.residual) {
+      P = at;
+      m = here;
+      out.improved = true;
+      out.converged = met(m);
+    }
+  }
+  return out;
+}
+
+}  // namespace fremond::detail
