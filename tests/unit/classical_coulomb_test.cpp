@@ -553,6 +553,30 @@ TEST(ClassicalMethods, EachLcpMethodCanBeForcedAndTheyAgree) {
   EXPECT_NEAR(r4.qdot_E(1), 0.5, 1e-15);  // eq. 6 on the common normal: the point mass bounces
 }
 
+// Bodies in principal axes (diagonal M) under Newton + Coulomb: the solve reports the law's
+// residual at its answer's own velocities; law_residual, from the percussions through M, says the
+// same within rounding, and both are within the tolerance wherever the solve converged.
+TEST(ClassicalMethods, ResidualAtTheAnswersVelocitiesAgreesWithTheData) {
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), mass(0.1, 10.0);
+  int converged = 0;
+  for (int k = 0; k < 400; ++k) {
+    ImpactProblem pb = random_problem(rng, 1 + k % 3);
+    const int n = pb.dofs();
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) pb.M(i, j) = i == j ? mass(rng) : 0.0;
+    const ImpactLaw law = ImpactLaw::newton_coulomb(0.5 * (u(rng) + 1.0), 0.5 * (u(rng) + 1.0));
+    const ImpactResult r = solve_impact(pb, law);
+    if (!r.ok()) continue;
+    ++converged;
+    const double data = law_residual(pb, law, r);
+    EXPECT_LE(r.solver.residual, 1e-13) << "case " << k;
+    EXPECT_LE(data, 1e-13) << "case " << k;
+    EXPECT_NEAR(data, r.solver.residual, 1e-14) << "case " << k;
+  }
+  EXPECT_GE(converged, 300);
+}
+
 TEST(ClassicalMethods, AMethodOfFremondsLawIsUnsupported) {
   // An iterative method of Frémond's law is refused in the result, with no percussion, never
   // answered by another method under its name.

@@ -44,7 +44,9 @@ TEST(ClassicalNewton, OneContactMatchesEquation6AndTheLcp) {
     EXPECT_TRUE(r.unique);
     EXPECT_EQ(r.solutions_found, 1);
     EXPECT_LE(r.solver.residual, 1e-15);
-    EXPECT_DOUBLE_EQ(law_residual(p, ImpactLaw::newton(e), r), r.solver.residual);
+    // The solve judged the answer at its own velocities, law_residual at velocities recomputed
+    // from the percussions: both are rounding, 64ε apart at most.
+    EXPECT_NEAR(law_residual(p, ImpactLaw::newton(e), r), r.solver.residual, 1.5e-14);
   }
 }
 

@@ -287,12 +287,61 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
                        percussions_rounded, percussion_cap);
 }
 
+template <int N, int C>
+bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
+                                       const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
+                                       const typename ContactSpaceT<N, C>::Rows& P,
+                                       const ImpactResultT<N, C>& r, double tolerance,
+                                       double* value) {
+  const int n = cs.dofs, c = cs.contacts, rows = cs.rows();
+  const bool tangential = pb.has_tangential();
+  if (law.has_phases() || !cs.llt.matrix_is_diagonal() || r.qdot_E.size() != n ||
+      r.D_NE.size() != c || (tangential && r.D_TE.size() != c) || !r.qdot_E.allFinite())
+    return false;
+  // u = Σ_j |M⁻¹W_j P_j|: what q̇_E − q̇_A is summed from; W's rows on it bound the rounding of every
+  // contact velocity after.
+  VecT<N> u = VecT<N>::Zero(n);
+  for (int j = 0; j < rows; ++j)
+    if (P(j) != 0.0) u += (cs.MinvW.col(j) * P(j)).cwiseAbs();
+  // Both velocities are sums of at most rows + c + 3 rounded terms of size `terms`.
+  const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
+  double v_scale = std::numeric_limits<double>::min(), worst = 0.0, terms = 0.0;
+  for (int i = 0; i < c; ++i) {
+    const double dna = cs.D_N(i), dta = tangential ? cs.D_T(i) : 0.0;
+    terms = std::max(terms, pb.W_N.col(i).cwiseAbs().dot(u));
+    if (tangential) terms = std::max(terms, pb.W_T.col(i).cwiseAbs().dot(u));
+    const bool separating = dna > 0.0;
+    if (!separating) v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
+    const double e = separating ? 0.0 : law.e[i];
+    const double PN = r.P_N(i), PT = tangential ? r.P_T(i) : 0.0;
+    // The contact's own G_ii where it takes part; a separating one carries P = 0 and needs none.
+    double gn = 1.0, gt = 1.0;
+    for (int k = 0; k < cs.active; ++k)
+      if (cs.index(k) == i) {
+        gn = cs.G(k, k) > 0.0 ? cs.G(k, k) : 1.0;
+        if (cs.tangential)
+          gt = cs.G(cs.active + k, cs.active + k) > 0.0 ? cs.G(cs.active + k, cs.active + k) : 1.0;
+      }
+    worst = std::max(worst, std::fabs(complementarity(r.D_NE(i) + e * dna, PN, gn)));
+    if (tangential)
+      worst = std::max(
+          worst, std::fabs(coulomb(PT, r.D_TE(i), law.has_friction() ? law.mu[i] * PN : 0.0, gt)));
+  }
+  if (!(floor * terms <= 0.25 * tolerance * v_scale) || !(worst <= 0.25 * tolerance * v_scale))
+    return false;
+  *value = worst / v_scale;
+  return true;
+}
+
 #define FREMOND_INSTANTIATE(N, C)                                                                \
   template double classical_residual(const ImpactProblemT<N, C>&, const RestitutionLaw&,         \
                                      const ImpactResultT<N, C>&, double*, bool, double);         \
   template double classical_residual(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,    \
                                      const RestitutionLaw&, const ImpactResultT<N, C>&, double*, \
-                                     bool, double);
+                                     bool, double);                                              \
+  template bool newton_residual_at_own_velocities(                                               \
+      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const RestitutionLaw&,            \
+      const typename ContactSpaceT<N, C>::Rows&, const ImpactResultT<N, C>&, double, double*);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE
