@@ -315,6 +315,43 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   build_contact_space_general(pb, with_tangential, cs, held);
 }
 
+/// A new q̇_A on the configuration `cs` was built from (M, W and w unchanged since): every
+/// contact's D_N, D_T and, where the contacts held are the ones `cs` holds, D_A and v_scale, the
+/// only parts of a contact space that follow the velocity. True then, with cs as
+/// build_contact_space would leave it, to the last bit (G, M⁻¹W, the factor and the contacts' own
+/// Delassus entries are kept); false, with cs to be built again, where another set of contacts
+/// is held.
+template <int MaxDofs, int MaxContacts>
+bool update_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                       ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                       HeldContacts held = HeldContacts::approaching) {
+  const int c = pb.contacts();
+  if (cs.contacts != c || cs.dofs != pb.dofs() || cs.D_N.size() != c) return false;
+  const bool has_t = pb.has_tangential();
+  int a = 0;
+  bool same = true;
+  for (int i = 0; i < c; ++i) {
+    cs.D_N(i) = contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
+    if (has_t)
+      cs.D_T(i) = contact_velocity(pb.W_T.col(i), pb.qdot_A, pb.w_T.size() ? pb.w_T(i) : 0.0);
+    if (held == HeldContacts::every || cs.D_N(i) <= 0.0) {
+      same = same && a < cs.active && cs.index(a) == i;
+      ++a;
+    }
+  }
+  if (!same || a != cs.active) return false;
+  for (int k = 0; k < a; ++k) {
+    const int i = cs.index(k);
+    cs.D_A(k) = cs.D_N(i);
+    if (cs.tangential) cs.D_A(a + k) = cs.D_T(i);
+  }
+  const int r = cs.rows();
+  cs.v_scale = r ? cs.D_A.cwiseAbs().maxCoeff() : 0.0;
+  if (!(cs.v_scale > std::numeric_limits<double>::min()))
+    cs.v_scale = std::numeric_limits<double>::min();
+  return true;
+}
+
 /// W_iᵀM⁻¹W_i of every contact i of `pb` (normal into N, tangential into T: empty without W_T),
 /// each as the dot product of W_i with llt's solve of it: the classical residual's scales.
 template <int MaxDofs, int MaxContacts>

@@ -55,9 +55,11 @@ struct PreparedStage {
     out = ImpactResultT<N, C>{};
   }
 
-  /// solve_impact_in_own_storage after its validation: the same stages on the same data.
+  /// solve_impact_in_own_storage after its validation: the same stages on the same data. The
+  /// configuration's part of the contact space is kept from the last solve where the same
+  /// contacts approach (update_velocities).
   void solve(const ImpactLaw& law, const SolverOptions& options) {
-    build_contact_space(pb, tangential_rows(law), cs);
+    if (!update_velocities(pb, cs)) build_contact_space(pb, tangential_rows(law), cs);
     out = ImpactResultT<N, C>{};
     solve_on_contact_space(pb, law, options, cs, out);
   }
