@@ -25,9 +25,9 @@ using detail::measure;
 using detail::row_times;
 using detail::sweep;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// Stalled: this many residual measures (64 sweeps apart) in a row without a 1 % gain. Piles of
-// disks plateau for thousands of sweeps before converging (703 contacts: 30,000 sweeps).
-constexpr int kStallChecks = 128;
+// Stalled: this many sweeps without a 1 % gain of the residual. Piles of disks plateau for
+// thousands of sweeps before converging (703 contacts: 30,000 sweeps).
+constexpr int kStallSweeps = 8192;
 // Steps of one run of the mode Newton (mode_newton.hpp); a run that has the modes right ends in
 // a few.
 constexpr int kModeNewtonSteps = 12;
@@ -146,9 +146,11 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   const Layout L = layout(pb, *classical);
   const double target = options.tolerance * L.v_scale;
   Measure m;
-  int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0;
-  double best = std::numeric_limits<double>::infinity(), last = best;
-  int since_best = 0;
+  int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0, best_at = 0;
+  double best = std::numeric_limits<double>::infinity();
+  // The residual costs a sweep: measured every 64 sweeps, every 16 on a few contacts, where a
+  // sweep is cheap beside the Newton run it may start.
+  const int every = L.contacts <= 64 ? 16 : 64;
   bool by_newton = false;
   AttemptStart from = start ? AttemptStart::none : AttemptStart::zero;
   r.solver.status = SolverStatus::max_iterations;
@@ -162,9 +164,8 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
                            ? "the residual is within tolerance"
                            : "each contact's residual is within the rounding of its velocities";
   };
-  // A sweep's largest velocity change bounds what the next can still move; the residual, which
-  // costs a sweep, is measured only when that change is small, and every 64 sweeps to see a
-  // stall (kStallChecks).
+  // A sweep's largest velocity change bounds what the next can still move; the residual is
+  // measured when that change is small, and every `every` sweeps to see a stall.
   while (sweeps < options.max_sweeps) {
     // Forward, then backward: a blow crosses a pile in one sweep either way.
     const double change = sweep(L, pb.D_A, P, sweeps % 2 == 1);
@@ -175,20 +176,18 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
       r.solver.message = "the sweeps produced non-finite percussions";
       break;
     }
-    if (change > target && sweeps % 64 != 0) continue;
+    if (change > target && sweeps % every != 0) continue;
     m = measure(L, pb.D_A, P);
     if (m.residual <= target || m.excess <= target) {
       converge(false);
       break;
     }
-    // Where the sweeps slow down (less than halving the residual between two measures), the
-    // mode Newton tries to finish from their point, at checks ever further apart so that it
-    // costs a fraction of the sweeps: its steps do not grow with the pile, the sweeps do. A run
-    // that does not converge is dropped, and the sweeps go on from their own point.
+    // From the second measure on, the mode Newton tries to finish from the sweeps' point, at
+    // measures ever further apart (2, 4, 8, ...) so that it costs a fraction of the sweeps: its
+    // steps do not grow with the pile, the sweeps do. A run that does not converge is dropped,
+    // and the sweeps go on from their own point.
     ++checks;
-    const bool slow = checks >= 2 && m.residual > 0.5 * last;
-    last = m.residual;
-    if (options.newton_polish && slow && checks >= 2 * last_newton) {
+    if (options.newton_polish && checks >= 2 && checks >= 2 * last_newton) {
       last_newton = checks;
       r.solver.record(SolverMethod::nsgs, from, SolverStatus::stalled, m.residual / L.v_scale);
       from = AttemptStart::sweeps_end;
@@ -208,8 +207,8 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
     }
     if (m.residual < 0.99 * best) {
       best = m.residual;
-      since_best = 0;
-    } else if (++since_best >= kStallChecks) {
+      best_at = sweeps;
+    } else if (sweeps - best_at >= kStallSweeps) {
       r.solver.status = SolverStatus::stalled;
       r.solver.criterion = StopCriterion::step;
       r.solver.message = "the sweeps no longer reduce the residual";

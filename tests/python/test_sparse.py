@@ -27,7 +27,7 @@ def falling_stack(v):
 def test_falling_stack_stops_as_one_body():
     # e = 0: the ground takes 3 m v, the next contact 2 m v, the top one m v.
     r = f.solve_sparse(falling_stack(2.0), f.ImpactLaw.newton_coulomb(e=0.0, mu=0.5))
-    assert r.ok() and str(r.solver.method) == "nsgs"
+    assert r.ok()
     near(r.P_N, [6.0, 4.0, 2.0], 1e-9, 1e-9)
     near(r.qdot_E, np.zeros(9), 0, 1e-9)
     near([r.energy_change], [-6.0], 1e-9)
