@@ -10,27 +10,28 @@
 
 #include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
-#include "sparse/detail/contact_rows.hpp"
+#include "solvers/nsgs/contact_rows.hpp"
+#include "solvers/nsgs/sweeps.hpp"
 #include "sparse/detail/mass_inverse.hpp"
-#include "sparse/detail/mode_newton.hpp"
 
 namespace fremond {
 
 namespace {
 
 using detail::Layout;
-using detail::layout;
 using detail::Measure;
 using detail::measure;
-using detail::row_times;
-using detail::sweep;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// Stalled: this many sweeps without a 1 % gain of the residual. Piles of disks plateau for
-// thousands of sweeps before converging (703 contacts: 30,000 sweeps).
-constexpr int kStallSweeps = 8192;
-// Steps of one run of the mode Newton (mode_newton.hpp); a run that has the modes right ends in
-// a few.
-constexpr int kModeNewtonSteps = 12;
+
+// The sweeps' view of a problem in contact coordinates under Newton's law.
+Layout layout_of(const ContactProblem& pb, const RestitutionLaw& law) {
+  std::vector<double> e, mu;
+  for (int i = 0; i < pb.contacts(); ++i) {
+    e.push_back(law.e[i]);
+    mu.push_back(law.coulomb ? law.mu[i] : 0.0);
+  }
+  return detail::layout(pb.G, pb.D_A, pb.tangential, law.coulomb, e, mu);
+}
 
 // The certificate of a classical law in contact coordinates (docs/concepts.md): (15) in sum and
 // per contact, and non-penetration, each to how well the energies and velocities are known.
@@ -143,84 +144,20 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
     return r;
   }
   Eigen::VectorXd P = rows_of(pb, start, true);
-  const Layout L = layout(pb, *classical);
-  const double target = options.tolerance * L.v_scale;
-  Measure m;
-  int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0, best_at = 0;
-  double best = std::numeric_limits<double>::infinity();
-  // The residual costs a sweep: measured every 64 sweeps, every 16 on a few contacts, where a
-  // sweep is cheap beside the Newton run it may start.
-  const int every = L.contacts <= 64 ? 16 : 64;
-  bool by_newton = false;
-  AttemptStart from = start ? AttemptStart::none : AttemptStart::zero;
-  r.solver.status = SolverStatus::max_iterations;
-  r.solver.criterion = StopCriterion::iterations;
-  r.solver.message = "the sweep budget (max_sweeps) ran out with the residual above tolerance";
-  auto converge = [&](bool newton) {
-    by_newton = newton;
-    r.solver.status = SolverStatus::converged;
-    r.solver.criterion = m.residual <= target ? StopCriterion::residual : StopCriterion::rounding;
-    r.solver.message = m.residual <= target
-                           ? "the residual is within tolerance"
-                           : "each contact's residual is within the rounding of its velocities";
-  };
-  // A sweep's largest velocity change bounds what the next can still move; the residual is
-  // measured when that change is small, and every `every` sweeps to see a stall.
-  while (sweeps < options.max_sweeps) {
-    // Forward, then backward: a blow crosses a pile in one sweep either way.
-    const double change = sweep(L, pb.D_A, P, sweeps % 2 == 1);
-    ++sweeps;
-    if (!std::isfinite(change)) {
-      r.solver.status = SolverStatus::failed;
-      r.solver.criterion = StopCriterion::none;
-      r.solver.message = "the sweeps produced non-finite percussions";
-      break;
-    }
-    if (change > target && sweeps % every != 0) continue;
-    m = measure(L, pb.D_A, P);
-    if (m.residual <= target || m.excess <= target) {
-      converge(false);
-      break;
-    }
-    // From the second measure on, the mode Newton tries to finish from the sweeps' point, at
-    // measures ever further apart (2, 4, 8, ...) so that it costs a fraction of the sweeps: its
-    // steps do not grow with the pile, the sweeps do. A run that does not converge is dropped,
-    // and the sweeps go on from their own point.
-    ++checks;
-    if (options.newton_polish && checks >= 2 && checks >= 2 * last_newton) {
-      last_newton = checks;
-      r.solver.record(SolverMethod::nsgs, from, SolverStatus::stalled, m.residual / L.v_scale);
-      from = AttemptStart::sweeps_end;
-      Eigen::VectorXd trial = P;
-      Measure trial_m = m;
-      const auto o = detail::mode_newton(L, pb.D_A, trial, trial_m, target, kModeNewtonSteps);
-      newton_steps += o.steps;
-      r.solver.record(SolverMethod::semismooth_newton, AttemptStart::sweeps_end,
-                      o.converged ? SolverStatus::converged : SolverStatus::stalled,
-                      trial_m.residual / L.v_scale);
-      if (o.converged) {
-        P = std::move(trial);
-        m = std::move(trial_m);
-        converge(true);
-        break;
-      }
-    }
-    if (m.residual < 0.99 * best) {
-      best = m.residual;
-      best_at = sweeps;
-    } else if (sweeps - best_at >= kStallSweeps) {
-      r.solver.status = SolverStatus::stalled;
-      r.solver.criterion = StopCriterion::step;
-      r.solver.message = "the sweeps no longer reduce the residual";
-      break;
-    }
-  }
-  if (m.D_E.size() != pb.rows() || r.solver.status == SolverStatus::max_iterations)
-    m = measure(L, pb.D_A, P);
-  r.solver.iterations = sweeps + newton_steps;
+  const Layout L = layout_of(pb, *classical);
+  const detail::SweepOutcome o =
+      detail::solve_by_sweeps(L, pb.D_A, P,
+                              {.tolerance = options.tolerance,
+                               .max_sweeps = options.max_sweeps,
+                               .newton_polish = options.newton_polish},
+                              start ? AttemptStart::none : AttemptStart::zero, r.solver);
+  const Measure& m = o.measure;
+  r.solver.status = o.status;
+  r.solver.criterion = o.criterion;
+  r.solver.message = o.message;
+  r.solver.method = o.method;
+  r.solver.iterations = o.iterations;
   r.solver.residual = m.residual / L.v_scale;
-  r.solver.method = by_newton ? SolverMethod::semismooth_newton : SolverMethod::nsgs;
-  if (!by_newton) r.solver.record(SolverMethod::nsgs, from, r.solver.status, r.solver.residual);
   scatter(L, pb, P, m.D_E, r);
   // T_E − T_A = P·z for fixed obstacles (eq. 9); solve_impact replaces it by the velocities'.
   r.energy_change = r.P_N.dot(0.5 * (r.D_NA + r.D_NE)) + r.P_T.dot(0.5 * (r.D_TA + r.D_TE));
@@ -291,7 +228,7 @@ double contact_residual(const ContactProblem& problem, const ImpactLaw& law,
   const RestitutionLaw* classical = law.get_if<RestitutionLaw>();
   if (!classical) throw InvalidArgument("law", "contact_residual measures Newton's law only");
   const Eigen::VectorXd P = rows_of(problem, &result, false);
-  const Layout L = layout(problem, *classical);
+  const Layout L = layout_of(problem, *classical);
   return measure(L, problem.D_A, P).residual / L.v_scale;
 }
 

@@ -1,13 +1,11 @@
 #pragma once
-/// @file The contact rows of a sparse solve (docs/sparse.md): what the sweeps and the mode
-/// Newton read of one problem and law, and the law's residual at given percussions.
+/// @file Contact rows under Newton's law (docs/sparse.md): what the sweeps and the mode Newton
+/// read of one problem and law, and the law's residual at given percussions.
 #include <Eigen/SparseCore>
 #include <limits>
 #include <vector>
 
-#include "fremond/laws/restitution/restitution_law.hpp"
-#include "fremond/sparse/contact_problem.hpp"
-#include "sparse/detail/coulomb_contact.hpp"
+#include "solvers/nsgs/coulomb_contact.hpp"
 
 namespace fremond::detail {
 
@@ -25,7 +23,10 @@ struct Layout {
   double v_scale = std::numeric_limits<double>::min();
 };
 
-Layout layout(const ContactProblem& pb, const RestitutionLaw& law);
+/// The layout of G (rows grouped by contact: with `tangential`, row 2i contact i's normal and
+/// 2i + 1 its tangent), D_A and each contact's e and μ (μ read only with `coulomb`).
+Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
+              bool coulomb, const std::vector<double>& e, const std::vector<double>& mu);
 
 /// Row `row` of G times P; *size, when given, gets Σ|G_rk P_k|.
 inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {

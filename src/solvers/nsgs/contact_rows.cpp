@@ -1,5 +1,5 @@
 // The contact rows of a sparse solve (contact_rows.hpp).
-#include "sparse/detail/contact_rows.hpp"
+#include "solvers/nsgs/contact_rows.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,34 +10,34 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 }  // namespace
 
-Layout layout(const ContactProblem& pb, const RestitutionLaw& law) {
+Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
+              bool coulomb, const std::vector<double>& e, const std::vector<double>& mu) {
   Layout L;
-  L.contacts = pb.contacts();
-  L.step = pb.tangential ? 2 : 1;
-  L.friction = pb.tangential && law.coulomb;
-  L.G = pb.G;
+  L.step = tangential ? 2 : 1;
+  L.contacts = static_cast<int>(D_A.size()) / L.step;
+  L.friction = tangential && coulomb;
+  L.G = G;
   L.G.makeCompressed();
   const auto n = static_cast<std::size_t>(L.contacts);
   L.block.resize(n);
-  L.e.resize(n);
+  L.e = e;
   L.mu.resize(n);
   L.shift.resize(n);
   for (int i = 0; i < L.contacts; ++i) {
     const int r = L.step * i;
-    auto& B = L.block[static_cast<std::size_t>(i)];
-    B.a = pb.G.coeff(r, r);
-    if (pb.tangential) {
-      B.b = pb.G.coeff(r, r + 1);
-      B.c = pb.G.coeff(r + 1, r);
-      B.d = pb.G.coeff(r + 1, r + 1);
+    const auto k = static_cast<std::size_t>(i);
+    auto& B = L.block[k];
+    B.a = G.coeff(r, r);
+    if (tangential) {
+      B.b = G.coeff(r, r + 1);
+      B.c = G.coeff(r + 1, r);
+      B.d = G.coeff(r + 1, r + 1);
     }
-    L.e[static_cast<std::size_t>(i)] = law.e[i];
-    L.mu[static_cast<std::size_t>(i)] = L.friction ? law.mu[i] : 0.0;
-    const double DNA = pb.D_A(r);
-    L.shift[static_cast<std::size_t>(i)] = law.e[i] * std::min(DNA, 0.0);
+    L.mu[k] = L.friction ? mu[k] : 0.0;
+    const double DNA = D_A(r);
+    L.shift[k] = e[k] * std::min(DNA, 0.0);
     if (DNA <= 0.0)
-      L.v_scale =
-          std::max({L.v_scale, std::fabs(DNA), pb.tangential ? std::fabs(pb.D_A(r + 1)) : 0.0});
+      L.v_scale = std::max({L.v_scale, std::fabs(DNA), tangential ? std::fabs(D_A(r + 1)) : 0.0});
   }
   return L;
 }

@@ -1,5 +1,5 @@
 // Semismooth Newton on the contacts' modes (mode_newton.hpp, docs/sparse.md#mode-newton).
-#include "sparse/detail/mode_newton.hpp"
+#include "solvers/nsgs/mode_newton.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SparseLU>

@@ -3,7 +3,7 @@
 /// the sweeps, whose number of steps does not grow with the pile.
 #include <Eigen/Core>
 
-#include "sparse/detail/contact_rows.hpp"
+#include "solvers/nsgs/contact_rows.hpp"
 
 namespace fremond::detail {
 

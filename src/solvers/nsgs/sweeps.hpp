@@ -1,0 +1,36 @@
+#pragma once
+/// @file Nonsmooth Gauss–Seidel with the mode Newton after it (docs/sparse.md): Newton's law, with
+/// or without Coulomb friction, on contact rows, for the sparse path and for the classical chain's
+/// large contact sets alike.
+#include <Eigen/Core>
+#include <string_view>
+
+#include "fremond/solvers/impact_result.hpp"
+#include "solvers/nsgs/contact_rows.hpp"
+
+namespace fremond::detail {
+
+struct SweepOptions {
+  double tolerance = 1e-10;  ///< relative to the layout's v_scale
+  int max_sweeps = 100000;
+  bool newton_polish = true;  ///< the mode Newton from the second residual measure on
+};
+
+/// How the sweeps ended, and the law's residual at the percussions they leave.
+struct SweepOutcome {
+  SolverStatus status = SolverStatus::max_iterations;
+  StopCriterion criterion = StopCriterion::iterations;
+  std::string_view message;
+  SolverMethod method = SolverMethod::nsgs;  ///< semismooth_newton where its run converged
+  int iterations = 0;                        ///< sweeps and Newton steps
+  Measure measure;                           ///< at the percussions P left
+};
+
+/// Sweeps from P (in place) until the residual meets the tolerance, stalls (8,192 sweeps without a
+/// 1 % gain) or the budget ends; the mode Newton tries to finish at the 2nd, 4th, 8th, ...
+/// measure. Each stretch of sweeps and each Newton run is recorded in `log`, the first stretch
+/// as starting from `first`.
+SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
+                             const SweepOptions& options, AttemptStart first, SolverReport& log);
+
+}  // namespace fremond::detail
