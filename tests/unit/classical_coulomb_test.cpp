@@ -577,6 +577,39 @@ TEST(ClassicalMethods, ResidualAtTheAnswersVelocitiesAgreesWithTheData) {
   EXPECT_GE(converged, 300);
 }
 
+// Newton + Coulomb on many contacts goes to the sweeps and the mode Newton first: on plates of 8
+// to 32 contacts (G of rank 3) and random bodies of 18 to 30 dofs with up to 15 contacts, the
+// answer meets the law to the tolerance by law_residual, no contact penetrates, and the
+// velocities are Lemke's on the same problem (a second method) where Lemke's answer is unique in
+// velocities.
+TEST(ClassicalMethods, ManyContactsMeetTheLawAndAgreeWithLemke) {
+  std::vector<ImpactProblem> problems;
+  for (int c : {8, 16, 32}) problems.push_back(fixtures::plate_many_contacts(c, true));
+  for (int n : {18, 24, 30})
+    for (int index = 0; index < 4; ++index)
+      problems.push_back(fixtures::random_problem_any(n, n / 2, index, true));
+  int compared = 0;
+  for (const ImpactProblem& pb : problems) {
+    for (const double mu : {0.1, 0.5, 2.0}) {
+      const ImpactLaw law = ImpactLaw::newton_coulomb(0.3, mu);
+      const ImpactResult r = solve_impact(pb, law);
+      const std::string what =
+          std::to_string(pb.dofs()) + " dofs, " + std::to_string(pb.contacts()) + " contacts";
+      ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
+      EXPECT_LE(law_residual(pb, law, r), 1e-13) << what;
+      EXPECT_LE(r.admissibility.penetration, 1e-12) << what;
+      SolverOptions lemke;
+      lemke.method = SolverMethod::lemke;
+      const ImpactResult l = solve_impact(pb, law, lemke);
+      if (!l.ok()) continue;
+      ++compared;
+      EXPECT_LE((r.qdot_E - l.qdot_E).cwiseAbs().maxCoeff(), 1e-10 * l.qdot_E.cwiseAbs().maxCoeff())
+          << what << ", mu " << mu;
+    }
+  }
+  EXPECT_EQ(compared, 45);  // Lemke answers every one of them
+}
+
 TEST(ClassicalMethods, AMethodOfFremondsLawIsUnsupported) {
   // An iterative method of Frémond's law is refused in the result, with no percussion, never
   // answered by another method under its name.

@@ -290,13 +290,14 @@ struct LawOutcome {
   /// Newton's laws: the answer is a mode solved for its velocities, no mode in contact space having
   /// one (classical_velocity_mode.hpp, solve_modes_in_velocities).
   bool in_velocities = false;
+  bool sweeps = false;  ///< found by the sweeps and the mode Newton (solvers/nsgs)
 
   void reset() {
     solutions.clear();
     method = SolverMethod::closed_form;
     pivots = fallbacks = 0;
     exhaustive = percussion_unique = compression_unique = true;
-    continuum = beyond_precision = unsupported = extended = in_velocities = false;
+    continuum = beyond_precision = unsupported = extended = in_velocities = sweeps = false;
   }
 };
 

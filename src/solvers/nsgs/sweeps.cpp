@@ -26,7 +26,11 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
   double best = std::numeric_limits<double>::infinity();
   // The residual costs a sweep: measured every 64 sweeps, every 16 on a few contacts, where a
   // sweep is cheap beside the Newton run it may start.
-  const int every = L.contacts <= 64 ? 16 : 64;
+  const bool few = L.contacts <= 64;
+  const int every = few ? 16 : 64;
+  // The first Newton run: at the first measure on a few contacts, whose factorisation costs a few
+  // sweeps; at the second on more, where easy problems end in the sweeps before it.
+  const int first_run = few ? 1 : 2;
   bool by_newton = false;
   AttemptStart from = first;
   SweepOutcome out;
@@ -57,12 +61,12 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       converge(false);
       break;
     }
-    // From the second measure on, the mode Newton tries to finish from the sweeps' point, at
-    // measures ever further apart (2, 4, 8, ...) so that it costs a fraction of the sweeps: its
-    // steps do not grow with the pile, the sweeps do. A run that does not converge is dropped,
-    // and the sweeps go on from their own point.
+    // From `first_run` on, the mode Newton tries to finish from the sweeps' point, at measures
+    // ever further apart (doubling) so that it costs a fraction of the sweeps: its steps do not
+    // grow with the pile, the sweeps do. A run that does not converge is dropped, and the sweeps
+    // go on from their own point.
     ++checks;
-    if (options.newton_polish && checks >= 2 && checks >= 2 * last_newton) {
+    if (options.newton_polish && checks >= first_run && checks >= 2 * last_newton) {
       last_newton = checks;
       log.record(SolverMethod::nsgs, from, SolverStatus::stalled, m.residual / L.v_scale);
       from = AttemptStart::sweeps_end;
