@@ -842,7 +842,7 @@ inline bool clearly_more_exact(double candidate, double kept, const Tolerances& 
 /// by 3e-11 cannot both stick after a rotating expansion (their tangential velocities differ by
 /// 4e-15), and the singular stick-stick mode, accepted within its tolerance, would hide the exact
 /// stick-slide answer. `continuum` is set when a singular mode may hold a continuum of velocities.
-/// The contacts from which Newton's law goes to the sweeps first (classical.cpp).
+/// The contacts from which Newton + Coulomb goes to the sweeps first (classical.cpp).
 inline constexpr int kSweepsFromContacts = 8;
 /// Their budget there before Lemke takes over: four runs of the mode Newton (measures 2, 4, 8, 16).
 inline constexpr int kChainSweeps = 256;
