@@ -35,11 +35,12 @@ double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
 
 /// classical_residual of Newton's law at the answer's own velocities (its D_NE, D_TE from q̇_E),
 /// where that is the same number to within the tolerance: M diagonal in cs (q̇_E = q̇_A + M⁻¹W P
-/// with one rounding an entry, as the residual's own velocities are) and the velocities' rounding,
-/// 16ε Σ|W||M⁻¹W||P| over every contact, at most tolerance/4 of the velocity scale. True, with
-/// the residual in *value, when those hold and the residual is at most tolerance/4: the law's
-/// residual from the data is then within the tolerance too, and the answer converged as the data
-/// would say. False otherwise (Poisson's phases included): the caller measures from the data.
+/// with one rounding an entry, as the residual's own velocities are) and the velocities'
+/// rounding, 2(rows + 2)ε Σ|W||M⁻¹W||P| over every contact, at most 45 % of the tolerance times
+/// the velocity scale. True, with the residual in *value, when those hold and the residual is at
+/// most 45 % of the tolerance too: the law's residual from the data is then within the tolerance,
+/// and the answer converged as the data would say. False otherwise (Poisson's phases included):
+/// the caller measures from the data.
 template <int MaxDofs, int MaxContacts>
 bool newton_residual_at_own_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                                        const ContactSpaceT<MaxDofs, MaxContacts>& cs,
