@@ -22,7 +22,7 @@ enum class AttemptStart : std::uint8_t {
   nlopt_end,            ///< where NLopt stopped.
   velocity_newton_end,  ///< where Newton in velocity space stopped.
   normal_rows,          ///< the normal rows' own answer, solved alone (G_NT = 0).
-  sweeps_end,           ///< where nonsmooth Gauss–Seidel's sweeps slowed down (sparse.md).
+  sweeps_end,           ///< where nonsmooth Gauss–Seidel's sweeps stood (sparse.md).
 };
 std::string_view to_string(AttemptStart s);
 AttemptStart attempt_start_from_string(std::string_view s);

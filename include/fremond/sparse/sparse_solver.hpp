@@ -22,8 +22,9 @@ struct SparseSolverOptions {
   /// in contact coordinates where T_A is not known, to the impact's energy scale
   /// max|P| · v_scale. Range [0, 1).
   double admissibility_tolerance = 1e-9;
-  /// Where the sweeps slow down, semismooth Newton on the contacts' modes polishes their answer
-  /// (docs/sparse.md#mode-newton): a few sparse factorisations, however tall the pile.
+  /// After the first sweeps, semismooth Newton on the contacts' modes tries to finish from their
+  /// point (docs/sparse.md#mode-newton): exact to rounding in a few factorisations where the modes
+  /// read are right; dropped, the sweeps going on, where not.
   bool newton_polish = true;
 
   /// True when every option is within its range; otherwise false with the reason in *why.

@@ -217,7 +217,6 @@ ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen
     if (here.residual < m.residual) {
       P = at;
       m = here;
-      out.improved = true;
       out.converged = met(m);
     }
   }
