@@ -58,14 +58,18 @@ Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::Vector
     const int r = L.step * i;
     const double wN = m.D_E(r) + L.shift[k];
     const double PN = P(r);
-    double R = std::fabs(std::min(wN, PN == 0.0 ? 0.0 : A.a * PN));
+    const double RN = std::min(wN, PN == 0.0 ? 0.0 : A.a * PN);
+    double R = std::fabs(RN);
     double floor = m.rounding(r);
+    m.squares += 0.5 * RN * RN;
     if (L.step == 2) {
       const double PT = P(r + 1), vT = m.D_E(r + 1);
       const double g = A.d > 0.0 ? A.d : A.a;
       const double bound = L.mu[k] * std::max(PN, 0.0);
       const double diff = PT - std::clamp(PT - vT / g, -bound, bound);
-      R = std::max(R, std::fabs(diff == 0.0 ? 0.0 : g * diff));
+      const double RT = diff == 0.0 ? 0.0 : g * diff;
+      R = std::max(R, std::fabs(RT));
+      m.squares += 0.5 * RT * RT;
       floor = std::max(floor, m.rounding(r + 1));
     }
     m.residual = std::max(m.residual, R);

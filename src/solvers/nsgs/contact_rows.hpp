@@ -46,6 +46,7 @@ inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd&
 struct Measure {
   double residual = 0.0;          ///< max |R|, velocity units
   double excess = 0.0;            ///< max (|R| − rounding of its rows)
+  double squares = 0.0;           ///< ½ Σ R² over the rows: the mode Newton's merit
   Eigen::VectorXd D_E, rounding;  ///< rows
 };
 

@@ -141,28 +141,6 @@ bool solve_mode(const ModeSystem& S, double target, double delta, Eigen::VectorX
       S, target, [&](const Eigen::VectorXd& r) { return lu.solve(r).eval(); }, x);
 }
 
-// ½ Σ R² over the rows, R the natural map of each row as measure() takes it (zero exactly at a
-// solution): the merit the Newton step descends, since the mode's equations are its Jacobian on
-// the branch read at P.
-double merit(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
-  double sum = 0.0;
-  for (int i = 0; i < L.contacts; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const auto& A = L.block[k];
-    const int r = L.step * i;
-    const double wN = D_A(r) + row_times(L.G, r, P, nullptr) + L.shift[k];
-    const double RN = std::min(wN, A.a * P(r));
-    sum += RN * RN;
-    if (L.step == 1) continue;
-    const double vT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr);
-    const double g = A.d > 0.0 ? A.d : A.a;
-    const double bound = L.mu[k] * std::max(P(r), 0.0);
-    const double RT = g * (P(r + 1) - std::clamp(P(r + 1) - vT / g, -bound, bound));
-    sum += RT * RT;
-  }
-  return 0.5 * sum;
-}
-
 }  // namespace
 
 ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
@@ -195,12 +173,13 @@ ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen
       if (L.step == 2)
         next(r + 1) = modes[k].mode == Mode::stick ? x(u + 1) : modes[k].s * L.mu[k] * x(u);
     }
-    // Backtracking on the merit (Armijo).
+    // Backtracking on ½ Σ R² (Armijo): the mode's equations are its Jacobian on the branch read
+    // at the current point, so the step descends it.
     const Eigen::VectorXd d = next - at;
-    const double f0 = merit(L, D_A, at);
+    const double f0 = here.squares;
     double t = 1.0;
     for (; t > 0.01; t *= 0.5)
-      if (merit(L, D_A, at + t * d) <= (1.0 - 1e-4 * t) * f0) break;
+      if (measure(L, D_A, at + t * d).squares <= (1.0 - 1e-4 * t) * f0) break;
     if (!(t > 0.01)) {
       delta *= 10.0;
       ++failures;
