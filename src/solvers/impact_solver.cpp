@@ -52,7 +52,7 @@ struct PreparedStage {
     options.validate();
     build_contact_space(pb, tangential_rows(law), cs, HeldContacts::every);
     require_positive_definite(pb.M, cs.llt);
-    out = ImpactResultT<N, C>{};
+    clear_result(out);
   }
 
   /// solve_impact_in_own_storage after its validation: the same stages on the same data. The
@@ -60,7 +60,7 @@ struct PreparedStage {
   /// contacts approach (update_velocities).
   void solve(const ImpactLaw& law, const SolverOptions& options) {
     if (!update_velocities(pb, cs)) build_contact_space(pb, tangential_rows(law), cs);
-    out = ImpactResultT<N, C>{};
+    clear_result(out);
     solve_on_contact_space(pb, law, options, cs, out);
   }
 };
@@ -105,7 +105,7 @@ struct PreparedWorkspace<Dynamic, Dynamic> {
       stage.pb = pb;
       stage.prepare(law, options);
     }
-    out = ImpactResult{};
+    clear_result(out);
   }
   // Validated in the storage it is solved in, as solve_impact does (the heap-stored test allocates
   // Eigen's temporaries).

@@ -13,6 +13,7 @@
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/independent_groups.hpp"
+#include "solvers/detail/result_copy.hpp"
 #include "solvers/detail/solve_stages.hpp"
 
 namespace fremond {
@@ -68,7 +69,7 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
   if (cs.active < cs.contacts && detail::drives_a_separating_contact(pb, out, options)) {
     const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
     build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
-    out = ImpactResultT<N, C>{};
+    clear_result(out);
     detail::solve_law_stage(pb, cs, every, options, out);
   }
   log_answer_if_unlogged(out);

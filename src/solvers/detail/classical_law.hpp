@@ -274,6 +274,9 @@ struct LawSolution {
 /// Every solution found for a law, and how.
 template <int C>
 struct LawOutcome {
+  // User-provided: a value-initialised aggregate (a chain's `{}`) is zeroed whole first, 24
+  // solutions' rows, 540 instructions of a one-contact solve's 5,000.
+  LawOutcome() {}  // NOLINT(modernize-use-equals-default)
   FixedList<LawSolution<C>, kMaxSolutions> solutions;
   SolverMethod method = SolverMethod::closed_form;  ///< the method of solutions[0]
   int pivots = 0;

@@ -19,6 +19,7 @@
 
 #include "contact_space/contact_space.hpp"
 #include "laws/detail/plugins.hpp"
+#include "solvers/detail/result_copy.hpp"
 
 namespace fremond::detail {
 
@@ -197,7 +198,7 @@ template <int N, int C>
   GroupMerge<N, C> merge(pb, cs);
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
-    r = ImpactResultT<N, C>{};
+    clear_result(r);
     solve_law_stage(sub, gcs, law, options, r);
     const SolverStatus s = r.solver.status;
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
