@@ -6,6 +6,8 @@
 //    problem, with the method forced (or automatic): validation, the contact space, the solver, the
 //    split of the reaction, the uniqueness test and the admissibility certificate
 //    ("stage=solve_impact method=...").
+//  - BM_FremondPrepared/<problem>/<law>: the prepared solver (ImpactSolver), set up once per
+//    problem, then solved from q̇_A with its certificate ("stage=prepared method=automatic").
 //  - BM_FremondLaw/<problem>/<law>: the contact space and the automatic method chain alone, without
 //    validation and certificate ("stage=law").
 //  - BM_FremondKernel/<problem>/<law>: for one decoupled row (a point mass, the bar's normal law),
@@ -81,6 +83,29 @@ void BM_Fremond(benchmark::State& state, const FremondCase* c, SolverMethod meth
     benchmark::DoNotOptimize(r.qdot_E.data());
   }
   state.SetLabel(label(*c, "method=" + std::string(to_string(method)) + " stage=solve_impact"));
+  check(state, *c, opt);
+}
+
+/// The prepared solver (ImpactSolver): built once per problem, then solved from its q̇_A with
+/// the certificate, as a simulation does impact after impact on one configuration.
+void BM_FremondPrepared(benchmark::State& state, const FremondCase* c) {
+  const SolverOptions opt;
+  std::vector<SmallImpactSolver> solvers;
+  for (const SmallImpactProblem& p : c->problems) solvers.emplace_back(p, c->law, opt);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    SmallImpactSolver& s = solvers[k];
+    k = k + 1 == solvers.size() ? 0 : k + 1;
+    benchmark::DoNotOptimize(s.solve(s.problem().qdot_A).qdot_E.data());
+  }
+  state.SetLabel(label(*c, "method=automatic stage=prepared"));
+  // The prepared answers are solve_impact's to the last bit, which check() holds to the reference.
+  for (std::size_t i = 0; i < solvers.size(); ++i)
+    if (!(Eigen::VectorXd(solvers[i].solve(c->problems[i].qdot_A).qdot_E) ==
+          Eigen::VectorXd(solve_impact(c->problems[i], c->law, opt).qdot_E))) {
+      state.SkipWithError("the prepared solver's answer differs from solve_impact's");
+      return;
+    }
   check(state, *c, opt);
 }
 
@@ -248,6 +273,7 @@ const bool registered = [] {
     for (SolverMethod m : methods)
       benchmark::RegisterBenchmark(
           ("BM_Fremond" + suffix + "/" + std::string(to_string(m))).c_str(), BM_Fremond, &c, m);
+    benchmark::RegisterBenchmark(("BM_FremondPrepared" + suffix).c_str(), BM_FremondPrepared, &c);
     benchmark::RegisterBenchmark(("BM_FremondLaw" + suffix).c_str(), BM_FremondLaw, &c);
     if (c.problems.size() == 1 && c.problems[0].contacts() == 1 &&
         c.spec.tangential == FremondLawSpec::Tangential::none)

@@ -8,8 +8,11 @@
 #include <string>
 #include <thread>
 
+#include "core/detail/impact_problem.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/solvers/solve_impact.hpp"
+#include "solvers/detail/result_copy.hpp"
+#include "solvers/detail/solve_stages.hpp"
 
 namespace fremond {
 
@@ -34,6 +37,22 @@ int workers_for(std::size_t count, int threads) {
   const std::string reason = std::string(e.what()).substr(e.name().size() + 2);
   if (e.name().rfind("law", 0) == 0) throw InvalidArgument(e.name(), reason + " (" + index + ")");
   throw InvalidArgument(index + "." + e.name(), reason);
+}
+
+/// results[i] = solve_impact(problem, ...), written in place: a small answer straight into its
+/// result, a heap-stored one through the small form where it fits (as solve_impact solves it),
+/// copied into the storage the result already has.
+template <int N, int C>
+void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const SolverOptions& options,
+                ImpactResultT<N, C>& out, SmallImpactResult& small) {
+  if constexpr (N == Dynamic && C == Dynamic) {
+    if (fits_small(pb)) {
+      detail::solve_impact_into(to_small(pb), law, options, small);
+      detail::copy_into(small, out);
+      return;
+    }
+  }
+  detail::solve_impact_into(pb, law, options, out);
 }
 }  // namespace
 
@@ -61,13 +80,14 @@ void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw
   std::atomic<bool> broken{false};
   auto work = [&](int worker) {
     const std::size_t stride = block * static_cast<std::size_t>(n);
+    SmallImpactResult small;  // a heap-stored problem's answer in the small form
     for (std::size_t begin = block * static_cast<std::size_t>(worker); begin < count;
          begin += stride) {
       if (begin > first_bad.load(std::memory_order_relaxed) || broken.load()) return;
       const std::size_t end = std::min(begin + block, count);
       for (std::size_t i = begin; i < end; ++i) {
         try {
-          results[i] = solve_impact(problems[i], law, options);
+          solve_into(problems[i], law, options, results[i], small);
         } catch (const InvalidArgument& e) {
           std::lock_guard<std::mutex> lock(refused_lock);
           if (i < first_bad.load()) {

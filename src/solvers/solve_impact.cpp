@@ -81,17 +81,24 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
 }
 
 template <int N, int C>
-ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
-                                                        const ImpactLaw& law,
-                                                        const SolverOptions& options) {
+void detail::solve_impact_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                               const SolverOptions& options, ImpactResultT<N, C>& out) {
   detail::validate_shapes(pb);
   law.validate(pb.contacts());
   options.validate();
   detail::ContactSpaceT<N, C> cs;
   build_contact_space(pb, detail::tangential_rows(law), cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
-  ImpactResultT<N, C> out;
+  clear_result(out);
   solve_on_contact_space(pb, law, options, cs, out);
+}
+
+template <int N, int C>
+ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
+                                                        const ImpactLaw& law,
+                                                        const SolverOptions& options) {
+  ImpactResultT<N, C> out;
+  solve_impact_into(pb, law, options, out);
   return out;
 }
 
@@ -118,6 +125,11 @@ template void detail::solve_on_contact_space(const ImpactProblemT<kSmallDofs, kS
                                              const ImpactLaw&, const SolverOptions&,
                                              ContactSpaceT<kSmallDofs, kSmallContacts>&,
                                              ImpactResultT<kSmallDofs, kSmallContacts>&);
+template void detail::solve_impact_into(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,
+                                        const SolverOptions&, ImpactResultT<Dynamic, Dynamic>&);
+template void detail::solve_impact_into(const ImpactProblemT<kSmallDofs, kSmallContacts>&,
+                                        const ImpactLaw&, const SolverOptions&,
+                                        ImpactResultT<kSmallDofs, kSmallContacts>&);
 template ImpactResultT<Dynamic, Dynamic> detail::solve_impact_in_own_storage(
     const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&, const SolverOptions&);
 template ImpactResultT<kSmallDofs, kSmallContacts> detail::solve_impact_in_own_storage(

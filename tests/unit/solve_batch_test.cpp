@@ -71,10 +71,27 @@ TEST(SolveBatch, IntoTheCallersResultsWhichMustFit) {
   const ImpactLaw law = ImpactLaw::poisson_coulomb(0.5, 0.4);
   const std::vector<ImpactProblem> problems = bars(100, true);
   std::vector<ImpactResult> results(problems.size());
-  for (int reuse = 0; reuse < 2; ++reuse) {  // the second batch overwrites the first's answers
-    solve_batch(std::span<const ImpactProblem>(problems), law, std::span(results), {}, {2});
-    for (std::size_t i = 0; i < problems.size(); ++i)
-      expect_identical(results[i], solve_impact(problems[i], law), static_cast<int>(i));
+  std::vector<SmallImpactResult> small(problems.size());
+  std::vector<SmallImpactProblem> small_problems;
+  for (const auto& p : problems) small_problems.push_back(to_small(p));
+  // Each batch overwrites the last one's answers, under another law: nothing of Poisson's phases
+  // or Frémond's reaction stays behind.
+  for (const ImpactLaw& l : {law, ImpactLaw::fremond_coulomb(PowerPotential(4.0, 3.0), 0.3), law,
+                             ImpactLaw::newton(0.8)}) {
+    SCOPED_TRACE(l.describe());
+    solve_batch(std::span<const ImpactProblem>(problems), l, std::span(results), {}, {2});
+    solve_batch(std::span<const SmallImpactProblem>(small_problems), l, std::span(small), {}, {2});
+    for (std::size_t i = 0; i < problems.size(); ++i) {
+      const ImpactResult alone = solve_impact(problems[i], l);
+      for (const ImpactResult& r : {results[i], to_dynamic(small[i])}) {
+        expect_identical(r, alone, static_cast<int>(i));
+        EXPECT_EQ(r.has_phases, alone.has_phases);
+        EXPECT_EQ(r.P_NC, alone.P_NC);
+        EXPECT_EQ(r.qdot_C, alone.qdot_C);
+        EXPECT_EQ(r.P_N_reaction, alone.P_N_reaction);
+        EXPECT_EQ(r.admissibility.reaction, alone.admissibility.reaction);
+      }
+    }
   }
   std::vector<ImpactResult> short_list(problems.size() - 1);
   try {

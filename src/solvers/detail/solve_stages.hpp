@@ -18,4 +18,11 @@ void solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law
                             const SolverOptions& options, ContactSpaceT<N, C>& cs,
                             ImpactResultT<N, C>& out);
 
+/// solve_impact_in_own_storage's work with the answer written into `out`, a result of earlier
+/// solves (cleared first): the batch solves into the results it is given. Throws before
+/// touching `out` where the problem, the law or the options are refused.
+template <int N, int C>
+void solve_impact_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                       const SolverOptions& options, ImpactResultT<N, C>& out);
+
 }  // namespace fremond::detail
