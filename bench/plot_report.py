@@ -22,7 +22,8 @@ simulation_work_precision.csv) and machine.txt, and writes into the same directo
     throughput, simulation).
 
 With --docs, the performance page (docs/performance.md) is rewritten from the report's summary, with
-the plots copied to docs/perf/. Uses the standard library and matplotlib.
+the plots copied to docs/perf/, and the README's speed table (between its speed markers) from the
+report's first table. Uses the standard library and matplotlib.
 """
 import argparse
 import csv
@@ -508,17 +509,20 @@ def why_short(p, cases_info):
     return "stops at its rounding floor (16 ε × the terms of the residual)"
 
 
-def siconos_summary(pairs):
-    """One row per pair key: the fastest Siconos run against ours at three depths."""
+def natural(k):
+    """Sort key with numbers compared as numbers: plate_c2 before plate_c16."""
+    return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", k)]
+
+
+def pair_picks(pairs):
+    """Per pair key (problem and law), the runs the tables set side by side: Siconos's fastest
+    from the data (`siconos`) and from G (`driver`), and ours: the prepared solver, the public
+    solve_impact (`api`), the same work as Siconos's (`same`) and the kernel; None where absent."""
     by = defaultdict(lambda: ({}, {}))
     for k, sr, o, _, unit in pairs:
         by[k][0][sr["name"]] = sr
         by[k][1][o["name"]] = o
-    rows = []
-
-    def natural(k):  # plate_c2 before plate_c16
-        return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", k)]
-
+    picks = {}
     for k in sorted(by, key=natural):
         theirs, ours = by[k]
 
@@ -529,18 +533,29 @@ def siconos_summary(pairs):
         def pick(pred):
             return fastest(ours.values(), pred)
 
-        sbest = fastest(theirs.values(), lambda b: compare.depth(b) == "data")
-        sdrv = fastest(theirs.values(), lambda b: compare.depth(b) == "G")
+        picks[k] = {
+            "siconos": fastest(theirs.values(), lambda b: compare.depth(b) == "data"),
+            "driver": fastest(theirs.values(), lambda b: compare.depth(b) == "G"),
+            "api": pick(lambda b: "SolveImpact" in b["name"] and "unchecked" in b["name"]) or pick(
+                lambda b: b["name"].startswith("BM_Fremond/") and b["name"].endswith("/automatic"))
+            or pick(lambda b: "stage=solve_impact" in b.get("label", "")),
+            "prepared": pick(lambda b: ("Prepared" in b["name"] and "unchecked" in b["name"])
+                             or b["name"].startswith("BM_FremondPrepared/")),
+            "same": pick(lambda b: "FromData" in b["name"] or b["name"].startswith("BM_FremondLaw/")),
+            "kernel": pick(lambda b: "Kernel" in b["name"]),
+        }
+    return picks
+
+
+def siconos_summary(pairs):
+    """One row per pair key: the fastest Siconos run against ours at three depths."""
+    rows = []
+    for k, p in pair_picks(pairs).items():
+        sbest, sdrv = p["siconos"], p["driver"]
         if sbest is None:
             continue
         sv, unit = compare.cost(sbest)
-
-        api = pick(lambda b: "SolveImpact" in b["name"] and "unchecked" in b["name"]) or pick(
-            lambda b: b["name"].startswith("BM_Fremond/") and b["name"].endswith("/automatic")) or pick(
-            lambda b: "stage=solve_impact" in b.get("label", ""))
-        prepared = pick(lambda b: "Prepared" in b["name"] and "unchecked" in b["name"])
-        same = pick(lambda b: "FromData" in b["name"] or b["name"].startswith("BM_FremondLaw/"))
-        kern = pick(lambda b: "Kernel" in b["name"])
+        api, prepared, same, kern = p["api"], p["prepared"], p["same"], p["kernel"]
         def cell(v):
             return fmt_ns(v) if unit == "ns" else f"{v:.3g} {unit}"
 
@@ -566,6 +581,108 @@ def siconos_summary(pairs):
         rows.append([k.replace("problem=", "").replace(" law=", " / "), display(sbest["name"]),
                      cell(sv), fmt_err(num(sbest.get("err")))]
                     + cells + [fmt_err(max(errs) if errs else math.nan)])
+    return rows
+
+
+# What a user gets (the prepared solver, the one-shot solve_impact, the batch), beside Siconos,
+# for the problems of the public-path targets; the targets' verdicts follow.
+USER_KEYS = [("bar_first_impact", "newton_coulomb"), ("point_mass", "newton_coulomb"),
+             ("flat_bar", "newton_coulomb"), ("bar_first_impact", "fremond_p3_coulomb"),
+             ("plate_c8", "newton_coulomb"), ("plate_c16", "newton_coulomb"),
+             ("plate_c32", "newton_coulomb"), ("random_n12_c6", "newton_coulomb"),
+             ("random_n18_c9", "newton_coulomb"), ("random_n24_c12", "newton_coulomb"),
+             ("random_n30_c15", "newton_coulomb")]
+
+
+def user_rows(runs, pairs):
+    """Rows of (problem / law, prepared, ratio, solve_impact, ratio, Siconos's fastest, its time,
+    errors), and the ratios by problem for the targets."""
+    picks = pair_picks(pairs)
+    rows, ratios = [], {}
+    for problem, law in USER_KEYS:
+        p = picks.get(f"problem={problem} law={law}")
+        if p is None:  # no Siconos peer (Frémond + Coulomb): ours alone
+            ours = {"prepared": find(runs, "BM_FremondPrepared/", problem=problem, law=law),
+                    "api": find(runs, "BM_Fremond/", problem=problem, law=law, method="automatic")}
+            p = {k: best(v) for k, v in ours.items()}
+            p["siconos"] = None
+        s = p["siconos"]
+        sv = compare.cost(s)[0] if s else None
+        cells = [f"{problem} / {law}"]
+        for which in ("prepared", "api"):
+            b = p.get(which)
+            v = compare.cost(b)[0] if b else None
+            ratio = sv / v if (sv and v) else None
+            ratios[(problem, law, which)] = (v, ratio)
+            cells += [fmt_ns(v), f"**{ratio:.2g}**" if ratio else "–"]
+        ours = [b for b in (p.get("prepared"), p.get("api")) if b is not None]
+        errs = [num(b.get("err")) for b in ours if "err" in b]
+        # Without a reference (plates, random bodies) ours is judged by the law's own residual.
+        residuals = [num(b.get("residual")) for b in ours if "residual" in b]
+        our_err = (fmt_err(max(errs)) if errs else
+                   f"residual {fmt_err(max(residuals))}" if residuals else "–")
+        cells += [display(s["name"]) if s else "– (no Siconos solver for this law)", fmt_ns(sv),
+                  fmt_err(num(s.get("err"))) if s else "–", our_err]
+        rows.append(cells)
+    return rows, ratios
+
+
+def batch_rows(runs, ratios):
+    """Impacts per second of solve_batch on 1 and 2 threads, and the gain of the second core;
+    Siconos's one-core rate from its fastest bar solve beside the Newton + Coulomb rows."""
+    rows, rates = [], {}
+    sic = ratios.get(("bar_first_impact", "newton_coulomb", "api"))
+    for name, law, form in (("BM_Batch_SmallBar_NewtonCoulomb", "Newton + Coulomb", "small"),
+                            ("BM_Batch_Bar_NewtonCoulomb", "Newton + Coulomb", "heap"),
+                            ("BM_Batch_SmallBar_FremondCoulomb_p3", "Frémond + Coulomb p = 3", "small"),
+                            ("BM_Batch_Bar_FremondCoulomb_p3", "Frémond + Coulomb p = 3", "heap")):
+        got = {}
+        for t in (1, 2):
+            r = [b for b in runs if b["name"].startswith(f"{name}/{t}/") and not b.get("error_occurred")]
+            got[t] = r[0].get("items_per_second") if r else None
+        if got[1] is None and got[2] is None:
+            continue
+        rates[(law, form)] = got
+        gain = f"{got[2] / got[1]:.2f}×" if got[1] and got[2] else "–"
+        rows.append([law, form, f"{got[1] / 1e6:.2f} M/s" if got[1] else "–",
+                     f"{got[2] / 1e6:.2f} M/s" if got[2] else "–", gain])
+    siconos_rate = None
+    if sic and sic[0] and sic[1]:
+        siconos_rate = 1e9 / (sic[0] * sic[1])  # Siconos's time = ours × ratio
+    return rows, rates, siconos_rate
+
+
+def public_path_targets(ratios, rates):
+    """The public path's targets (prepared ≥ 5× Siconos, one-shot ≥ 2×, many contacts ≥ 1×,
+    the batch's rate and gain, Frémond + Coulomb prepared under 150 ns) and what was measured."""
+    rows = []
+
+    def verdict(ok):
+        return "–" if ok is None else ("met" if ok else "missed")
+
+    for problem in ("bar_first_impact", "point_mass", "flat_bar"):
+        v, r = ratios.get((problem, "newton_coulomb", "prepared"), (None, None))
+        rows.append([f"{problem}, Newton + Coulomb, prepared", "≥ 5× Siconos",
+                     f"{r:.2g}×" if r else "–", verdict(r >= 5 if r else None)])
+        v, r = ratios.get((problem, "newton_coulomb", "api"), (None, None))
+        rows.append([f"{problem}, Newton + Coulomb, solve_impact", "≥ 2× Siconos",
+                     f"{r:.2g}×" if r else "–", verdict(r >= 2 if r else None)])
+    for problem in ("plate_c8", "plate_c16", "plate_c32", "random_n12_c6", "random_n18_c9",
+                    "random_n24_c12", "random_n30_c15"):
+        v, r = ratios.get((problem, "newton_coulomb", "api"), (None, None))
+        rows.append([f"{problem}, Newton + Coulomb, solve_impact", "≥ 1× Siconos",
+                     f"{r:.2g}×" if r else "–", verdict(r >= 1 if r else None)])
+    v, _ = ratios.get(("bar_first_impact", "fremond_p3_coulomb", "prepared"), (None, None))
+    rows.append(["bar, Frémond + Coulomb p = 3, prepared", "< 150 ns", fmt_ns(v),
+                 verdict(v < 150 if v else None)])
+    for law, want in (("Newton + Coulomb", 10e6), ("Frémond + Coulomb p = 3", 2e6)):
+        two = max((rates.get((law, f), {}).get(2) or 0) for f in ("small", "heap"))
+        rows.append([f"batch of bars, {law}, 2 threads", f"≥ {want / 1e6:.0f} M/s",
+                     f"{two / 1e6:.2f} M/s" if two else "–", verdict(two >= want if two else None)])
+    g = rates.get(("Newton + Coulomb", "small"), {})
+    gain = g[2] / g[1] if g.get(1) and g.get(2) else None
+    rows.append(["batch, second core's gain", "≥ 1.8×", f"{gain:.2f}×" if gain else "–",
+                 verdict(gain >= 1.8 if gain else None)])
     return rows
 
 
@@ -732,6 +849,34 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
     if sic:
         lines += [f"Siconos: {', '.join(sorted(sic))} (Debian packages).", ""]
 
+    if pairs:
+        urows, ratios = user_rows(runs, pairs)
+        brows, rates, siconos_rate = batch_rows(runs, ratios)
+        lines += ["## What a user gets", "",
+                  "CPU time per impact on one core, from the data, with the admissibility "
+                  "certificate: the prepared solver (`ImpactSolver`, set up once per "
+                  "configuration, then `solve(q̇_A)`), the one-shot `solve_impact` (validation "
+                  "included), and Siconos's fastest solver on the same problem, timed from "
+                  "(M, W, q̇_A) in the same run. Ratio = Siconos's time over ours (> 1: we are "
+                  "faster). `err`: distance of the answers' q̇_E to the closed form or the quad "
+                  "reference, relative in the kinetic-energy norm; the plates and random bodies "
+                  "have no reference, so there Siconos's `err` is its distance to our answer and "
+                  "ours is the law's scaled residual (docs/solvers.md).", "",
+                  md_table(["problem / law", "ours: prepared", "ratio", "ours: solve_impact",
+                            "ratio", "Siconos, fastest from the data", "time", "its err",
+                            "our err"], urows), ""]
+        if brows:
+            lines += ["Batches (`solve_batch`): 4,096 bar impacts at random angles and velocities, "
+                      "each certified, on 1 and 2 threads; `small`: the stack-stored problems and "
+                      "results, `heap`: the heap-stored ones." +
+                      (f" Siconos solves the bar on one core at {siconos_rate / 1e6:.2f} M/s "
+                       "(from its fastest time above)." if siconos_rate else ""), "",
+                      md_table(["law", "storage", "1 thread", "2 threads", "second core"], brows),
+                      ""]
+        lines += ["### The public path's targets", "",
+                  md_table(["what", "target", "measured", ""], public_path_targets(ratios, rates)),
+                  ""]
+
     lines += ["## Targets", "", md_table(["what", "target", "measured", "", "benchmark"],
                                          target_rows(runs)), ""]
 
@@ -847,6 +992,33 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
     return text
 
 
+def readme_speed(urows, brows):
+    """The README's speed table: a few rows of "What a user gets", the batch on two threads."""
+    keep = {"bar_first_impact / newton_coulomb", "flat_bar / newton_coulomb",
+            "bar_first_impact / fremond_p3_coulomb", "plate_c32 / newton_coulomb"}
+    rows = [[r[0], r[1], r[3], r[6], r[4]] for r in urows if r[0] in keep]
+    table = md_table(["problem / law", "prepared", "solve_impact", "Siconos (fastest)",
+                      "Siconos / solve_impact"], rows)
+    batch = [f"{r[0]} ({r[1]} storage): {r[3]} on two threads" for r in brows
+             if r[1] == "small"]
+    return table + ("\n\nBatches of 4,096 bar impacts: " + "; ".join(batch) + "." if batch else "")
+
+
+def update_readme(readme, text):
+    """Replaces what stands between the README's speed markers with `text`."""
+    begin, end = "<!-- speed:begin -->", "<!-- speed:end -->"
+    if not os.path.exists(readme):
+        return
+    with open(readme, encoding="utf-8") as f:
+        page = f.read()
+    if begin not in page or end not in page:
+        return
+    head, rest = page.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    with open(readme, "w", encoding="utf-8") as f:
+        f.write(head + begin + "\n" + text + "\n" + end + tail)
+
+
 def update_docs(page, outdir, report):
     """Rewrites the performance page (docs/performance.md) from the report's machine, targets,
     Siconos and work-precision sections, with the plots copied to perf/ beside the page."""
@@ -858,8 +1030,8 @@ def update_docs(page, outdir, report):
             shutil.copy(os.path.join(outdir, png), os.path.join(docs, png))
     keep = []
     for sec in re.split(r"(?=^## )", report, flags=re.M):
-        if sec.startswith(("## Machine", "## Targets", "## Against Siconos", "## Work-precision",
-                           "## Sparse problems")):
+        if sec.startswith(("## Machine", "## What a user gets", "## Targets", "## Against Siconos",
+                           "## Work-precision", "## Sparse problems")):
             keep.append(sec.replace("](work_precision_summary.png)", "](perf/work_precision_summary.png)")
                         .replace("](sparse_scaling.png)", "](perf/sparse_scaling.png)")
                         .replace("![work-precision, every case](work_precision.png)\n", ""))
@@ -890,6 +1062,12 @@ def main(argv=None):
     report = write_report(args.outdir, runs, contexts, wp, sim, pairs, cases)
     if args.docs:
         update_docs(args.docs, args.outdir, report)
+        if pairs:
+            urows, ratios = user_rows(runs, pairs)
+            brows, _, _ = batch_rows(runs, ratios)
+            readme = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(args.docs))),
+                                  "README.md")
+            update_readme(readme, readme_speed(urows, brows))
     print(f"wrote {args.outdir}/report.md")
     return 0
 

@@ -40,7 +40,7 @@ rm -f "$out"/*_bench.json
 
 echo "== build ($build, Release)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DFREMOND_BUILD_BENCHMARKS=ON >/dev/null
-benches=(fremond_bench classical_bench siconos_numerics_bench simulation_bench
+benches=(fremond_bench classical_bench batch_bench siconos_numerics_bench simulation_bench
          siconos_moreau_jean_bench scaling_bench sparse_bench scene_bench)
 cmake --build "$build" -j"$jobs" --target "${benches[@]}" work_precision
 
