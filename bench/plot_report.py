@@ -783,7 +783,9 @@ def sparse_runs(runs):
         if name.startswith("BM_Sparse_ReadFile"):
             continue
         ours = name.startswith("BM_Sparse_")
-        what = "pile" if "Pile" in name else name.split("/")[-1].replace(".dat", "")
+        # The file's part of the name; Google Benchmark appends "/iterations:N" to a fixed count.
+        parts = [w for w in name.split("/") if not re.match(r"^(iterations|repeats):\d+$", w)]
+        what = "pile" if "Pile" in name else parts[-1].replace(".dat", "")
         solver = "ours: nsgs" if ours else "Siconos: " + words(b.get("label", "")).get(
             "solver", "?").replace("fc2d_", "")
         status = b.get("label", "").split(" ")[0] if ours else "converged"
