@@ -549,16 +549,23 @@ bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& la
   const int a = cs.active, rows = cs.rows();
   const bool t = cs.tangential;
   auto grouped = [&](int j) { return !t ? j : (j < a ? 2 * j : 2 * (j - a) + 1); };
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(rows) * static_cast<std::size_t>(rows));
+  auto of_grouped = [&](int g) { return !t ? g : (g % 2 == 0 ? g / 2 : a + g / 2); };
   Eigen::VectorXd D_A(rows);
-  for (int j = 0; j < rows; ++j) {
-    D_A(grouped(j)) = cs.D_A(j);
-    for (int k = 0; k < rows; ++k)
-      if (cs.G(j, k) != 0.0) entries.emplace_back(grouped(j), grouped(k), cs.G(j, k));
-  }
+  for (int j = 0; j < rows; ++j) D_A(grouped(j)) = cs.D_A(j);
+  // G's non-zeros column by column in the grouped order, each column's rows ascending: the
+  // compressed storage written in place (a triplet list sorted into it cost a sixth of a plate's
+  // solve on 8 contacts).
   Eigen::SparseMatrix<double> G(rows, rows);
-  G.setFromTriplets(entries.begin(), entries.end());
+  G.reserve(static_cast<Eigen::Index>(rows) * rows);
+  for (int gk = 0; gk < rows; ++gk) {
+    const int k = of_grouped(gk);
+    G.startVec(gk);
+    for (int gj = 0; gj < rows; ++gj) {
+      const double v = cs.G(of_grouped(gj), k);
+      if (v != 0.0) G.insertBack(gj, gk) = v;
+    }
+  }
+  G.finalize();
   std::vector<double> e(static_cast<std::size_t>(a)), mu(static_cast<std::size_t>(a));
   for (int k = 0; k < a; ++k) {
     e[static_cast<std::size_t>(k)] = law.e[cs.index(k)];
