@@ -99,9 +99,16 @@ void validate(const SparseImpactProblem& problem) {
   (void)detail::solve_mass(problem.M, none);
 }
 
-SparseMatrix inverse_mass_times_jacobian(const SparseImpactProblem& problem) {
+detail::ContactJacobians detail::contact_jacobians(const SparseImpactProblem& problem) {
   validate_shapes(problem);
-  return detail::solve_mass(problem.M, detail::interleaved_jacobian(problem.W_N, problem.W_T));
+  ContactJacobians j;
+  j.W = interleaved_jacobian(problem.W_N, problem.W_T);
+  j.X = solve_mass(problem.M, j.W);
+  return j;
+}
+
+SparseMatrix inverse_mass_times_jacobian(const SparseImpactProblem& problem) {
+  return detail::contact_jacobians(problem).X;
 }
 
 ContactProblem detail::contact_form(const SparseImpactProblem& problem, const SparseMatrix& W,
@@ -124,8 +131,8 @@ ContactProblem detail::contact_form(const SparseImpactProblem& problem, const Sp
 }
 
 ContactProblem contact_problem(const SparseImpactProblem& problem) {
-  const SparseMatrix X = inverse_mass_times_jacobian(problem);
-  return detail::contact_form(problem, detail::interleaved_jacobian(problem.W_N, problem.W_T), X);
+  const detail::ContactJacobians j = detail::contact_jacobians(problem);
+  return detail::contact_form(problem, j.W, j.X);
 }
 
 void validate(const ContactProblem& problem) {

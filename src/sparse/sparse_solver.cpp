@@ -203,9 +203,9 @@ ImpactResult solve_contact_problem(const ContactProblem& problem, const ImpactLa
 
 ImpactResult solve_impact(const SparseImpactProblem& problem, const ImpactLaw& law,
                           const SparseSolverOptions& options, const ImpactResult* start) {
-  const SparseMatrix X = inverse_mass_times_jacobian(problem);  // validates
-  const SparseMatrix W = detail::interleaved_jacobian(problem.W_N, problem.W_T);
-  const ContactProblem cp = detail::contact_form(problem, W, X);
+  const detail::ContactJacobians j = detail::contact_jacobians(problem);  // validates
+  const SparseMatrix& X = j.X;
+  const ContactProblem cp = detail::contact_form(problem, j.W, X);
   const int c = problem.contacts(), step = cp.tangential ? 2 : 1;
   const double T_A = 0.5 * problem.qdot_A.dot(problem.M * problem.qdot_A);
   ImpactResult r = solve(cp, law, options, start, T_A);

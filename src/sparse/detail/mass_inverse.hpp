@@ -19,6 +19,13 @@ SparseMatrix interleaved_jacobian(const SparseMatrix& W_N, const SparseMatrix& W
 SparseMatrix solve_mass(const SparseMatrix& M, const SparseMatrix& X,
                         const std::string& name = "M");
 
+/// W = interleaved_jacobian(problem.W_N, problem.W_T) and X = M⁻¹ W, the problem's shapes validated
+/// first (and M's blocks by solve_mass): what contact_form needs, W built once.
+struct ContactJacobians {
+  SparseMatrix W, X;
+};
+ContactJacobians contact_jacobians(const SparseImpactProblem& problem);
+
 /// G = Wᵀ X and D_A = Wᵀ q̇_A + w, with W = interleaved_jacobian(...) and X = M⁻¹ W.
 ContactProblem contact_form(const SparseImpactProblem& problem, const SparseMatrix& W,
                             const SparseMatrix& X);
