@@ -1123,8 +1123,11 @@ struct FremondChain {
            (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
             want == SolverMethod::mode_enumeration);
   }
+  // Another law's method (the classical laws' Lemke and sweeps, Stronge's integration), or
+  // trivial where contacts take part: forced, it is refused rather than answered by NLopt.
   bool forced_other_law() const {
-    return !automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial);
+    return !automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial ||
+                          want == SolverMethod::nsgs || want == SolverMethod::impulse_integration);
   }
   bool newton_allowed() const {
     return has_prox && (automatic || want == SolverMethod::semismooth_newton);

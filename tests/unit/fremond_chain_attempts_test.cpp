@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "fremond/io/problem_file.hpp"
 #include "fremond/potentials/deadzone_power.hpp"
@@ -52,6 +53,27 @@ TEST(FremondChainAttempts, AForcedMethodIsTheOnlyAttemptAndAgreesWithTheChain) {
     EXPECT_EQ(attempts[0].status, SolverStatus::converged);
     const double tol = m == SolverMethod::nlopt ? 1e-6 : 1e-10;
     EXPECT_LT((r.qdot_E - chain.qdot_E).norm(), tol * chain.qdot_E.norm()) << to_string(m);
+  }
+}
+
+// Another law's method forced on Frémond's (the classical laws' Lemke and sweeps, Stronge's
+// integration) is refused by name, the state before the impact returned, not answered by NLopt.
+TEST(FremondChainAttempts, AnotherLawsMethodIsRefusedNotAnsweredByNlopt) {
+  const ImpactProblem pb = testing::paper_bar_first_impact();
+  for (const ImpactLaw& law : {ImpactLaw::fremond(PowerPotential(85.36, 3.0)),
+                               ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 0.3)}) {
+    for (SolverMethod m :
+         {SolverMethod::lemke, SolverMethod::nsgs, SolverMethod::impulse_integration}) {
+      SCOPED_TRACE(std::string(to_string(m)) + " on " + law.describe());
+      SolverOptions opt;
+      opt.method = m;
+      const ImpactResult r = solve_impact(pb, law, opt);
+      EXPECT_EQ(r.solver.status, SolverStatus::unsupported);
+      EXPECT_EQ(r.solver.method, m);
+      EXPECT_EQ(r.P_N(0), 0.0);
+      EXPECT_EQ(r.qdot_E, pb.qdot_A);
+      for (const Attempt& a : log_of(r.solver)) EXPECT_NE(a.method, SolverMethod::nlopt);
+    }
   }
 }
 
