@@ -553,7 +553,7 @@ bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& la
   Eigen::VectorXd D_A(rows);
   for (int j = 0; j < rows; ++j) D_A(grouped(j)) = cs.D_A(j);
   // G's non-zeros column by column in the grouped order, each column's rows ascending: the
-  // compressed storage written in place (a triplet list sorted into it cost a sixth of a plate's
+  // compressed storage written in place (a triplet list sorted into it cost a tenth of a plate's
   // solve on 8 contacts).
   Eigen::SparseMatrix<double> G(rows, rows);
   G.reserve(static_cast<Eigen::Index>(rows) * rows);
