@@ -80,15 +80,27 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
   refuse_inadmissible(law, out);
 }
 
+namespace {
+/// The problem, the law and the options validated, and the contact space of the approaching
+/// contacts built (M's positive-definiteness tested on its factor).
 template <int N, int C>
-void detail::solve_impact_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                               const SolverOptions& options, ImpactResultT<N, C>& out) {
+detail::ContactSpaceT<N, C> validated_contact_space(const ImpactProblemT<N, C>& pb,
+                                                    const ImpactLaw& law,
+                                                    const SolverOptions& options) {
   detail::validate_shapes(pb);
   law.validate(pb.contacts());
   options.validate();
   detail::ContactSpaceT<N, C> cs;
   build_contact_space(pb, detail::tangential_rows(law), cs);
   detail::require_positive_definite(pb.M, cs.llt);  // validate()'s last test, on cs's factor
+  return cs;
+}
+}  // namespace
+
+template <int N, int C>
+void detail::solve_impact_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                               const SolverOptions& options, ImpactResultT<N, C>& out) {
+  ContactSpaceT<N, C> cs = validated_contact_space(pb, law, options);
   clear_result(out);
   solve_on_contact_space(pb, law, options, cs, out);
 }
@@ -97,8 +109,9 @@ template <int N, int C>
 ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, C>& pb,
                                                         const ImpactLaw& law,
                                                         const SolverOptions& options) {
-  ImpactResultT<N, C> out;
-  solve_impact_into(pb, law, options, out);
+  ContactSpaceT<N, C> cs = validated_contact_space(pb, law, options);
+  ImpactResultT<N, C> out;  // as default-constructed, as the stages want it
+  solve_on_contact_space(pb, law, options, cs, out);
   return out;
 }
 
