@@ -1123,11 +1123,22 @@ struct FremondChain {
            (want == SolverMethod::closed_form || want == SolverMethod::scalar_newton ||
             want == SolverMethod::mode_enumeration);
   }
-  // Another law's method (the classical laws' Lemke and sweeps, Stronge's integration), or
-  // trivial where contacts take part: forced, it is refused rather than answered by NLopt.
+  // A method that is not Frémond's (the classical laws' Lemke and sweeps, Stronge's
+  // integration), or trivial where contacts take part: forced, it is refused rather than answered
+  // by NLopt under its name.
   bool forced_other_law() const {
-    return !automatic && (want == SolverMethod::lemke || want == SolverMethod::trivial ||
-                          want == SolverMethod::nsgs || want == SolverMethod::impulse_integration);
+    switch (want) {
+      case SolverMethod::automatic:
+      case SolverMethod::closed_form:
+      case SolverMethod::scalar_newton:
+      case SolverMethod::mode_enumeration:
+      case SolverMethod::semismooth_newton:
+      case SolverMethod::proximal:
+      case SolverMethod::nlopt:
+        return false;
+      default:
+        return true;
+    }
   }
   bool newton_allowed() const {
     return has_prox && (automatic || want == SolverMethod::semismooth_newton);
