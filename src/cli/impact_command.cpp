@@ -175,9 +175,10 @@ void run_siconos(const std::string& text, const ImpactArguments& args) {
 constexpr int kSparseFromContacts = 64;
 
 // A problem file solved by the sparse path (docs/sparse.md): under a law it solves, with method
-// nsgs, or automatic on a file that writes its matrices sparse or has kSparseFromContacts contacts.
-// A file written sparse is read sparse (kept sparse however large); `dense` is the file already
-// read dense. False sends the file to the dense solvers.
+// nsgs or automatic, on a file that writes its matrices sparse or has kSparseFromContacts contacts
+// (fewer, written dense: solve_impact runs the same sweeps and certifies in q̇). A file written
+// sparse is read sparse (kept sparse however large); `dense` is the file already read dense.
+// False sends the file to the dense solvers.
 bool run_sparse(const std::string& text, const io::ProblemFile* dense,
                 const ImpactArguments& args) {
   const bool nsgs = args.method == "nsgs";
@@ -186,7 +187,7 @@ bool run_sparse(const std::string& text, const io::ProblemFile* dense,
   SparseSolverOptions options;
   try {
     if (dense) {
-      if (!nsgs && dense->problem.contacts() < kSparseFromContacts) return false;
+      if (dense->problem.contacts() < kSparseFromContacts) return false;
       file.problem.M = dense->problem.M.sparseView(0.0, 0.0);
       file.problem.W_N = dense->problem.W_N.sparseView(0.0, 0.0);
       file.problem.W_T = dense->problem.W_T.sparseView(0.0, 0.0);
@@ -288,7 +289,7 @@ void add_impact_command(CLI::App& app) {
   cmd->add_option("--method", args->method,
                   "Solver method: automatic, trivial, closed_form, scalar_newton, "
                   "mode_enumeration, lemke, semismooth_newton, proximal, nlopt, "
-                  "impulse_integration; nsgs for a Siconos file")
+                  "impulse_integration, nsgs (Newton's law; a Siconos file's only method)")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance,
                   "Relative tolerance on the law's residual, in [1e-16, 1e-2] (a Siconos file: "

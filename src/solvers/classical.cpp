@@ -244,8 +244,8 @@ void report_solution(const SolverOptions& options, const LawOutcome<C>& lo, cons
   out.solver.residual = st.residual;
   if (lo.sweeps)
     out.solver.message =
-        "solved by nonsmooth Gauss-Seidel and semismooth Newton on the contact modes (many "
-        "contacts); other solutions not looked for";
+        "solved by nonsmooth Gauss-Seidel and semismooth Newton on the contact modes; other "
+        "solutions not looked for";
   else if (lo.continuum)
     out.solver.message = "a continuum of solutions (singular contact modes)";
   else if (st.continuum)

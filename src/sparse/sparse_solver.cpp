@@ -158,6 +158,9 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   r.solver.method = o.method;
   r.solver.iterations = o.iterations;
   r.solver.residual = m.residual / L.v_scale;
+  // One answer is looked for: other solutions, or other percussions of the same velocities where
+  // G is singular, are not ruled out (docs/concepts.md#existence-and-uniqueness).
+  r.unique = false;
   scatter(L, pb, P, m.D_E, r);
   // T_E − T_A = P·z for fixed obstacles (eq. 9); solve_impact replaces it by the velocities'.
   r.energy_change = r.P_N.dot(0.5 * (r.D_NA + r.D_NE)) + r.P_T.dot(0.5 * (r.D_TA + r.D_TE));

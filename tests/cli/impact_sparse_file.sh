@@ -36,6 +36,23 @@ assert (d['solver']['attempts'][0]['method'] == 'nsgs') == sparse_law, (law, d['
 " "$problem"
 done
 
+# A small file written dense with --method nsgs: the dense solvers run the sweeps, to the answer of
+# the method automatic; one answer is looked for, so uniqueness is not claimed.
+for problem in newton_bar.json newton_coulomb_point.json spec_example.json; do
+  run_impact "$DATA/$problem"
+  cp "$TMP/out" "$TMP/automatic"
+  run_impact "$DATA/$problem" --method nsgs
+  expect_status "$problem with nsgs" 0
+  check_json "$problem with nsgs: the automatic answer" "
+automatic = __import__('json').load(open('$TMP/automatic'))
+for key in ['qdot_E', 'P_N', 'P_T', 'D_NE', 'D_TE']:
+    near(d[key], automatic[key], 1e-10, 1e-12)
+assert d['solver']['status'] == 'converged'
+assert d['admissibility']['admissible'] == automatic['admissibility']['admissible']
+assert d['unique'] is False and d['solutions_found'] is None
+" "$problem"
+done
+
 refuse "a row index out of range" "M.triplets[1][0]" "a row index must be a whole number in [0, 2)" \
   '{"M": {"rows": 2, "cols": 2, "triplets": [[0, 0, 1], [2, 1, 1]]}, "W_N": [[1], [0]],
     "qdot_A": [-1, 0], "law": {"type": "newton", "e": 0.5}}'
