@@ -571,7 +571,17 @@ bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& la
     e[static_cast<std::size_t>(k)] = law.e[cs.index(k)];
     mu[static_cast<std::size_t>(k)] = law.has_friction() ? law.mu[cs.index(k)] : 0.0;
   }
-  const Layout L = layout(G, D_A, t, law.has_friction(), e, mu);
+  Layout L = layout(G, D_A, t, law.has_friction(), e, mu);
+  // A body of few degrees of freedom on many rows: the sweeps and the Newton steps work on its
+  // velocities (contact_rows.hpp), G = Wᵀ M⁻¹ W being of rank n at most.
+  if (cs.dofs < rows) {
+    Eigen::MatrixXd W(cs.dofs, rows), X(cs.dofs, rows);
+    for (int g = 0; g < rows; ++g) {
+      W.col(g) = cs.W.col(of_grouped(g));
+      X.col(g) = cs.MinvW.col(of_grouped(g));
+    }
+    velocity_factors(L, std::move(W), std::move(X));
+  }
   Eigen::VectorXd P = Eigen::VectorXd::Zero(rows);
   const SweepOutcome o =
       solve_by_sweeps(L, D_A, P,

@@ -613,6 +613,31 @@ TEST(ClassicalMethods, ManyContactsMeetTheLawAndAgreeWithLemke) {
   EXPECT_GE(agreed, 41);
 }
 
+// Newton's law without friction has one answer in velocities: the sweeps and the mode Newton
+// forced on a body of fewer degrees of freedom than contacts (they then work on its velocities)
+// give Lemke's, on plates of 8 to 32 contacts and random bodies of 6 dofs on 9.
+TEST(ClassicalMethods, NsgsOnMoreContactsThanDofsGivesLemkesVelocities) {
+  std::vector<ImpactProblem> problems;
+  for (int c : {8, 16, 32}) problems.push_back(fixtures::plate_many_contacts(c, false));
+  for (int index = 0; index < 4; ++index)
+    problems.push_back(fixtures::random_problem_any(6, 9, index, false));
+  for (const ImpactProblem& pb : problems) {
+    const ImpactLaw law = ImpactLaw::newton(0.4);
+    SolverOptions lemke, nsgs;
+    lemke.method = SolverMethod::lemke;
+    nsgs.method = SolverMethod::nsgs;
+    const ImpactResult l = solve_impact(pb, law, lemke);
+    const ImpactResult r = solve_impact(pb, law, nsgs);
+    const std::string what =
+        std::to_string(pb.dofs()) + " dofs, " + std::to_string(pb.contacts()) + " contacts";
+    ASSERT_TRUE(l.ok()) << what;
+    ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
+    EXPECT_LE(law_residual(pb, law, r), 1e-12) << what;
+    EXPECT_LE((r.qdot_E - l.qdot_E).cwiseAbs().maxCoeff(), 1e-10 * l.qdot_E.cwiseAbs().maxCoeff())
+        << what;
+  }
+}
+
 TEST(ClassicalMethods, AMethodOfFremondsLawIsUnsupported) {
   // An iterative method of Frémond's law is refused in the result, with no percussion, never
   // answered by another method under its name.

@@ -21,12 +21,23 @@ struct Layout {
   std::vector<double> e, mu;
   std::vector<double> shift;  ///< e min(D_NA, 0): the restitution term of each normal row
   double v_scale = std::numeric_limits<double>::min();
+  /// G = Wᵀ X (X = M⁻¹ W) on a body with fewer degrees of freedom than rows (a rigid body on many
+  /// contacts), n × rows in the layout's row order; empty otherwise. Given, the sweeps and the
+  /// mode Newton work on the n velocities X P: a sweep costs rows · n instead of G's entries, a
+  /// Newton step an n × n factorisation instead of one of its unknowns (velocity_factors).
+  Eigen::MatrixXd W, X;
+
+  bool has_velocity_factors() const { return X.size() != 0; }
 };
 
 /// The layout of G (rows grouped by contact: with `tangential`, row 2i contact i's normal and
 /// 2i + 1 its tangent), D_A and each contact's e and μ (μ read only with `coulomb`).
 Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
               bool coulomb, const std::vector<double>& e, const std::vector<double>& mu);
+
+/// Gives L the factors G = Wᵀ X (n × rows each, rows in cs order regrouped as L's) where n is
+/// below L's rows; a no-op otherwise, L then working on G alone.
+void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X);
 
 /// Row `row` of G times P; *size, when given, gets Σ|G_rk P_k|.
 inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {

@@ -53,13 +53,44 @@ std::vector<ContactMode> modes_at(const Layout& L, const Eigen::VectorXd& P,
 }
 
 // The mode's equations A x = b on the unknowns x (a contact's P_N, and its P_T where it sticks),
-// one equation a row held at zero velocity; the percussions are then P = E x.
+// one equation a row held at zero velocity; the percussions are then P = E x. With the layout's
+// velocity factors A = Uᵀ V (U: W's columns of the equations' rows, V = X E), n × unknowns each,
+// and A itself is not formed.
 struct ModeSystem {
   Eigen::SparseMatrix<double> A;
+  Eigen::MatrixXd U, V;
   Eigen::VectorXd b, scale;  // scale: each equation's own G diagonal
   std::vector<int> unknown;  // contact → its first unknown, −1 apart
   std::vector<int> row_of;   // unknown → its row of G
+
+  Eigen::VectorXd times(const Eigen::VectorXd& x) const {
+    if (U.size() != 0) return U.transpose() * (V * x);
+    return A * x;
+  }
 };
+
+// The velocity factors of the mode: U's column `eq` is W's column of the equation's row; V's
+// column of a contact's normal unknown is X's normal column, plus s μ its tangential one where it
+// slides (P_T = s μ P_N), and of a sticking contact's tangential unknown X's tangential column.
+void velocity_factors_of(const Layout& L, const std::vector<ContactMode>& modes, ModeSystem& S) {
+  const auto n = L.X.rows(), u = static_cast<Eigen::Index>(S.row_of.size());
+  S.U.resize(n, u);
+  S.V.resize(n, u);
+  for (Eigen::Index eq = 0; eq < u; ++eq)
+    S.U.col(eq) = L.W.col(S.row_of[static_cast<std::size_t>(eq)]);
+  for (int i = 0; i < L.contacts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const int x = S.unknown[k];
+    if (x < 0) continue;
+    const int r = L.step * i;
+    S.V.col(x) = L.X.col(r);
+    if (L.step == 1) continue;
+    if (modes[k].mode == Mode::stick)
+      S.V.col(x + 1) = L.X.col(r + 1);
+    else if (modes[k].s != 0.0)
+      S.V.col(x) += (modes[k].s * L.mu[k]) * L.X.col(r + 1);
+  }
+}
 
 ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
                      const std::vector<ContactMode>& modes) {
@@ -75,15 +106,21 @@ ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
   const int n = static_cast<int>(S.row_of.size());
   S.b.resize(n);
   S.scale.resize(n);
+  for (int eq = 0; eq < n; ++eq) {
+    const int R = S.row_of[static_cast<std::size_t>(eq)];
+    const auto& B = L.block[static_cast<std::size_t>(R / L.step)];
+    const bool normal = R % L.step == 0;
+    S.b(eq) = -(D_A(R) + (normal ? L.shift[static_cast<std::size_t>(R / L.step)] : 0.0));
+    S.scale(eq) = normal ? B.a : (B.d > 0.0 ? B.d : B.a);
+  }
+  if (L.has_velocity_factors()) {
+    velocity_factors_of(L, modes, S);
+    return S;
+  }
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(n) * 12);
   for (int eq = 0; eq < n; ++eq) {
     const int R = S.row_of[static_cast<std::size_t>(eq)];
-    const int i = R / L.step;
-    const bool normal = R % L.step == 0;
-    const auto& B = L.block[static_cast<std::size_t>(i)];
-    S.b(eq) = -(D_A(R) + (normal ? L.shift[static_cast<std::size_t>(i)] : 0.0));
-    S.scale(eq) = normal ? B.a : (B.d > 0.0 ? B.d : B.a);
     for (int p = L.G.outerIndexPtr()[R]; p < L.G.outerIndexPtr()[R + 1]; ++p) {
       const int j = L.G.innerIndexPtr()[p];
       const double v = L.G.valuePtr()[p];
@@ -110,7 +147,7 @@ template <class Solve>
 bool refine(const ModeSystem& S, double target, const Solve& solve, Eigen::VectorXd& x) {
   double last = std::numeric_limits<double>::infinity();
   for (int step = 0; step < 4 && x.allFinite(); ++step) {
-    const Eigen::VectorXd r = S.b - S.A * x;
+    const Eigen::VectorXd r = S.b - S.times(x);
     const double size = r.lpNorm<Eigen::Infinity>();
     if (size <= 1e-3 * target || !(size < 0.5 * last)) break;
     last = size;
@@ -125,6 +162,21 @@ bool refine(const ModeSystem& S, double target, const Solve& solve, Eigen::Vecto
 // repeated: the proximal-point iteration, whose limit is that nearest solution. False when the
 // factorisation fails.
 bool solve_mode(const ModeSystem& S, double target, double delta, Eigen::VectorXd& x) {
+  if (S.U.size() != 0) {
+    // Woodbury: with B = δ D, (B + Uᵀ V)⁻¹ r = B⁻¹ r − B⁻¹ Uᵀ H⁻¹ V B⁻¹ r, H = I + V B⁻¹ Uᵀ of
+    // size n. Its cancellation where δ is small is the refinement's to correct.
+    const Eigen::VectorXd inv = (delta * S.scale).cwiseInverse();
+    Eigen::MatrixXd H = S.V * inv.asDiagonal() * S.U.transpose();
+    H.diagonal().array() += 1.0;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(H);
+    return refine(
+        S, target,
+        [&](const Eigen::VectorXd& r) {
+          const Eigen::VectorXd y = inv.cwiseProduct(r);
+          return (y - inv.cwiseProduct(S.U.transpose() * lu.solve(S.V * y))).eval();
+        },
+        x);
+  }
   Eigen::SparseMatrix<double> K = S.A;
   for (int j = 0; j < K.rows(); ++j) K.coeffRef(j, j) += delta * S.scale(j);
   // A few dozen unknowns (a plate on many contacts: G dense) factor faster dense.
