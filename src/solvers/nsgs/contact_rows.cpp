@@ -91,7 +91,7 @@ namespace {
 double sweep_in_velocities(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
                            bool backward) {
   const auto n = L.X.rows();
-  Eigen::VectorXd velocity = L.X * P;
+  Eigen::VectorXd velocity = L.X.lazyProduct(P);
   double* const v = velocity.data();
   auto row_times = [&](int row) {
     const double* w = L.W.data() + n * row;

@@ -63,9 +63,12 @@ struct ModeSystem {
   std::vector<int> unknown;  // contact → its first unknown, −1 apart
   std::vector<int> row_of;   // unknown → its row of G
 
+  // Coefficient-wise products (lazyProduct): n is a rigid body's few degrees of freedom, where a
+  // general matrix-vector kernel's set-up costs more than the products.
   Eigen::VectorXd times(const Eigen::VectorXd& x) const {
-    if (U.size() != 0) return U.transpose() * (V * x);
-    return A * x;
+    if (U.size() == 0) return A * x;
+    const Eigen::VectorXd v = V.lazyProduct(x);
+    return U.transpose().lazyProduct(v);
   }
 };
 
@@ -173,7 +176,8 @@ bool solve_mode(const ModeSystem& S, double target, double delta, Eigen::VectorX
         S, target,
         [&](const Eigen::VectorXd& r) {
           const Eigen::VectorXd y = inv.cwiseProduct(r);
-          return (y - inv.cwiseProduct(S.U.transpose() * lu.solve(S.V * y))).eval();
+          const Eigen::VectorXd z = lu.solve(S.V.lazyProduct(y));
+          return (y - inv.cwiseProduct(S.U.transpose().lazyProduct(z))).eval();
         },
         x);
   }
