@@ -85,85 +85,82 @@ void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X) {
 }
 
 namespace {
-// sweep() on the velocities v = X P (Layout::W, X): a contact's row products are W_rᵀ v, and its
-// new percussions move v by X's columns. v is formed anew each sweep, so its rounding does not
-// build up. Plain loops: n is a rigid body's few degrees of freedom.
-double sweep_in_velocities(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
-                           bool backward) {
-  const auto n = L.X.rows();
-  Eigen::VectorXd velocity = L.X.lazyProduct(P);
-  double* const v = velocity.data();
-  auto row_times = [&](int row) {
-    const double* w = L.W.data() + n * row;
-    double sum = 0.0;
-    for (Eigen::Index d = 0; d < n; ++d) sum += w[d] * v[d];
-    return sum;
-  };
-  auto move = [&](int row, double by) {
-    if (by == 0.0) return;
-    const double* x = L.X.data() + n * row;
-    for (Eigen::Index d = 0; d < n; ++d) v[d] += by * x[d];
-  };
+// One sweep, with `rows` giving a row of G times the current percussions (times(row)) and told of
+// each percussion's change (moved(row, by)).
+template <class Rows>
+double sweep_with(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward,
+                  Rows& rows) {
   double change = 0.0;
   for (int step = 0; step < L.contacts; ++step) {
     const int i = backward ? L.contacts - 1 - step : step;
     const auto k = static_cast<std::size_t>(i);
     const auto& A = L.block[k];
     const int r = L.step * i;
-    const double old_N = P(r);
     if (L.step == 1) {
-      const double fN = D_A(r) + L.shift[k] + row_times(r) - A.a * old_N;
+      const double old_N = P(r);
+      const double fN = D_A(r) + L.shift[k] + rows.times(r) - A.a * old_N;
       const double PN = fN < 0.0 ? -fN / A.a : 0.0;
       change = std::max(change, A.a * std::fabs(PN - old_N));
-      move(r, PN - old_N);
+      rows.moved(r, PN - old_N);
       P(r) = PN;
       continue;
     }
-    const ContactPercussion old{old_N, P(r + 1)};
-    const double fN = D_A(r) + L.shift[k] + row_times(r) - A.a * old.N - A.b * old.T;
-    const double fT = D_A(r + 1) + row_times(r + 1) - A.c * old.N - A.d * old.T;
+    const ContactPercussion old{P(r), P(r + 1)};
+    const double fN = D_A(r) + L.shift[k] + rows.times(r) - A.a * old.N - A.b * old.T;
+    const double fT = D_A(r + 1) + rows.times(r + 1) - A.c * old.N - A.d * old.T;
     const auto now = coulomb_contact(A, fN, fT, L.mu[k], old);
     change = std::max(change,
                       std::max(A.a * std::fabs(now.N - old.N) + std::fabs(A.b * (now.T - old.T)),
                                std::fabs(A.c * (now.N - old.N)) + A.d * std::fabs(now.T - old.T)));
-    move(r, now.N - old.N);
-    move(r + 1, now.T - old.T);
+    rows.moved(r, now.N - old.N);
+    rows.moved(r + 1, now.T - old.T);
     P(r) = now.N;
     P(r + 1) = now.T;
   }
   return change;
 }
+
+// G's rows read against P itself.
+struct RowsOfG {
+  const Layout& L;
+  const Eigen::VectorXd& P;
+  double times(int row) const { return row_times(L.G, row, P, nullptr); }
+  void moved(int, double) const {}
+};
+
+// The rows through the velocities v = X P (Layout::W, X): W_rᵀ v, v moved by X's columns. v is
+// formed anew each sweep, so its rounding does not build up. Plain loops: n is a rigid body's few
+// degrees of freedom.
+struct RowsThroughVelocities {
+  const Layout& L;
+  Eigen::VectorXd v;
+  RowsThroughVelocities(const Layout& layout, const Eigen::VectorXd& P)
+      : L(layout), v(layout.X.lazyProduct(P)) {}
+  double times(int row) const {
+    const auto n = v.size();
+    const double* w = L.W.data() + n * row;
+    double sum = 0.0;
+    for (Eigen::Index d = 0; d < n; ++d) sum += w[d] * v[d];
+    return sum;
+  }
+  void moved(int row, double by) {
+    if (by == 0.0) return;
+    const auto n = v.size();
+    const double* x = L.X.data() + n * row;
+    for (Eigen::Index d = 0; d < n; ++d) v[d] += by * x[d];
+  }
+};
 }  // namespace
 
 // One Gauss–Seidel sweep, over the contacts in order or `backward`; returns the largest change of
 // a contact's velocity it made.
 double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward) {
-  if (L.has_velocity_factors()) return sweep_in_velocities(L, D_A, P, backward);
-  double change = 0.0;
-  for (int step = 0; step < L.contacts; ++step) {
-    const int i = backward ? L.contacts - 1 - step : step;
-    const auto k = static_cast<std::size_t>(i);
-    const auto& A = L.block[k];
-    const int r = L.step * i;
-    if (L.step == 1) {
-      const double fN = D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * P(r);
-      const double PN = fN < 0.0 ? -fN / A.a : 0.0;
-      change = std::max(change, A.a * std::fabs(PN - P(r)));
-      P(r) = PN;
-      continue;
-    }
-    const ContactPercussion old{P(r), P(r + 1)};
-    const double fN =
-        D_A(r) + L.shift[k] + row_times(L.G, r, P, nullptr) - A.a * old.N - A.b * old.T;
-    const double fT = D_A(r + 1) + row_times(L.G, r + 1, P, nullptr) - A.c * old.N - A.d * old.T;
-    const auto now = coulomb_contact(A, fN, fT, L.mu[k], old);
-    change = std::max(change,
-                      std::max(A.a * std::fabs(now.N - old.N) + std::fabs(A.b * (now.T - old.T)),
-                               std::fabs(A.c * (now.N - old.N)) + A.d * std::fabs(now.T - old.T)));
-    P(r) = now.N;
-    P(r + 1) = now.T;
+  if (L.has_velocity_factors()) {
+    RowsThroughVelocities rows(L, P);
+    return sweep_with(L, D_A, P, backward, rows);
   }
-  return change;
+  RowsOfG rows{L, P};
+  return sweep_with(L, D_A, P, backward, rows);
 }
 
 }  // namespace fremond::detail
