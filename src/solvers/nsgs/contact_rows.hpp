@@ -35,7 +35,7 @@ struct Layout {
 Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
               bool coulomb, const std::vector<double>& e, const std::vector<double>& mu);
 
-/// Gives L the factors G = Wᵀ X (n × rows each, rows in cs order regrouped as L's) where n is
+/// Gives L the factors G = Wᵀ X (n × rows each, a column per row of L, in L's order) where n is
 /// below L's rows; a no-op otherwise, L then working on G alone.
 void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X);
 
