@@ -574,7 +574,7 @@ bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& la
   Layout L = layout(G, D_A, t, law.has_friction(), e, mu);
   // A body of few degrees of freedom on many rows: the sweeps and the Newton steps work on its
   // velocities (contact_rows.hpp), G = Wᵀ M⁻¹ W being of rank n at most.
-  if (cs.dofs < rows) {
+  if (2 * cs.dofs <= rows) {
     Eigen::MatrixXd W(cs.dofs, rows), X(cs.dofs, rows);
     for (int g = 0; g < rows; ++g) {
       W.col(g) = cs.W.col(of_grouped(g));

@@ -79,7 +79,9 @@ Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::Vector
 }
 
 void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X) {
-  if (W.rows() >= W.cols()) return;
+  // A contact's update reads two rows and moves v twice through the velocities (4n), against two
+  // rows of G (2 rows): the velocities pay from 2n ≤ rows.
+  if (2 * W.rows() > W.cols()) return;
   L.W = std::move(W);
   L.X = std::move(X);
 }

@@ -21,10 +21,11 @@ struct Layout {
   std::vector<double> e, mu;
   std::vector<double> shift;  ///< e min(D_NA, 0): the restitution term of each normal row
   double v_scale = std::numeric_limits<double>::min();
-  /// G = Wᵀ X (X = M⁻¹ W) on a body with fewer degrees of freedom than rows (a rigid body on many
-  /// contacts), n × rows in the layout's row order; empty otherwise. Given, the sweeps and the
-  /// mode Newton work on the n velocities X P: a sweep costs rows · n instead of G's entries, a
-  /// Newton step an n × n factorisation instead of one of its unknowns (velocity_factors).
+  /// G = Wᵀ X (X = M⁻¹ W) on a body with at most half as many degrees of freedom as rows (a rigid
+  /// body on many contacts), n × rows in the layout's row order; empty otherwise. Given, the sweeps
+  /// and the mode Newton work on the n velocities X P: a sweep costs rows · n instead of G's
+  /// entries, a Newton step an n × n factorisation instead of one of its unknowns
+  /// (velocity_factors).
   Eigen::MatrixXd W, X;
 
   bool has_velocity_factors() const { return X.size() != 0; }
@@ -35,8 +36,9 @@ struct Layout {
 Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
               bool coulomb, const std::vector<double>& e, const std::vector<double>& mu);
 
-/// Gives L the factors G = Wᵀ X (n × rows each, a column per row of L, in L's order) where n is
-/// below L's rows; a no-op otherwise, L then working on G alone.
+/// Gives L the factors G = Wᵀ X (n × rows each, a column per row of L, in L's order) where 2n is
+/// at most L's rows (where they cost less than G's rows); a no-op otherwise, L then working on G
+/// alone.
 void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X);
 
 /// Row `row` of G times P; *size, when given, gets Σ|G_rk P_k|.
