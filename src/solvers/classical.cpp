@@ -22,6 +22,7 @@
 #include "laws/detail/residuals.hpp"
 #include "solvers/detail/chain.hpp"
 #include "solvers/detail/classical_law.hpp"
+#include "solvers/detail/classical_one_contact.hpp"
 #include "solvers/detail/classical_refine.hpp"
 #include "solvers/detail/classical_velocity_mode.hpp"
 #include "solvers/nsgs/sweeps.hpp"
@@ -618,6 +619,8 @@ struct ClassicalChain {
         Stage<&F::forced_trivial, &F::unsupported>,    // trivial forced, yet contacts take part
         Stage<&F::forced_sweeps_on_phases, &F::unsupported>,  // nsgs is Newton's only
         Stage<&F::many_contacts, &F::sweeps>,                 // Newton on many contacts: the sweeps
+        Stage<&F::one_newton_contact, &F::one_contact_closed_form>,  // Newton, one contact, M
+                                                                     // diagonal
         Stage<&F::always, &F::contact_modes>,  // per phase: closed form, Lemke, enumeration
         Stage<&F::no_mode_found, &F::modes_in_velocities_or_none>,
         Stage<&F::stalled_after_lemke, &F::enumeration_again>,  // Lemke's pivots' rounding
@@ -647,6 +650,7 @@ struct ClassicalChain {
     return opt.method == SolverMethod::automatic && cs.tangential &&
            cs.active >= classical::kSweepsFromContacts && cs.rows() > cs.dofs;
   }
+  bool one_newton_contact() const { return classical::one_newton_contact(cs, law, opt); }
   bool no_mode_found() const { return lo.solutions.size == 0; }
   bool stalled() const { return out.solver.status == SolverStatus::stalled; }
   // Lemke's pivots accumulate rounding: where the enumeration applies, the same contact mode solved
@@ -666,6 +670,11 @@ struct ClassicalChain {
   bool trivial() {
     fill_trivial(pb, cs, law, out);
     return logged();
+  }
+  // The contact modes' answer on scalars where they would give it unchanged
+  // (classical_one_contact.hpp); else the contact modes run.
+  bool one_contact_closed_form() {
+    return classical::settle_one_newton_contact(pb, cs, law, opt, out) && logged();
   }
   // The law's modes in contact space; with several solutions the most dissipative that meets the
   // law. Hands on a stalled answer, or none.

@@ -11,29 +11,11 @@
 #include "core/detail/accurate_dot.hpp"
 #include "core/detail/refined_solve.hpp"
 #include "laws/detail/residuals.hpp"
+#include "laws/restitution/row_maps.hpp"
 
 namespace fremond::detail {
 
 namespace {
-
-// g·x with 0 exactly where x is: g = W_iᵀM⁻¹W_i overflows for |W| near 1e308, and 0·∞ would
-// make an exact zero a NaN residual.
-double scaled(double g, double x) {
-  return x == 0.0 ? 0.0 : g * x;
-}
-
-// min(w, g·x): zero exactly when 0 ≤ x ⊥ w ≥ 0 (g converts a percussion to a velocity).
-double complementarity(double w, double x, double g) {
-  return std::min(w, scaled(g, x));
-}
-
-// Coulomb's natural map on (t, v) with bound b: g·(t − clamp(t − v/g, −b, b)); zero exactly when
-// |t| ≤ b, v = 0 where |t| < b, t = −b sign(v) where v ≠ 0. A negative bound is clipped (the
-// normal residual reports the negative percussion).
-double coulomb(double t, double v, double b, double g) {
-  b = std::max(0.0, b);
-  return scaled(g, t - std::clamp(t - v / g, -b, b));
-}
 
 /// Whether q satisfies M(q − q̇_A) = W_N P_N + W_T P_T to 16ε times the size of each row's terms
 /// (Σ_j |M_kj|(|q_j| + |q̇_A,j|) + Σ_i |W_ki P_i|): the backward error of a momentum balance whose
@@ -329,7 +311,8 @@ bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
   }
   // Each within 45 % of the tolerance: the data's residual, within their sum of this one (both
   // maps are 1-Lipschitz in the velocities), then stays within it.
-  if (!(floor * terms <= 0.45 * tolerance * v_scale) || !(worst <= 0.45 * tolerance * v_scale))
+  if (!(floor * terms <= kOwnVelocityShare * tolerance * v_scale) ||
+      !(worst <= kOwnVelocityShare * tolerance * v_scale))
     return false;
   *value = worst / v_scale;
   return true;
