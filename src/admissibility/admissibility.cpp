@@ -168,7 +168,8 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
     if (cs.tangential) P(cs.tangential_row(k)) = r.P_T(cs.index(k));
   }
   // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative.
-  const double kappa = std::max(1.0, condition_estimate(cs.llt));
+  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
+  const double kappa = cs.kappa;
   const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching

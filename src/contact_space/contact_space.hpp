@@ -66,6 +66,9 @@ struct ContactSpaceT {
   /// solving them again.
   mutable VecT<MaxContacts> self_N, self_T;
   mutable bool self_ready = false;
+  /// The certificate's estimate of cond(M) from llt (velocity_rounding), computed once a build on
+  /// first use: a prepared solver's every solve on one configuration reads the same number.
+  mutable double kappa = -1.0;
 
   int rows() const { return tangential ? 2 * active : active; }
   int normal_row(int i) const { return i; }
@@ -310,6 +313,7 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
                          ContactSpaceT<MaxDofs, MaxContacts>& cs,
                          HeldContacts held = HeldContacts::approaching) {
   cs.self_ready = false;
+  cs.kappa = -1.0;
   if constexpr (MaxDofs != Dynamic)
     if (contact_space_detail::build_diagonal(pb, with_tangential, cs, held)) return;
   build_contact_space_general(pb, with_tangential, cs, held);

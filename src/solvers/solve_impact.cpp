@@ -73,10 +73,14 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
     detail::solve_law_stage(pb, cs, every, options, out);
   }
   log_answer_if_unlogged(out);
+  // The percussions' rounding floors and G's largest entry serve only a law's own certificate
+  // terms (Frémond's): the other laws' certificates do not read them.
+  const bool own_terms = law.visit([](const auto& l) { return detail::has_certificate_terms(l); });
   VecT<C> percussion;
-  const VecT<C> rounding = detail::velocity_rounding(cs, out, &percussion);
+  const VecT<C> rounding = detail::velocity_rounding(cs, out, own_terms ? &percussion : nullptr);
   out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
-                                                  detail::delassus_max(cs), &percussion);
+                                                  own_terms ? detail::delassus_max(cs) : 0.0,
+                                                  own_terms ? &percussion : nullptr);
   refuse_inadmissible(law, out);
 }
 
