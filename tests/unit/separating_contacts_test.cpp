@@ -115,6 +115,39 @@ TEST(SeparatingContacts, NewtonWithCoulombStopsTheLeavingEnd) {
   }
 }
 
+TEST(SeparatingContacts, ALeavingContactsFrictionSolvesWhatTheArrivingOneCannot) {
+  // One dof (m = 1, q̇_A = 0) against two moving obstacles. Contact 2 arrives (W_N = −1, w_N =
+  // −0.5: D_NA = −0.5; W_T = 1, w_T = 0, μ = 2, e = 0) and alone has no solution: closing it needs
+  // q̇_E = −0.5, where it slides back (D_TE = −0.5) and the friction P_T = 2 P_N drives q̇ up,
+  // (μ − 1) P_N > 0; sticking (q̇_E = 0) and staying open both leave D_NE = −0.5. Contact 1 leaves
+  // (W_N = 1, w_N = 1: D_NA = 1; W_T = 1, w_T = 2, μ = 3). Held too, it closes: q̇_E = −1, where it
+  // slides forward (D_TE = 1) with P_T = −3 P_N, so P_N (1 − 3) = −1 gives P_N = 1/2, P_T = −3/2;
+  // contact 2 then leaves at D_NE = 0.5 ≥ 0 with no percussion. That is the law's one solution.
+  ImpactProblem pb;
+  pb.M = Eigen::MatrixXd::Identity(1, 1);
+  pb.W_N = Eigen::MatrixXd{{1.0, -1.0}};
+  pb.W_T = Eigen::MatrixXd{{1.0, 1.0}};
+  pb.w_N = Eigen::Vector2d(1.0, -0.5);
+  pb.w_T = Eigen::Vector2d(2.0, 0.0);
+  pb.qdot_A = Eigen::VectorXd::Zero(1);
+  const ImpactLaw law = ImpactLaw::newton_coulomb({0.0, 0.0}, {3.0, 2.0});
+  const ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_NEAR(r.qdot_E(0), -1.0, 1e-14);
+  EXPECT_NEAR(r.P_N(0), 0.5, 1e-14);
+  EXPECT_NEAR(r.P_T(0), -1.5, 1e-14);
+  EXPECT_NEAR(r.P_N(1), 0.0, 1e-14);
+  EXPECT_NEAR(r.P_T(1), 0.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(0), 0.0, 1e-14);
+  EXPECT_NEAR(r.D_NE(1), 0.5, 1e-14);
+  EXPECT_EQ(r.takes_part(0), 0);
+  EXPECT_LE(law_residual(pb, law, r), 1e-14);
+  const std::vector<ImpactResult> all = solve_impact_all(pb, law);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_NEAR(all.front().P_N(0), 0.5, 1e-14);
+  EXPECT_NEAR(all.front().P_T(0), -1.5, 1e-14);
+}
+
 TEST(SeparatingContacts, AnUndrivenLeavingEndChangesNothing) {
   // ω = 9: the left end arrives at −5, the right end leaves at +4. Newton e = 0.5 on the left end
   // alone gives P = 1.5·5/4 and leaves the right end at 4 − 2·1.875 = 0.25 > 0: the same bits as
