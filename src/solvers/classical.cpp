@@ -304,11 +304,10 @@ void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   const LawSolution<C>& s = lo.solutions[pick];
   write_classical_answer(pb, cs, law, s.P, s.P_C, out, velocities, compression_velocities);
   Settling<N, C> st;
-  // Newton's law on a diagonal M is judged at the answer's own velocities where they settle it
-  // (newton_residual_at_own_velocities): the same verdict as from the data, without solving
-  // with M again.
+  // On a diagonal M the answer is judged at its own velocities where they settle it
+  // (residual_at_own_velocities): the same verdict as from the data, without solving with M again.
   if (velocities ||
-      !newton_residual_at_own_velocities(pb, cs, law, s.P, out, options.tolerance, &st.residual))
+      !residual_at_own_velocities(pb, cs, law, s.P, s.P_C, out, options.tolerance, &st.residual))
     st.residual = classical_residual(pb, cs, law, out);
   st.P = s.P;
   st.P_C = s.P_C;

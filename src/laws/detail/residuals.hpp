@@ -33,21 +33,22 @@ double classical_residual(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                           double* beyond_rounding = nullptr, bool percussions_rounded = false,
                           double percussion_cap = 1e-10);
 
-/// classical_residual of Newton's law at the answer's own velocities (its D_NE, D_TE from q̇_E),
-/// where that is the same number to within the tolerance: M diagonal in cs (q̇_E = q̇_A + M⁻¹W P
-/// with one rounding an entry, as the residual's own velocities are) and the velocities'
-/// rounding, 2(rows + 2)ε Σ|W||M⁻¹W||P| over every contact, at most 45 % of the tolerance times
-/// the velocity scale. True, with the residual in *value, when those hold and the residual is at
-/// most 45 % of the tolerance too: the law's residual from the data is then within the tolerance,
-/// and the answer converged as the data would say. False otherwise (Poisson's phases included):
-/// the caller measures from the data.
+/// classical_residual at the answer's own velocities (its D_NE, D_TE from q̇_E; Poisson's D_NC,
+/// D_TC from q̇_C), where that is the same number to within the tolerance: M diagonal in cs (each
+/// velocity q̇_A + M⁻¹W P with one rounding an entry, as the residual's own velocities are) and the
+/// velocities' rounding, 2(rows + 2)ε Σ|W||M⁻¹W||P| over every contact (P and Poisson's P_C, the
+/// active rows' percussions), at most 45 % of the tolerance times the velocity scale. True, with
+/// the residual in *value, when those hold and the residual is at most 45 % of the tolerance too:
+/// the law's residual from the data is then within the tolerance, and the answer converged as the
+/// data would say. False otherwise: the caller measures from the data.
 template <int MaxDofs, int MaxContacts>
-bool newton_residual_at_own_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
-                                       const ContactSpaceT<MaxDofs, MaxContacts>& cs,
-                                       const RestitutionLaw& law,
-                                       const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
-                                       const ImpactResultT<MaxDofs, MaxContacts>& result,
-                                       double tolerance, double* value);
+bool residual_at_own_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
+                                const ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                                const RestitutionLaw& law,
+                                const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P,
+                                const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P_C,
+                                const ImpactResultT<MaxDofs, MaxContacts>& result, double tolerance,
+                                double* value);
 
 /// Scaled Frémond residual of an answer (law_residual for Frémond's law).
 template <int N, int C>

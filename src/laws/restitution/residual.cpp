@@ -270,21 +270,31 @@ double classical_residual(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
 }
 
 template <int N, int C>
-bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
-                                       const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
-                                       const typename ContactSpaceT<N, C>::Rows& P,
-                                       const ImpactResultT<N, C>& r, double tolerance,
-                                       double* value) {
+bool residual_at_own_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                                const RestitutionLaw& law,
+                                const typename ContactSpaceT<N, C>::Rows& P,
+                                const typename ContactSpaceT<N, C>::Rows& P_C,
+                                const ImpactResultT<N, C>& r, double tolerance, double* value) {
   const int n = cs.dofs, c = cs.contacts, rows = cs.rows();
-  const bool tangential = pb.has_tangential();
-  if (law.has_phases() || !cs.llt.matrix_is_diagonal() || r.qdot_E.size() != n ||
-      r.D_NE.size() != c || (tangential && r.D_TE.size() != c) || !r.qdot_E.allFinite())
+  const bool tangential = pb.has_tangential(), poisson = law.has_phases();
+  if (!cs.llt.matrix_is_diagonal() || r.qdot_E.size() != n || r.D_NE.size() != c ||
+      (tangential && r.D_TE.size() != c) || !r.qdot_E.allFinite())
     return false;
-  // u = Σ_j |M⁻¹W_j P_j|: what q̇_E − q̇_A is summed from; W's rows on it bound the rounding of every
-  // contact velocity after.
+  if (poisson &&
+      (!r.has_phases || P_C.size() != rows || r.qdot_C.size() != n || r.D_NC.size() != c ||
+       (tangential && r.D_TC.size() != c) || !r.qdot_C.allFinite()))
+    return false;
+  // u = Σ_j |M⁻¹W_j P_j|: what q̇_E − q̇_A is summed from (Poisson: the larger of it and the same
+  // sum for q̇_C); W's rows on it bound the rounding of every contact velocity after.
   VecT<N> u = VecT<N>::Zero(n);
   for (int j = 0; j < rows; ++j)
     if (P(j) != 0.0) u += (cs.MinvW.col(j) * P(j)).cwiseAbs();
+  if (poisson) {
+    VecT<N> uC = VecT<N>::Zero(n);
+    for (int j = 0; j < rows; ++j)
+      if (P_C(j) != 0.0) uC += (cs.MinvW.col(j) * P_C(j)).cwiseAbs();
+    u = u.cwiseMax(uC);
+  }
   // Both velocities are sums of at most rows + c + 3 rounded terms of size `terms`.
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0, terms = 0.0;
@@ -294,7 +304,9 @@ bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
     if (tangential) terms = std::max(terms, pb.W_T.col(i).cwiseAbs().dot(u));
     const bool separating = dna > 0.0;
     if (!separating) v_scale = std::max({v_scale, std::fabs(dna), std::fabs(dta)});
-    const double e = separating ? 0.0 : law.e[i];
+    // Newton's e D_NA drops out on a separating contact; Poisson's phases stay as they are.
+    const double e = separating && !poisson ? 0.0 : law.e[i];
+    const double mu = law.has_friction() ? law.mu[i] : 0.0;
     const double PN = r.P_N(i), PT = tangential ? r.P_T(i) : 0.0;
     // The contact's own G_ii where it takes part; a separating one carries P = 0 and needs none.
     double gn = 1.0, gt = 1.0;
@@ -304,10 +316,18 @@ bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
         if (cs.tangential)
           gt = cs.G(cs.active + k, cs.active + k) > 0.0 ? cs.G(cs.active + k, cs.active + k) : 1.0;
       }
-    worst = std::max(worst, std::fabs(complementarity(r.D_NE(i) + e * dna, PN, gn)));
-    if (tangential)
-      worst = std::max(
-          worst, std::fabs(coulomb(PT, r.D_TE(i), law.has_friction() ? law.mu[i] * PN : 0.0, gt)));
+    if (!poisson) {
+      worst = std::max(worst, std::fabs(complementarity(r.D_NE(i) + e * dna, PN, gn)));
+      if (tangential) worst = std::max(worst, std::fabs(coulomb(PT, r.D_TE(i), mu * PN, gt)));
+      continue;
+    }
+    // Poisson: compression, then expansion with P_NE = e P_NC + ΔP, as classical_residual reads it.
+    const double PNC = r.P_NC(i), PTC = tangential ? r.P_TC(i) : 0.0;
+    worst = std::max(worst, std::fabs(complementarity(r.D_NC(i), PNC, gn)));
+    if (tangential) worst = std::max(worst, std::fabs(coulomb(PTC, r.D_TC(i), mu * PNC, gt)));
+    const double pne = PN - PNC, pte = PT - PTC;
+    worst = std::max(worst, std::fabs(complementarity(r.D_NE(i), pne - e * PNC, gn)));
+    if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, r.D_TE(i), mu * pne, gt)));
   }
   // Each within 45 % of the tolerance: the data's residual, within their sum of this one (both
   // maps are 1-Lipschitz in the velocities), then stays within it.
@@ -324,9 +344,10 @@ bool newton_residual_at_own_velocities(const ImpactProblemT<N, C>& pb,
   template double classical_residual(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,    \
                                      const RestitutionLaw&, const ImpactResultT<N, C>&, double*, \
                                      bool, double);                                              \
-  template bool newton_residual_at_own_velocities(                                               \
+  template bool residual_at_own_velocities(                                                      \
       const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const RestitutionLaw&,            \
-      const typename ContactSpaceT<N, C>::Rows&, const ImpactResultT<N, C>&, double, double*);
+      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,      \
+      const ImpactResultT<N, C>&, double, double*);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 #undef FREMOND_INSTANTIATE

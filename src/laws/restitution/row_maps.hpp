@@ -29,7 +29,7 @@ inline double coulomb(double t, double v, double b, double g) {
 
 /// The share of the tolerance that the residual at an answer's own velocities, and those
 /// velocities' rounding, may each take for the law's residual from the data to stay within it
-/// (both maps are 1-Lipschitz in the velocities): newton_residual_at_own_velocities.
+/// (both maps are 1-Lipschitz in the velocities): residual_at_own_velocities.
 inline constexpr double kOwnVelocityShare = 0.45;
 
 }  // namespace fremond::detail

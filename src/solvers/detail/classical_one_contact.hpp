@@ -31,7 +31,7 @@ bool one_newton_contact(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law
 /// The answer of one_newton_contact's problems, written into `out` (a cleared result) when the
 /// contact modes would give it unchanged: one solution of the closed form (G regular), velocities
 /// whose terms do not cancel (velocity_after's plain sum), and a residual settled at those
-/// velocities (newton_residual_at_own_velocities). False, `out` untouched, otherwise: the contact
+/// velocities (residual_at_own_velocities). False, `out` untouched, otherwise: the contact
 /// modes then run as they always do. Each number is computed as the general path computes it, in
 /// the same order, so that the answers agree bit for bit (tests/unit/classical_one_contact_test).
 template <int N, int C>
@@ -80,7 +80,7 @@ bool settle_one_newton_contact(const ImpactProblemT<N, C>& pb, const ContactSpac
       tangential ? contact_velocity(pb.W_T.col(0), q, pb.w_T.size() ? pb.w_T(0) : 0.0) : 0.0;
   const double energy = energy_change_at(pb, q, true);
 
-  // The residual at these velocities (newton_residual_at_own_velocities), within its share of the
+  // The residual at these velocities (residual_at_own_velocities), within its share of the
   // tolerance; else the data's residual decides, on the general path.
   VecT<N> u = VecT<N>::Zero(n);
   for (int j = 0; j < rows; ++j)
