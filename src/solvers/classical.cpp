@@ -618,8 +618,7 @@ struct ClassicalChain {
         Stage<&F::forced_trivial, &F::unsupported>,    // trivial forced, yet contacts take part
         Stage<&F::forced_sweeps_on_phases, &F::unsupported>,  // nsgs is Newton's only
         Stage<&F::many_contacts, &F::sweeps>,                 // Newton on many contacts: the sweeps
-        Stage<&F::one_newton_contact, &F::one_contact_closed_form>,  // Newton, one contact, M
-                                                                     // diagonal
+        Stage<&F::one_contact, &F::one_contact_closed_form>,  // one contact, M diagonal: scalars
         Stage<&F::always, &F::contact_modes>,  // per phase: closed form, Lemke, enumeration
         Stage<&F::no_mode_found, &F::modes_in_velocities_or_none>,
         Stage<&F::stalled_after_lemke, &F::enumeration_again>,  // Lemke's pivots' rounding
@@ -649,7 +648,7 @@ struct ClassicalChain {
     return opt.method == SolverMethod::automatic && cs.tangential &&
            cs.active >= classical::kSweepsFromContacts && cs.rows() > cs.dofs;
   }
-  bool one_newton_contact() const { return classical::one_newton_contact(cs, law, opt); }
+  bool one_contact() const { return classical::one_approaching_contact(cs, opt); }
   bool no_mode_found() const { return lo.solutions.size == 0; }
   bool stalled() const { return out.solver.status == SolverStatus::stalled; }
   // Lemke's pivots accumulate rounding: where the enumeration applies, the same contact mode solved
@@ -673,7 +672,7 @@ struct ClassicalChain {
   // The contact modes' answer on scalars where they would give it unchanged
   // (classical_one_contact.hpp); else the contact modes run.
   bool one_contact_closed_form() {
-    return classical::settle_one_newton_contact(pb, cs, law, opt, out) && logged();
+    return classical::settle_one_contact(pb, cs, law, opt, out) && logged();
   }
   // The law's modes in contact space; with several solutions the most dissipative that meets the
   // law. Hands on a stalled answer, or none.

@@ -71,8 +71,10 @@ TEST(ClassicalOneContact, DiagonalMassAgreesWithTheContactModesInRotatedCoordina
     const bool tangent = n > 1 && trial % 5 != 0, moving = trial % 7 == 0;
     const Pair p = random_pair(rng, n, tangent, moving);
     const double e = unit(rng), mu = 1.5 * unit(rng);
+    const bool friction = tangent && trial % 3 != 0, poisson = trial % 2 == 1;
     const ImpactLaw law =
-        tangent && trial % 3 != 0 ? ImpactLaw::newton_coulomb(e, mu) : ImpactLaw::newton(e);
+        poisson ? (friction ? ImpactLaw::poisson_coulomb(e, mu) : ImpactLaw::poisson(e))
+                : (friction ? ImpactLaw::newton_coulomb(e, mu) : ImpactLaw::newton(e));
     const ImpactResult a = solve_impact(p.diagonal, law), b = solve_impact(p.rotated, law);
     ASSERT_TRUE(a.ok()) << "trial " << trial << ": " << a.solver.message;
     ASSERT_TRUE(b.ok()) << "trial " << trial << ": " << b.solver.message;
@@ -89,8 +91,15 @@ TEST(ClassicalOneContact, DiagonalMassAgreesWithTheContactModesInRotatedCoordina
     EXPECT_NEAR(a.energy_change, b.energy_change,
                 1e-10 * std::max(a.admissibility.kinetic_energy_A, 1e-300))
         << "trial " << trial;
-    // Eq. 5 on the normal row, and the residual each reports.
-    EXPECT_NEAR(a.D_NE(0), -e * a.D_NA(0), 1e-12 * v) << "trial " << trial;
+    if (poisson) {
+      // Both phases, and the compression's end: D_NC = 0 on the closed normal row.
+      EXPECT_NEAR(a.P_NC(0), b.P_NC(0), 1e-10 * pscale) << "trial " << trial;
+      EXPECT_NEAR(a.P_TC(0), b.P_TC(0), 1e-10 * pscale) << "trial " << trial;
+      EXPECT_NEAR(a.D_NC(0), 0.0, 1e-12 * v) << "trial " << trial;
+      EXPECT_LE((a.qdot_C - p.Q * b.qdot_C).cwiseAbs().maxCoeff(), 1e-10 * q) << "trial " << trial;
+    } else {
+      EXPECT_NEAR(a.D_NE(0), -e * a.D_NA(0), 1e-12 * v) << "trial " << trial;  // eq. 5
+    }
     EXPECT_LE(a.solver.residual, 1e-12);
     EXPECT_EQ(a.unique, b.unique) << "trial " << trial;
     EXPECT_EQ(a.admissibility.admissible, b.admissibility.admissible) << "trial " << trial;

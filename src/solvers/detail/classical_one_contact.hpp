@@ -1,9 +1,10 @@
 #pragma once
-/// @file The first stage of the classical chain where it applies: Newton's law (eq. 5, with
-/// Coulomb's eqs. 7-8) on a problem of one contact that approaches, on a body whose M is diagonal
-/// (a bar, a disc, a point mass in their principal axes). The closed form of one_contact, its
-/// velocities and its residual read at them, all on scalars: the contact modes' answer to the last
-/// bit, without their lists, loops over contacts and dynamic-size vectors (docs/solvers.md).
+/// @file The first stage of the classical chain where it applies: Newton's law (eq. 5) or
+/// Poisson's (its compression, then its expansion), with or without Coulomb's friction
+/// (eqs. 7-8), on a problem of one contact that approaches, on a body whose M is diagonal (a bar,
+/// a disc, a point mass in their principal axes). The closed forms of one_contact, the velocities
+/// and the residual read at them, all on scalars: the contact modes' answer to the last bit,
+/// without their lists, loops over contacts and dynamic-size vectors (docs/solvers.md).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,50 +18,31 @@
 
 namespace fremond::detail::classical {
 
-/// Where the stage applies: Newton's law (no phases), the closed form allowed (automatic or
-/// closed_form), one contact in the problem and it approaching (D_NA ≤ 0), M diagonal.
+/// Where the stage applies: the closed form allowed (automatic or closed_form), one contact in
+/// the problem and it approaching (D_NA ≤ 0), M diagonal.
 template <int N, int C>
-bool one_newton_contact(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
-                        const SolverOptions& options) {
-  return !law.has_phases() && cs.contacts == 1 && cs.active == 1 && cs.D_N(0) <= 0.0 &&
+bool one_approaching_contact(const ContactSpaceT<N, C>& cs, const SolverOptions& options) {
+  return cs.contacts == 1 && cs.active == 1 && cs.D_N(0) <= 0.0 &&
          (options.method == SolverMethod::automatic ||
           options.method == SolverMethod::closed_form) &&
          cs.llt.matrix_is_diagonal();
 }
 
-/// The answer of one_newton_contact's problems, written into `out` (a cleared result) when the
-/// contact modes would give it unchanged: one solution of the closed form (G regular), velocities
-/// whose terms do not cancel (velocity_after's plain sum), and a residual settled at those
-/// velocities (residual_at_own_velocities). False, `out` untouched, otherwise: the contact
-/// modes then run as they always do. Each number is computed as the general path computes it, in
-/// the same order, so that the answers agree bit for bit (tests/unit/classical_one_contact_test).
+/// q = q̇_A + M⁻¹W P for the contact's rows P (P[1] the tangential one, 0 without), column by
+/// column, zero percussions skipped, as velocity_after sums it. False where velocity_after would
+/// sum the force again (its terms cancel) or q is not finite.
 template <int N, int C>
-bool settle_one_newton_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                               const RestitutionLaw& law, const SolverOptions& options,
-                               ImpactResultT<N, C>& out) {
-  const int n = cs.dofs;
-  const bool f = cs.tangential, tangential = pb.has_tangential();
-  const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
-  const double dna = cs.D_A(0), dta = f ? cs.D_A(1) : 0.0;
-  const double e = law.e[0], mu = f ? law.mu[0] : 0.0;
-  Tolerances tol;
-  tol.v = 1e-9 * cs.v_scale;
-  tol.p = tol.v / std::max({gnn, gtt, std::numeric_limits<double>::min()});
-  const OneContact s = one_contact(gnn, gnt, gtt, (1 + e) * dna, dta, mu, 0.0, f, tol);
-  if (s.degenerate || s.count != 1) return false;
-  const double P[2] = {s.x[0], f ? s.t[0] : 0.0};
-  if (!std::isfinite(P[0]) || !std::isfinite(P[1])) return false;
-  const int rows = f ? 2 : 1;
-
-  // q̇_E = q̇_A + M⁻¹W P, column by column, zero percussions skipped (velocity_after).
-  VecT<N> q = pb.qdot_A;
+bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                          const double (&P)[2], VecT<N>& q) {
+  const int n = cs.dofs, rows = cs.tangential ? 2 : 1;
+  q = pb.qdot_A;
   int moving = 0;
   for (int j = 0; j < rows; ++j) {
     if (P[j] == 0.0) continue;
     ++moving;
     for (int i = 0; i < n; ++i) q(i) += cs.MinvW(i, j) * P[j];
   }
-  if (moving == 2) {  // where the terms cancel, velocity_after sums the force again, refined
+  if (moving == 2) {
     double terms = 0.0, change = 0.0;
     for (int i = 0; i < n; ++i) {
       double t = 0.0;
@@ -73,34 +55,101 @@ bool settle_one_newton_contact(const ImpactProblemT<N, C>& pb, const ContactSpac
   }
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(q(i))) return false;
+  return true;
+}
 
-  // The contact velocities after, and T_E − T_A (scatter_at_velocities).
-  const double D_NE = contact_velocity(pb.W_N.col(0), q, pb.w_N.size() ? pb.w_N(0) : 0.0);
-  const double D_TE =
-      tangential ? contact_velocity(pb.W_T.col(0), q, pb.w_T.size() ? pb.w_T(0) : 0.0) : 0.0;
+/// u += |M⁻¹W_j P_j| over the rows with a percussion (residual_at_own_velocities' terms).
+template <int N, int C>
+void add_velocity_terms(const ContactSpaceT<N, C>& cs, const double (&P)[2], VecT<N>& u) {
+  for (int j = 0; j < (cs.tangential ? 2 : 1); ++j)
+    if (P[j] != 0.0) u += (cs.MinvW.col(j) * P[j]).cwiseAbs();
+}
+
+/// The answer of one_approaching_contact's problems, written into `out` (a cleared result) when
+/// the contact modes would give it unchanged: one solution of the closed forms (G regular; for
+/// Poisson one compression and one expansion), velocities whose terms do not cancel
+/// (velocity_after's plain sum), and a residual settled at those velocities
+/// (residual_at_own_velocities). False, `out` untouched, otherwise: the contact modes then run as
+/// they always do. Each number is computed as the general path computes it, in the same order, so
+/// that the answers agree bit for bit.
+template <int N, int C>
+bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                        const RestitutionLaw& law, const SolverOptions& options,
+                        ImpactResultT<N, C>& out) {
+  const int n = cs.dofs, rows = cs.tangential ? 2 : 1;
+  const bool f = cs.tangential, tangential = pb.has_tangential(), poisson = law.has_phases();
+  const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
+  const double dna = cs.D_A(0), dta = f ? cs.D_A(1) : 0.0;
+  const double e = law.e[0], mu = f ? law.mu[0] : 0.0;
+  Tolerances tol;
+  tol.v = 1e-9 * cs.v_scale;
+  tol.p = tol.v / std::max({gnn, gtt, std::numeric_limits<double>::min()});
+  // The law's phases by their closed forms (solve_law_one_contact): Newton's one, or Poisson's
+  // compression and then its expansion from P_NE = e P_NC with the bound μ P_NE.
+  const OneContact first =
+      one_contact(gnn, gnt, gtt, poisson ? dna : (1 + e) * dna, dta, mu, 0.0, f, tol);
+  if (first.degenerate || first.count != 1) return false;
+  double P[2] = {first.x[0], f ? first.t[0] : 0.0}, P_C[2] = {0.0, 0.0};
+  if (poisson) {
+    const double xc = first.x[0], tc = first.t[0], s = e * xc;
+    const double dnc = dna + gnn * xc + gnt * tc, dtc = dta + gnt * xc + gtt * tc;
+    const OneContact second =
+        one_contact(gnn, gnt, gtt, dnc + gnn * s, dtc + gnt * s, mu, mu * s, f, tol);
+    if (second.degenerate || second.count != 1) return false;
+    P_C[0] = xc;
+    P_C[1] = f ? tc : 0.0;
+    P[0] = xc + s + second.x[0];
+    P[1] = f ? tc + second.t[0] : 0.0;
+  }
+  if (!std::isfinite(P[0]) || !std::isfinite(P[1]) || !std::isfinite(P_C[0]) ||
+      !std::isfinite(P_C[1]))
+    return false;
+
+  // The velocities, the contact velocities after and T_E − T_A (write_classical_answer).
+  VecT<N> q, qC;
+  if (!plain_velocity_after(pb, cs, P, q)) return false;
+  if (poisson && !plain_velocity_after(pb, cs, P_C, qC)) return false;
+  const double wn = pb.w_N.size() ? pb.w_N(0) : 0.0, wt = pb.w_T.size() ? pb.w_T(0) : 0.0;
+  const double D_NE = contact_velocity(pb.W_N.col(0), q, wn);
+  const double D_TE = tangential ? contact_velocity(pb.W_T.col(0), q, wt) : 0.0;
+  const double D_NC = poisson ? contact_velocity(pb.W_N.col(0), qC, wn) : 0.0;
+  const double D_TC = poisson && tangential ? contact_velocity(pb.W_T.col(0), qC, wt) : 0.0;
   const double energy = energy_change_at(pb, q, true);
 
   // The residual at these velocities (residual_at_own_velocities), within its share of the
   // tolerance; else the data's residual decides, on the general path.
   VecT<N> u = VecT<N>::Zero(n);
-  for (int j = 0; j < rows; ++j)
-    if (P[j] != 0.0) u += (cs.MinvW.col(j) * P[j]).cwiseAbs();
+  add_velocity_terms(cs, P, u);
+  if (poisson) {
+    VecT<N> uC = VecT<N>::Zero(n);
+    add_velocity_terms(cs, P_C, uC);
+    u = u.cwiseMax(uC);
+  }
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   const double dn = cs.D_N(0), dt = tangential ? cs.D_T(0) : 0.0;
-  double terms = pb.W_N.col(0).cwiseAbs().dot(u);
+  double terms = std::max(0.0, pb.W_N.col(0).cwiseAbs().dot(u));
   if (tangential) terms = std::max(terms, pb.W_T.col(0).cwiseAbs().dot(u));
   const double v_scale =
       std::max({std::numeric_limits<double>::min(), std::fabs(dn), std::fabs(dt)});
   const double gn = gnn > 0.0 ? gnn : 1.0, gt = f ? (gtt > 0.0 ? gtt : 1.0) : 1.0;
-  double worst = std::max(0.0, std::fabs(complementarity(D_NE + e * dn, P[0], gn)));
-  if (tangential)
-    worst = std::max(
-        worst, std::fabs(coulomb(P[1], D_TE, law.has_friction() ? law.mu[0] * P[0] : 0.0, gt)));
+  const double bound_mu = law.has_friction() ? law.mu[0] : 0.0;
+  double worst = 0.0;
+  if (!poisson) {
+    worst = std::max(worst, std::fabs(complementarity(D_NE + e * dn, P[0], gn)));
+    if (tangential) worst = std::max(worst, std::fabs(coulomb(P[1], D_TE, bound_mu * P[0], gt)));
+  } else {
+    worst = std::max(worst, std::fabs(complementarity(D_NC, P_C[0], gn)));
+    if (tangential)
+      worst = std::max(worst, std::fabs(coulomb(P_C[1], D_TC, bound_mu * P_C[0], gt)));
+    const double pne = P[0] - P_C[0], pte = P[1] - P_C[1];
+    worst = std::max(worst, std::fabs(complementarity(D_NE, pne - e * P_C[0], gn)));
+    if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, D_TE, bound_mu * pne, gt)));
+  }
   const double allowed = kOwnVelocityShare * options.tolerance * v_scale;
   if (!(floor * terms <= allowed) || !(worst <= allowed)) return false;
   const double residual = worst / v_scale;
-  if (!std::isfinite(D_NE) || !std::isfinite(D_TE) || !std::isfinite(energy) ||
-      !std::isfinite(residual))
+  if (!std::isfinite(D_NE) || !std::isfinite(D_TE) || !std::isfinite(D_NC) ||
+      !std::isfinite(D_TC) || !std::isfinite(energy) || !std::isfinite(residual))
     return false;
 
   out.qdot_E = q;
@@ -120,8 +169,20 @@ bool settle_one_newton_contact(const ImpactProblemT<N, C>& pb, const ContactSpac
   out.takes_part.resize(1);
   out.takes_part(0) = dn <= 0.0 ? 1 : 0;
   out.energy_change = energy;
-  out.has_phases = false;
-  out.qdot_C.resize(0);
+  out.has_phases = poisson;
+  if (poisson) {
+    out.P_NC.resize(1);
+    out.P_TC.resize(1);
+    out.P_NC(0) = P_C[0];
+    out.P_TC(0) = P_C[1];
+    out.qdot_C = qC;
+    out.D_NC.resize(1);
+    out.D_NC(0) = D_NC;
+    out.D_TC.resize(1);
+    out.D_TC(0) = D_TC;
+  } else {
+    out.qdot_C.resize(0);
+  }
   // The report of a unique, exact answer (report_solution).
   out.unique = true;
   out.solutions_found = 1;
