@@ -58,11 +58,13 @@ bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
   return true;
 }
 
-/// u += |M⁻¹W_j P_j| over the rows with a percussion (residual_at_own_velocities' terms).
+/// u += |M⁻¹W_j P_j| over the rows with a percussion (residual_at_own_velocities' terms), entry
+/// by entry: the same operations as its vector expression, without its dispatch.
 template <int N, int C>
-void add_velocity_terms(const ContactSpaceT<N, C>& cs, const double (&P)[2], VecT<N>& u) {
+inline void add_velocity_terms(const ContactSpaceT<N, C>& cs, const double (&P)[2], VecT<N>& u) {
   for (int j = 0; j < (cs.tangential ? 2 : 1); ++j)
-    if (P[j] != 0.0) u += (cs.MinvW.col(j) * P[j]).cwiseAbs();
+    if (P[j] != 0.0)
+      for (int i = 0; i < cs.dofs; ++i) u(i) += std::fabs(cs.MinvW(i, j) * P[j]);
 }
 
 /// The answer of one_approaching_contact's problems, written into `out` (a cleared result) when
@@ -123,7 +125,7 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
   if (poisson) {
     VecT<N> uC = VecT<N>::Zero(n);
     add_velocity_terms(cs, P_C, uC);
-    u = u.cwiseMax(uC);
+    for (int i = 0; i < n; ++i) u(i) = std::max(u(i), uC(i));
   }
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   const double dn = cs.D_N(0), dt = tangential ? cs.D_T(0) : 0.0;
