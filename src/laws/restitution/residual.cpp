@@ -316,18 +316,15 @@ bool residual_at_own_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
         if (cs.tangential)
           gt = cs.G(cs.active + k, cs.active + k) > 0.0 ? cs.G(cs.active + k, cs.active + k) : 1.0;
       }
-    if (!poisson) {
-      worst = std::max(worst, std::fabs(complementarity(r.D_NE(i) + e * dna, PN, gn)));
-      if (tangential) worst = std::max(worst, std::fabs(coulomb(PT, r.D_TE(i), mu * PN, gt)));
-      continue;
+    ContactAnswer answer{
+        .D_NE = r.D_NE(i), .D_TE = tangential ? r.D_TE(i) : 0.0, .P_N = PN, .P_T = PT};
+    if (poisson) {
+      answer.D_NC = r.D_NC(i);
+      answer.D_TC = tangential ? r.D_TC(i) : 0.0;
+      answer.P_NC = r.P_NC(i);
+      answer.P_TC = tangential ? r.P_TC(i) : 0.0;
     }
-    // Poisson: compression, then expansion with P_NE = e P_NC + ΔP, as classical_residual reads it.
-    const double PNC = r.P_NC(i), PTC = tangential ? r.P_TC(i) : 0.0;
-    worst = std::max(worst, std::fabs(complementarity(r.D_NC(i), PNC, gn)));
-    if (tangential) worst = std::max(worst, std::fabs(coulomb(PTC, r.D_TC(i), mu * PNC, gt)));
-    const double pne = PN - PNC, pte = PT - PTC;
-    worst = std::max(worst, std::fabs(complementarity(r.D_NE(i), pne - e * PNC, gn)));
-    if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, r.D_TE(i), mu * pne, gt)));
+    worst = std::max(worst, worst_row_map(poisson, tangential, e, mu, dna, gn, gt, answer));
   }
   // Each within 45 % of the tolerance: the data's residual, within their sum of this one (both
   // maps are 1-Lipschitz in the velocities), then stays within it.

@@ -27,6 +27,33 @@ inline double coulomb(double t, double v, double b, double g) {
   return scaled(g, t - std::clamp(t - v / g, -b, b));
 }
 
+/// One contact's rows at an answer: its velocities after (Poisson's: also at the end of
+/// compression) and its percussions (total, and Poisson's compression part).
+struct ContactAnswer {
+  double D_NE = 0.0, D_TE = 0.0, P_N = 0.0, P_T = 0.0;
+  double D_NC = 0.0, D_TC = 0.0, P_NC = 0.0, P_TC = 0.0;
+};
+
+/// The largest |natural map| of one contact's rows (Newton: eq. 5 as a complementarity, then
+/// Coulomb; Poisson: compression, then the expansion with P_NE = e P_NC + ΔP), in velocity units.
+/// `e` acts on `dna` (Newton's) or on P_NC (Poisson's); `mu` bounds the tangential percussion (0
+/// without friction); gn, gt the contact's own Delassus entries.
+inline double worst_row_map(bool poisson, bool tangential, double e, double mu, double dna,
+                            double gn, double gt, const ContactAnswer& k) {
+  double worst = 0.0;
+  if (!poisson) {
+    worst = std::max(worst, std::fabs(complementarity(k.D_NE + e * dna, k.P_N, gn)));
+    if (tangential) worst = std::max(worst, std::fabs(coulomb(k.P_T, k.D_TE, mu * k.P_N, gt)));
+    return worst;
+  }
+  worst = std::max(worst, std::fabs(complementarity(k.D_NC, k.P_NC, gn)));
+  if (tangential) worst = std::max(worst, std::fabs(coulomb(k.P_TC, k.D_TC, mu * k.P_NC, gt)));
+  const double pne = k.P_N - k.P_NC, pte = k.P_T - k.P_TC;
+  worst = std::max(worst, std::fabs(complementarity(k.D_NE, pne - e * k.P_NC, gn)));
+  if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, k.D_TE, mu * pne, gt)));
+  return worst;
+}
+
 /// The share of the tolerance that the residual at an answer's own velocities, and those
 /// velocities' rounding, may each take for the law's residual from the data to stay within it
 /// (both maps are 1-Lipschitz in the velocities): residual_at_own_velocities.

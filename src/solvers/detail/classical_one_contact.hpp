@@ -134,19 +134,16 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
   const double v_scale =
       std::max({std::numeric_limits<double>::min(), std::fabs(dn), std::fabs(dt)});
   const double gn = gnn > 0.0 ? gnn : 1.0, gt = f ? (gtt > 0.0 ? gtt : 1.0) : 1.0;
-  const double bound_mu = law.has_friction() ? law.mu[0] : 0.0;
-  double worst = 0.0;
-  if (!poisson) {
-    worst = std::max(worst, std::fabs(complementarity(D_NE + e * dn, P[0], gn)));
-    if (tangential) worst = std::max(worst, std::fabs(coulomb(P[1], D_TE, bound_mu * P[0], gt)));
-  } else {
-    worst = std::max(worst, std::fabs(complementarity(D_NC, P_C[0], gn)));
-    if (tangential)
-      worst = std::max(worst, std::fabs(coulomb(P_C[1], D_TC, bound_mu * P_C[0], gt)));
-    const double pne = P[0] - P_C[0], pte = P[1] - P_C[1];
-    worst = std::max(worst, std::fabs(complementarity(D_NE, pne - e * P_C[0], gn)));
-    if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, D_TE, bound_mu * pne, gt)));
-  }
+  const double worst =
+      worst_row_map(poisson, tangential, e, law.has_friction() ? law.mu[0] : 0.0, dn, gn, gt,
+                    {.D_NE = D_NE,
+                     .D_TE = D_TE,
+                     .P_N = P[0],
+                     .P_T = P[1],
+                     .D_NC = D_NC,
+                     .D_TC = D_TC,
+                     .P_NC = P_C[0],
+                     .P_TC = P_C[1]});
   const double allowed = kOwnVelocityShare * options.tolerance * v_scale;
   if (!(floor * terms <= allowed) || !(worst <= allowed)) return false;
   const double residual = worst / v_scale;
