@@ -80,8 +80,21 @@ const std::vector<int>& pile_sides() {
   return sides;
 }
 
+// Beds: piles that grow in width only, four layers deep. A sweep costs what G's non-zeros cost on
+// both; the sweeps a solve needs grow with the height a blow crosses, not with the width.
+constexpr int kBedLayers = 4;
+const std::vector<int>& bed_columns() {
+  static const std::vector<int> columns{3, 8, 32, 128, 512, 875};  // 20 to 6,996 contacts
+  return columns;
+}
+
+// The pile of range(0) columns and range(1) layers.
+SparseImpactProblem pile_of(const benchmark::State& state) {
+  return fixtures::disk_pile(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+}
+
 void BM_Sparse_Pile(benchmark::State& state) {
-  const SparseImpactProblem pb = fixtures::disk_pile(static_cast<int>(state.range(0)));
+  const SparseImpactProblem pb = pile_of(state);
   const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
   ImpactResult r;
   for (auto _ : state) {
@@ -99,7 +112,7 @@ void BM_Sparse_Pile(benchmark::State& state) {
 // Siconos's 2-D NSGS on the same pile, from the dense contact form its 2-D driver takes (q = D_A:
 // e = 0); `our_residual` measures its answer as ours is measured.
 void BM_Siconos_Pile(benchmark::State& state) {
-  const SparseImpactProblem pb = fixtures::disk_pile(static_cast<int>(state.range(0)));
+  const SparseImpactProblem pb = pile_of(state);
   const ContactProblem cp = contact_problem(pb);
   const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
   const int c = cp.contacts();
@@ -156,15 +169,28 @@ void BM_Siconos_Fc2dFile(benchmark::State& state, const std::string& name,
 const bool registered = [] {
   for (const int side : pile_sides())
     benchmark::RegisterBenchmark("BM_Sparse_Pile", BM_Sparse_Pile)
-        ->Arg(side)
+        ->Args({side, side})
+        ->Unit(benchmark::kMillisecond);
+  for (const int columns : bed_columns())
+    benchmark::RegisterBenchmark("BM_Sparse_Bed", BM_Sparse_Pile)
+        ->Args({columns, kBedLayers})
         ->Unit(benchmark::kMillisecond);
 #ifdef FREMOND_HAVE_SICONOS
-  // The dense form beyond 703 contacts costs Siconos seconds a solve.
+  // The dense form beyond 703 contacts costs Siconos seconds a solve (a bed of 1,020: one run).
   for (const int side : pile_sides())
     if (side <= 19)
       benchmark::RegisterBenchmark("BM_Siconos_Pile", BM_Siconos_Pile)
-          ->Arg(side)
+          ->Args({side, side})
           ->Unit(benchmark::kMillisecond);
+  for (const int columns : bed_columns())
+    if (columns <= 32)
+      benchmark::RegisterBenchmark("BM_Siconos_Bed", BM_Siconos_Pile)
+          ->Args({columns, kBedLayers})
+          ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_Siconos_Bed", BM_Siconos_Pile)
+      ->Args({128, kBedLayers})
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
 #endif
   for (const auto& name : files()) {
     benchmark::RegisterBenchmark(("BM_Sparse_Nsgs/" + name).c_str(), BM_Sparse_Nsgs, name)

@@ -9,14 +9,15 @@
 
 namespace fremond::fixtures {
 
-// A pile of s × s equal disks (radius 0.5, m = 1, J = 1/8) in a square packing on the ground, every
-// neighbour touching: (s − 1) s contacts side by side, s (s − 1) one above another, s on the
-// ground, 2s² − s in all, more contact rows than degrees of freedom (G singular, as in granular
-// media). The disks fall at about 1 m/s with random spreads (seeded), Newton + Coulomb, e = 0, μ =
-// 0.5: the cost of a solve against the number of contacts.
-inline SparseImpactProblem disk_pile(int s) {
-  const int disks = s * s, n = 3 * disks;
-  auto at = [s](int i, int j) { return 3 * (j * s + i); };  // column i, row j
+// A pile of `columns` × `layers` equal disks (radius 0.5, m = 1, J = 1/8) in a square packing on
+// the ground, every neighbour touching: (columns − 1) layers contacts side by side, columns
+// (layers − 1) one above another, columns on the ground, more contact rows than degrees of freedom
+// (G singular, as in granular media). The disks fall at about 1 m/s with random spreads (seeded),
+// Newton + Coulomb, e = 0, μ = 0.5: the cost of a solve against the number of contacts, for piles
+// that grow in height (square) or in width only (a bed of a few layers).
+inline SparseImpactProblem disk_pile(int columns, int layers) {
+  const int disks = columns * layers, n = 3 * disks;
+  auto at = [columns](int i, int j) { return 3 * (j * columns + i); };  // column i, layer j
   std::vector<Eigen::Triplet<double>> M, WN, WT;
   for (int d = 0; d < disks; ++d) {
     M.emplace_back(3 * d, 3 * d, 1.0);
@@ -42,8 +43,8 @@ inline SparseImpactProblem disk_pile(int s) {
     }
     ++c;
   };
-  for (int j = 0; j < s; ++j)
-    for (int i = 0; i < s; ++i) {
+  for (int j = 0; j < layers; ++j)
+    for (int i = 0; i < columns; ++i) {
       if (i > 0) touch(at(i - 1, j), at(i, j), 1.0, 0.0);
       touch(j > 0 ? at(i, j - 1) : -1, at(i, j), 0.0, 1.0);
     }
@@ -63,6 +64,11 @@ inline SparseImpactProblem disk_pile(int s) {
     pb.qdot_A(3 * d + 2) = 0.5 * u(rng);
   }
   return pb;
+}
+
+// The square pile of s × s disks: 2s² − s contacts.
+inline SparseImpactProblem disk_pile(int s) {
+  return disk_pile(s, s);
 }
 
 }  // namespace fremond::fixtures

@@ -237,6 +237,26 @@ TEST(SparseSolver, PileOfDisksMeetsTheLawToRounding) {
   EXPECT_LT(exact.energy_change, 0.0);
 }
 
+// A bed of 128 × 4 disks (1,020 contacts): the benchmarks' wide pile. Solved to 1e-8; the law holds
+// at every contact by the check written here, the velocities are q̇_A + M⁻¹(W_N P_N + W_T P_T)
+// (M = diag(1, 1, 1/8) a disk), and no disk of the bottom layer goes into the ground.
+TEST(SparseSolver, WideBedOfDisksMeetsTheLaw) {
+  const SparseImpactProblem pb = fixtures::disk_pile(128, 4);
+  const ContactProblem cp = contact_problem(pb);
+  ASSERT_EQ(cp.contacts(), 1020);
+  const ImpactResult r = solve_impact(pb, ImpactLaw::newton_coulomb(0.0, 0.5), {.tolerance = 1e-8});
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_LE(law_violation(cp, std::vector<double>(1020, 0.5), r), 1e-8);
+  const Eigen::VectorXd moved = pb.W_N * r.P_N + pb.W_T * r.P_T;
+  for (int d = 0; d < 512; ++d) {
+    const double inv_mass[3] = {1.0, 1.0, 8.0};
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(r.qdot_E(3 * d + k), pb.qdot_A(3 * d + k) + inv_mass[k] * moved(3 * d + k), 1e-12)
+          << "disk " << d << ", coordinate " << k;
+  }
+  for (int d = 0; d < 128; ++d) EXPECT_GE(r.qdot_E(3 * d + 1), -1e-8) << "disk " << d;
+}
+
 // 667 grains at the start of the flow (q of order 1e-19): solved to 1e-8 of that scale.
 TEST(SiconosProblems, GranularFlowOf667Contacts) {
   const auto file = read_siconos("fc2d_granularflowonwall_00667_00000.dat");
