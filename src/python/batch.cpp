@@ -77,11 +77,14 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
   py::array_t<bool> admissible({count}), unique({count});
   // Solved in the small form where the shape fits it (no heap memory per problem or result), as
   // solve_impact would: the answers are the same to the last bit.
+  // Every operand but qdot_A shared: one configuration, prepared once (validated and factored),
+  // and each velocity solved on it (solve_batch of a prepared solver), the same answers.
+  const bool one_configuration = count > 0 && m.shared && wn.shared && (!wt || wt->shared) &&
+                                 (!vn || vn->shared) && (!vt || vt->shared);
   auto run = [&](auto problem_type) {
     using Problem = decltype(problem_type);
-    std::vector<Problem> problems(static_cast<std::size_t>(count));
-    for (py::ssize_t i = 0; i < count; ++i) {
-      Problem& p = problems[static_cast<std::size_t>(i)];
+    auto problem = [&](py::ssize_t i) {
+      Problem p;
       p.M = matrix(m.at(i), ni, ni);
       p.W_N = matrix(wn.at(i), ni, ci);
       if (wt)
@@ -91,10 +94,26 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
       p.w_N = vn ? VectorX(Eigen::Map<const VectorX>(vn->at(i), ci)) : VectorX::Zero(ci);
       p.w_T = vt ? VectorX(Eigen::Map<const VectorX>(vt->at(i), ci)) : VectorX::Zero(p.W_T.cols());
       p.qdot_A = Eigen::Map<const VectorX>(qdot_A.data() + i * n, ni);
-    }
+      return p;
+    };
     BatchOptions batch;
     batch.threads = threads;
-    const auto results = solve_batch(std::span<const Problem>(problems), law, options, batch);
+    std::vector<ImpactResultT<Problem::kMaxDofs, Problem::kMaxContacts>> results;
+    if (one_configuration) {
+      // Prepared at rest, a velocity always valid for a valid configuration, so that each
+      // velocity is judged, and named, by its own index.
+      Problem p = problem(0);
+      p.qdot_A.setZero(ni);
+      const ImpactSolverT<Problem::kMaxDofs, Problem::kMaxContacts> solver(p, law, options);
+      // The (N, n) row-major array is the n × N column-major matrix of one velocity a column.
+      results =
+          solve_batch(solver, Eigen::Map<const Eigen::MatrixXd>(qdot_A.data(), ni, count), batch);
+    } else {
+      std::vector<Problem> problems;
+      problems.reserve(static_cast<std::size_t>(count));
+      for (py::ssize_t i = 0; i < count; ++i) problems.push_back(problem(i));
+      results = solve_batch(std::span<const Problem>(problems), law, options, batch);
+    }
     auto row = [](Array& a, py::ssize_t i) { return a.mutable_data() + i * a.shape(1); };
     for (py::ssize_t i = 0; i < count; ++i) {
       const auto& r = results[static_cast<std::size_t>(i)];
@@ -156,7 +175,10 @@ shared by every problem or (N, n, n); W_N and W_T of shape (n, c) or (N, n, c); 
 shape (c,) or (N, c). Solved on every core with the interpreter's lock released (threads=0: one
 per core). Returns a dict of arrays: qdot_E (N, n); P_N, P_T, D_NE, D_TE (N, c); energy_change,
 residual (N,); status (N,) as SolverStatus codes (fremond.SolverStatus(int(code)));
-admissible, unique (N,) booleans. Entry i equals solve_impact on problem i to the last bit.)");
+admissible, unique (N,) booleans. Entry i equals solve_impact on problem i to the last bit.
+Where only qdot_A has N rows (one configuration, many velocities), the configuration is validated
+and factored once (a prepared solver) and a bad velocity is named qdot_A[i][k]; otherwise a bad
+problem is named problems[i].member.)");
 }
 
 }  // namespace fremond::python

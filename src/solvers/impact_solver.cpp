@@ -55,13 +55,13 @@ struct PreparedStage {
     clear_result(out);
   }
 
-  /// solve_impact_in_own_storage after its validation: the same stages on the same data. The
-  /// configuration's part of the contact space is kept from the last solve where the same
-  /// contacts approach (update_velocities).
-  void solve(const ImpactLaw& law, const SolverOptions& options) {
+  /// solve_impact_in_own_storage after its validation, into `into` (out, or the caller's): the
+  /// same stages on the same data. The configuration's part of the contact space is kept from the
+  /// last solve where the same contacts approach (update_velocities).
+  void solve(const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& into) {
     if (!update_velocities(pb, cs)) build_contact_space(pb, tangential_rows(law), cs);
-    clear_result(out);
-    solve_on_contact_space(pb, law, options, cs, out);
+    clear_result(into);
+    solve_on_contact_space(pb, law, options, cs, into);
   }
 };
 
@@ -78,7 +78,12 @@ struct PreparedWorkspace {
   void set_velocity(const Eigen::Ref<const Eigen::VectorXd>& v) {
     set_validated_velocity(v, stage.pb, previous);
   }
-  void solve(const ImpactLaw& law, const SolverOptions& options) { stage.solve(law, options); }
+  void solve(const ImpactLaw& law, const SolverOptions& options) {
+    stage.solve(law, options, stage.out);
+  }
+  void solve_into(const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& into) {
+    stage.solve(law, options, into);
+  }
 };
 
 /// The heap-stored solver: a problem that fits the small form is solved in it, as solve_impact
@@ -116,13 +121,13 @@ struct PreparedWorkspace<Dynamic, Dynamic> {
       set_validated_velocity(v, stage.pb, previous);
     pb.qdot_A = v;
   }
-  void solve(const ImpactLaw& law, const SolverOptions& options) {
+  void solve(const ImpactLaw& law, const SolverOptions& options) { solve_into(law, options, out); }
+  void solve_into(const ImpactLaw& law, const SolverOptions& options, ImpactResult& into) {
     if (small) {
-      small_stage.solve(law, options);
-      copy_into(small_stage.out, out);
+      small_stage.solve(law, options, small_stage.out);
+      copy_into(small_stage.out, into);
     } else {
-      stage.solve(law, options);
-      out = stage.out;
+      stage.solve(law, options, into);
     }
   }
 };
@@ -173,6 +178,12 @@ const typename ImpactSolverT<N, C>::Result& ImpactSolverT<N, C>::solve(
   work_->set_velocity(qdot_A);
   work_->solve(law_, options_);
   return work_->result();
+}
+
+template <int N, int C>
+void ImpactSolverT<N, C>::solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A, Result& out) {
+  work_->set_velocity(qdot_A);
+  work_->solve_into(law_, options_, out);
 }
 
 template <int N, int C>

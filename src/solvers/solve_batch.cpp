@@ -54,52 +54,46 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
   }
   detail::solve_impact_into(pb, law, options, out);
 }
-}  // namespace
 
-template <int N, int C>
-void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw& law,
-                 std::span<ImpactResultT<N, C>> results, const SolverOptions& options,
-                 const BatchOptions& batch) {
-  batch.validate();
-  options.validate();
-  const std::size_t count = problems.size();
-  if (results.size() != count)
-    throw InvalidArgument("results", "needs one entry per problem (" + std::to_string(count) +
-                                         "), got " + std::to_string(results.size()));
-  // Contiguous blocks dealt round-robin: block b to worker b mod n, in order. A run of hard
-  // problems (NLopt) is shared among the workers, and each result is written by the same worker
-  // from one batch to the next, so a reused heap-stored result is freed by the thread that made
-  // it (no allocator lock taken across threads). solve_impact validates each problem; the first
-  // invalid one by index is reported once every problem before it has been tried.
+/// solve(state, i) for every i < count on the batch's workers, each with its own state from
+/// make_state(). Contiguous blocks are dealt round-robin: block b to worker b mod n, in order. A
+/// run of hard problems (NLopt) is shared among the workers, and each result is written by the same
+/// worker from one batch to the next, so a reused heap-stored result is freed by the thread that
+/// made it (no allocator lock taken across threads). The first InvalidArgument by index is
+/// handed to refuse(i, e), which throws, once every item before it has been tried.
+template <class MakeState, class Solve, class Refuse>
+void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeState& make_state,
+                    const Solve& solve, const Refuse& refuse) {
   const std::size_t block = std::clamp<std::size_t>(count / 512, 1, 64);
   const int n = workers_for(count, batch.threads);
   std::atomic<std::size_t> first_bad{count};
-  std::mutex refused_lock;  // the error of the first invalid problem, kept as solve_impact threw it
+  std::mutex refused_lock;  // the error of the first invalid item, kept as it was thrown
   std::optional<InvalidArgument> refused;
   std::exception_ptr unexpected;
   std::atomic<bool> broken{false};
   auto work = [&](int worker) {
-    const std::size_t stride = block * static_cast<std::size_t>(n);
-    SmallImpactResult small;  // a heap-stored problem's answer in the small form
-    for (std::size_t begin = block * static_cast<std::size_t>(worker); begin < count;
-         begin += stride) {
-      if (begin > first_bad.load(std::memory_order_relaxed) || broken.load()) return;
-      const std::size_t end = std::min(begin + block, count);
-      for (std::size_t i = begin; i < end; ++i) {
-        try {
-          solve_into(problems[i], law, options, results[i], small);
-        } catch (const InvalidArgument& e) {
-          std::lock_guard<std::mutex> lock(refused_lock);
-          if (i < first_bad.load()) {
-            first_bad.store(i);
-            refused = e;
+    try {
+      auto state = make_state();
+      const std::size_t stride = block * static_cast<std::size_t>(n);
+      for (std::size_t begin = block * static_cast<std::size_t>(worker); begin < count;
+           begin += stride) {
+        if (begin > first_bad.load(std::memory_order_relaxed) || broken.load()) return;
+        const std::size_t end = std::min(begin + block, count);
+        for (std::size_t i = begin; i < end; ++i) {
+          try {
+            solve(state, i);
+          } catch (const InvalidArgument& e) {
+            std::lock_guard<std::mutex> lock(refused_lock);
+            if (i < first_bad.load()) {
+              first_bad.store(i);
+              refused = e;
+            }
+            return;
           }
-          return;
-        } catch (...) {  // not expected; kept so that no worker ends the program
-          if (!broken.exchange(true)) unexpected = std::current_exception();
-          return;
         }
       }
+    } catch (...) {  // not expected; kept so that no worker ends the program
+      if (!broken.exchange(true)) unexpected = std::current_exception();
     }
   };
   std::vector<std::thread> pool;
@@ -109,6 +103,70 @@ void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw
   for (auto& t : pool) t.join();
   if (unexpected) std::rethrow_exception(unexpected);
   if (refused) refuse(first_bad.load(), *refused);
+}
+
+// results of the wrong size, named.
+void require_results(std::size_t results, std::size_t count, const char* per) {
+  if (results != count)
+    throw InvalidArgument("results", "needs one entry per " + std::string(per) + " (" +
+                                         std::to_string(count) + "), got " +
+                                         std::to_string(results));
+}
+}  // namespace
+
+template <int N, int C>
+void solve_batch(std::span<const ImpactProblemT<N, C>> problems, const ImpactLaw& law,
+                 std::span<ImpactResultT<N, C>> results, const SolverOptions& options,
+                 const BatchOptions& batch) {
+  batch.validate();
+  options.validate();
+  require_results(results.size(), problems.size(), "problem");
+  // solve_impact validates each problem; the first invalid one by index is reported.
+  run_on_workers(
+      problems.size(), batch, [] { return SmallImpactResult{}; },  // a heap-stored one's answer
+      [&](SmallImpactResult& small, std::size_t i) {
+        solve_into(problems[i], law, options, results[i], small);
+      },
+      refuse);
+}
+
+template <int N, int C>
+void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
+                 std::span<ImpactResultT<N, C>> results, const BatchOptions& batch) {
+  batch.validate();
+  const int n = solver.problem().dofs();
+  if (qdot_A.rows() != n)
+    throw InvalidArgument("qdot_A", "must have " + std::to_string(n) +
+                                        " rows (one per degree of freedom, a column per impact), "
+                                        "got " +
+                                        std::to_string(qdot_A.rows()) + "x" +
+                                        std::to_string(qdot_A.cols()));
+  const auto count = static_cast<std::size_t>(qdot_A.cols());
+  require_results(results.size(), count, "velocity");
+  run_on_workers(
+      count, batch, [&] { return ImpactSolverT<N, C>(solver); },
+      [&](ImpactSolverT<N, C>& own, std::size_t i) {
+        own.solve_into(qdot_A.col(static_cast<Eigen::Index>(i)), results[i]);
+      },
+      [](std::size_t i, const InvalidArgument& e) {
+        // A velocity's own refusal names it by index (`qdot_A[7][1]`: velocity 7, its entry 1);
+        // another member's (W_N: a contact velocity that overflows) keeps its name and says which
+        // velocity.
+        const std::string index = "qdot_A[" + std::to_string(i) + "]";
+        const std::string reason = std::string(e.what()).substr(e.name().size() + 2);
+        if (e.name().rfind("qdot_A", 0) == 0)
+          throw InvalidArgument(index + e.name().substr(6), reason);
+        throw InvalidArgument(e.name(), reason + " (" + index + ")");
+      });
+}
+
+template <int N, int C>
+std::vector<ImpactResultT<N, C>> solve_batch(const ImpactSolverT<N, C>& solver,
+                                             const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
+                                             const BatchOptions& batch) {
+  std::vector<ImpactResultT<N, C>> results(static_cast<std::size_t>(qdot_A.cols()));
+  solve_batch(solver, qdot_A, std::span<ImpactResultT<N, C>>(results), batch);
+  return results;
 }
 
 template <int N, int C>
@@ -129,5 +187,15 @@ template void solve_batch(std::span<const ImpactProblem>, const ImpactLaw&, std:
                           const SolverOptions&, const BatchOptions&);
 template void solve_batch(std::span<const SmallImpactProblem>, const ImpactLaw&,
                           std::span<SmallImpactResult>, const SolverOptions&, const BatchOptions&);
+template void solve_batch(const ImpactSolver&, const Eigen::Ref<const Eigen::MatrixXd>&,
+                          std::span<ImpactResult>, const BatchOptions&);
+template void solve_batch(const SmallImpactSolver&, const Eigen::Ref<const Eigen::MatrixXd>&,
+                          std::span<SmallImpactResult>, const BatchOptions&);
+template std::vector<ImpactResult> solve_batch(const ImpactSolver&,
+                                               const Eigen::Ref<const Eigen::MatrixXd>&,
+                                               const BatchOptions&);
+template std::vector<SmallImpactResult> solve_batch(const SmallImpactSolver&,
+                                                    const Eigen::Ref<const Eigen::MatrixXd>&,
+                                                    const BatchOptions&);
 
 }  // namespace fremond

@@ -43,6 +43,26 @@ def test_arrays_give_solve_impacts_answers():
     assert np.max(np.abs(lhs - rhs)) <= 1e-13 * (1 + np.max(np.abs(rhs)))
 
 
+def test_one_configuration_many_velocities():
+    # Only qdot_A per problem: the configuration is prepared once; the answers are still
+    # solve_impact's, bit for bit, and a bad velocity is named by its index in qdot_A.
+    M, W_N, W_T, qdot_A = bar_arrays(300, seed=7)
+    law = f.ImpactLaw.poisson_coulomb(e=0.6, mu=0.4)
+    out = f.solve_batch_arrays(M, W_N[0], qdot_A, law, W_T=W_T[0], threads=2)
+    for i in range(300):
+        r = f.solve_impact(f.ImpactProblem(M=M, W_N=W_N[0], W_T=W_T[0], qdot_A=qdot_A[i]), law)
+        assert np.array_equal(out["qdot_E"][i], r.qdot_E), i
+        assert np.array_equal(out["P_N"][i], r.P_N) and np.array_equal(out["P_T"][i], r.P_T), i
+        assert out["residual"][i] == r.solver.residual and out["energy_change"][i] == r.energy_change
+    bad = qdot_A.copy()
+    bad[5, 2] = np.nan
+    try:
+        f.solve_batch_arrays(M, W_N[0], bad, law, W_T=W_T[0])
+        raise AssertionError("a velocity that is not a number was solved")
+    except ValueError as e:
+        assert str(e).startswith("qdot_A[5][2]"), e
+
+
 def test_list_of_problems_and_frictionless_closed_form():
     # Newton frictionless on one contact (eq. 5): D_NE = -e D_NA where the contact approaches,
     # D_NE = D_NA (no percussion) where it separates.

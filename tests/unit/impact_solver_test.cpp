@@ -99,24 +99,33 @@ TEST(ImpactSolver, EveryAnswerIsSolveImpactsToTheLastBit) {
       {"planar point mass", to_dynamic(planar_point_mass(1.0, true))},
       {"flat bar", to_dynamic(flat_bar_two_contacts(true))},
       {"two point masses", to_dynamic(two_point_masses(true))},
-      {"plate on 6 contacts", plate_many_contacts(6, true)}};
+      {"plate on 6 contacts", plate_many_contacts(6, true)},
+      {"plate on 8 contacts", plate_many_contacts(8, true)}};
   for (int i = 0; i < 3; ++i)
     problems.push_back({"random " + std::to_string(i), random_problem_any(6, 3, i, true)});
   int compared = 0;
   for (const auto& [pname, pb] : problems)
     for (const auto& [lname, law] : every_law()) {
       ImpactSolver solver(pb, law);
+      ImpactResult kept;
       ImpactProblem one_shot = pb;
       for (const Eigen::VectorXd& q : velocities(pb.dofs(), 7, 12)) {
         one_shot.qdot_A = q;
         const ImpactResult expected = solve_impact(one_shot, law);
+        // solve_into writes the same answer into a result that held another one (the last
+        // velocity's), and leaves the solver's own result alone.
+        const ImpactResult before = solver.result();
+        solver.solve_into(q, kept);
+        EXPECT_EQ(first_difference(kept, expected), "")
+            << lname << " on " << pname << " at qdot_A = " << q.transpose() << " (solve_into)";
+        EXPECT_EQ(first_difference(solver.result(), before), "");
         const ImpactResult& got = solver.solve(q);
         EXPECT_EQ(first_difference(got, expected), "")
             << lname << " on " << pname << " at qdot_A = " << q.transpose();
         ++compared;
       }
     }
-  EXPECT_EQ(compared, 8 * 7 * 13);
+  EXPECT_EQ(compared, 9 * 7 * 13);
 }
 
 TEST(ImpactSolver, SmallSolverMatchesSolveImpactAndTheDynamicSolver) {

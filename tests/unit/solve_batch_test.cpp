@@ -141,6 +141,71 @@ TEST(SolveBatch, ALawThatDoesNotFitAProblemNamesBoth) {
   }
 }
 
+// One bar at a fixed angle and 300 velocities before the impact, its lower end approaching or
+// leaving, the upper one too (two contacts).
+Eigen::MatrixXd velocities(int count) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> speed(-3.0, 3.0);
+  Eigen::MatrixXd v(3, count);
+  for (int i = 0; i < count; ++i) v.col(i) << speed(rng), speed(rng), speed(rng);
+  return v;
+}
+
+TEST(SolveBatch, OneConfigurationManyVelocitiesGivesSolveImpactsAnswers) {
+  const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), true);
+  const Eigen::MatrixXd v = velocities(300);
+  for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.9, 1.0), ImpactLaw::poisson(0.5),
+                               ImpactLaw::fremond_coulomb(PowerPotential(4.0, 3.0), 0.3)}) {
+    SCOPED_TRACE(law.describe());
+    std::vector<ImpactResult> alone;
+    for (int i = 0; i < v.cols(); ++i) {
+      ImpactProblem p = bar;
+      p.qdot_A = v.col(i);
+      alone.push_back(solve_impact(p, law));
+    }
+    const ImpactSolver heap(bar, law);
+    const SmallImpactSolver small(to_small(bar), law);
+    for (int threads : {1, 2, 5}) {
+      const std::vector<ImpactResult> a = solve_batch(heap, v, {threads});
+      const std::vector<SmallImpactResult> b = solve_batch(small, v, {threads});
+      ASSERT_EQ(a.size(), alone.size());
+      ASSERT_EQ(b.size(), alone.size());
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        expect_identical(a[i], alone[i], static_cast<int>(i));
+        expect_identical(to_dynamic(b[i]), alone[i], static_cast<int>(i));
+        EXPECT_EQ(a[i].D_NE, alone[i].D_NE);
+        EXPECT_EQ(a[i].admissibility.total, alone[i].admissibility.total);
+      }
+    }
+    // The solver given is left as it was: nothing solved on it.
+    EXPECT_EQ(heap.result().solver.status, SolverStatus::not_run);
+  }
+}
+
+TEST(SolveBatch, OneConfigurationNamesTheFirstBadVelocity) {
+  const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), true);
+  const ImpactSolver solver(bar, ImpactLaw::newton_coulomb(0.9, 1.0));
+  Eigen::MatrixXd v = velocities(400);
+  v(1, 7) = NAN;
+  v(0, 300) = INFINITY;
+  auto name_of = [&](const Eigen::MatrixXd& velocities, std::size_t results) {
+    std::vector<ImpactResult> out(results);
+    try {
+      solve_batch(solver, velocities, std::span(out), {2});
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(name_of(v, 400).rfind("qdot_A[7][1]: must be a finite number", 0), 0)
+      << name_of(v, 400);
+  EXPECT_EQ(name_of(v.topRows(2), 400).rfind("qdot_A: must have 3 rows", 0), 0)
+      << name_of(v.topRows(2), 400);
+  EXPECT_EQ(name_of(v.rightCols(10), 9).rfind("results: needs one entry per velocity (10)", 0), 0)
+      << name_of(v.rightCols(10), 9);
+  EXPECT_EQ(name_of(v.rightCols(10), 10), "accepted");
+}
+
 TEST(SolveBatch, RefusesANegativeThreadCountAndAcceptsNoProblems) {
   EXPECT_THROW((void)solve_batch(bars(2, false), ImpactLaw::newton(0.5), {}, {-1}),
                InvalidArgument);

@@ -49,6 +49,10 @@ class ImpactSolverT {
   const Result& solve(const Eigen::Ref<const Eigen::VectorXd>& qdot_A);
   /// Solves for the problem's current q̇_A.
   const Result& solve();
+  /// solve(qdot_A) with the answer written into `out` (its storage reused) instead of the
+  /// solver's own result(), which stays as it was; the solver's q̇_A becomes qdot_A. The same
+  /// answer to the last bit, without a copy: what a batch of velocities keeps (solve_batch).
+  void solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A, Result& out);
 
   /// A new configuration (as a simulation has between impacts): M, W_N, W_T and the obstacles'
   /// velocity terms w_N, w_T (empty: zero), the number of degrees of freedom and contacts

@@ -7,6 +7,7 @@
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/solvers/impact_result.hpp"
+#include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solver_options.hpp"
 
 namespace fremond {
@@ -45,6 +46,29 @@ template <int MaxDofs, int MaxContacts>
 void solve_batch(std::span<const ImpactProblemT<MaxDofs, MaxContacts>> problems,
                  const ImpactLaw& law, std::span<ImpactResultT<MaxDofs, MaxContacts>> results,
                  const SolverOptions& options = {}, const BatchOptions& batch = {});
+
+/// Many velocities before the impact for one configuration (Monte Carlo over initial conditions, a
+/// sweep of the velocity at a fixed pose): column i of `qdot_A` (n × N) solved by `solver`'s law,
+/// options and configuration. Result i is what solver.solve(qdot_A.col(i)) gives, which is
+/// solve_impact's on that problem to the last bit, whatever the number of threads; each worker
+/// solves with its own copy of `solver`, which is left as it was. The configuration was validated
+/// and factored when the solver was built: a velocity costs only its own solve.
+///
+/// Throws InvalidArgument naming `qdot_A` when it has not n rows; for the first velocity by index
+/// that solve() refuses, `qdot_A[i]` (`qdot_A[i][k]` for its entry k not finite), or the member
+/// solve() names with "(qdot_A[i])" in the reason (a contact velocity that overflows names W_N);
+/// `results` when it has not N entries. The entries of `results` are then unspecified.
+template <int MaxDofs, int MaxContacts>
+void solve_batch(const ImpactSolverT<MaxDofs, MaxContacts>& solver,
+                 const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
+                 std::span<ImpactResultT<MaxDofs, MaxContacts>> results,
+                 const BatchOptions& batch = {});
+
+/// The batch of one configuration, its results returned.
+template <int MaxDofs, int MaxContacts>
+std::vector<ImpactResultT<MaxDofs, MaxContacts>> solve_batch(
+    const ImpactSolverT<MaxDofs, MaxContacts>& solver,
+    const Eigen::Ref<const Eigen::MatrixXd>& qdot_A, const BatchOptions& batch = {});
 
 /// solve_batch for a list of heap-stored problems.
 inline std::vector<ImpactResult> solve_batch(const std::vector<ImpactProblem>& problems,
