@@ -70,7 +70,8 @@ Eigen::MatrixXd bar_velocities(int count) {
   return v;
 }
 
-template <class Solver>
+// `columns`: the answers kept as BatchAnswers' columns instead of whole results.
+template <class Solver, bool columns = false>
 void run_prepared(benchmark::State& state, const ImpactLaw& law) {
   const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0));
   const Solver solver = [&] {
@@ -82,10 +83,15 @@ void run_prepared(benchmark::State& state, const ImpactLaw& law) {
   const Eigen::MatrixXd v = bar_velocities(4096);
   BatchOptions batch;
   batch.threads = static_cast<int>(state.range(0));
-  std::vector<typename Solver::Result> results(static_cast<std::size_t>(v.cols()));
+  std::vector<typename Solver::Result> results(columns ? 0 : static_cast<std::size_t>(v.cols()));
+  BatchAnswers answers;
   for (auto _ : state) {
-    solve_batch(solver, v, std::span(results), batch);
+    if constexpr (columns)
+      solve_batch(solver, v, answers, batch);
+    else
+      solve_batch(solver, v, std::span(results), batch);
     benchmark::DoNotOptimize(results.data());
+    benchmark::DoNotOptimize(answers.qdot_E.data());
   }
   state.SetItemsProcessed(state.iterations() * v.cols());
 }
@@ -95,6 +101,13 @@ void BM_Batch_PreparedBar_NewtonCoulomb(benchmark::State& state) {
 }
 void BM_Batch_PreparedSmallBar_NewtonCoulomb(benchmark::State& state) {
   run_prepared<SmallImpactSolver>(state, ImpactLaw::newton_coulomb(0.9, 1.0));
+}
+void BM_Batch_PreparedSmallBarColumns_NewtonCoulomb(benchmark::State& state) {
+  run_prepared<SmallImpactSolver, true>(state, ImpactLaw::newton_coulomb(0.9, 1.0));
+}
+void BM_Batch_PreparedSmallBarColumns_FremondCoulomb_p3(benchmark::State& state) {
+  run_prepared<SmallImpactSolver, true>(
+      state, ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 1.0));
 }
 void BM_Batch_PreparedSmallBar_FremondCoulomb_p3(benchmark::State& state) {
   run_prepared<SmallImpactSolver>(state,
@@ -123,6 +136,16 @@ BENCHMARK(BM_Batch_PreparedBar_NewtonCoulomb)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_Batch_PreparedSmallBar_NewtonCoulomb)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Batch_PreparedSmallBarColumns_NewtonCoulomb)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Batch_PreparedSmallBarColumns_FremondCoulomb_p3)
     ->Arg(1)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)

@@ -39,6 +39,7 @@
 #include "fremond/simulation/simulate.hpp"
 #include "fremond/simulation/simulate_bodies.hpp"
 #include "fremond/simulation/simulation_options.hpp"
+#include "fremond/solvers/batch_answers.hpp"
 #include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solve_batch.hpp"
 #include "fremond/solvers/solve_impact.hpp"

@@ -2,6 +2,7 @@
 // out, solved on every core with the interpreter's lock released.
 #include <pybind11/numpy.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -98,23 +99,39 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
     };
     BatchOptions batch;
     batch.threads = threads;
-    std::vector<ImpactResultT<Problem::kMaxDofs, Problem::kMaxContacts>> results;
+    auto row = [](Array& a, py::ssize_t i) { return a.mutable_data() + i * a.shape(1); };
     if (one_configuration) {
       // Prepared at rest, a velocity always valid for a valid configuration, so that each
       // velocity is judged, and named, by its own index.
       Problem p = problem(0);
       p.qdot_A.setZero(ni);
       const ImpactSolverT<Problem::kMaxDofs, Problem::kMaxContacts> solver(p, law, options);
-      // The (N, n) row-major array is the n × N column-major matrix of one velocity a column.
-      results =
-          solve_batch(solver, Eigen::Map<const Eigen::MatrixXd>(qdot_A.data(), ni, count), batch);
-    } else {
-      std::vector<Problem> problems;
-      problems.reserve(static_cast<std::size_t>(count));
-      for (py::ssize_t i = 0; i < count; ++i) problems.push_back(problem(i));
-      results = solve_batch(std::span<const Problem>(problems), law, options, batch);
+      // The (N, n) row-major array is the n × N column-major matrix of one velocity a column, and
+      // the answers' n × N and c × N columns are the (N, n) and (N, c) arrays returned.
+      BatchAnswers a;
+      solve_batch(solver, Eigen::Map<const Eigen::MatrixXd>(qdot_A.data(), ni, count), a, batch);
+      auto copy = [](const auto& from, auto& to) {
+        std::copy(from.data(), from.data() + from.size(), to.mutable_data());
+      };
+      copy(a.qdot_E, qdot_E);
+      copy(a.P_N, P_N);
+      copy(a.P_T, P_T);
+      copy(a.D_NE, D_NE);
+      copy(a.D_TE, D_TE);
+      copy(a.energy_change, energy);
+      copy(a.residual, residual);
+      for (py::ssize_t i = 0; i < count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        status.mutable_data()[i] = static_cast<std::uint8_t>(a.status[k]);
+        admissible.mutable_data()[i] = a.admissible[k] != 0;
+        unique.mutable_data()[i] = a.unique[k] != 0;
+      }
+      return;
     }
-    auto row = [](Array& a, py::ssize_t i) { return a.mutable_data() + i * a.shape(1); };
+    std::vector<Problem> problems;
+    problems.reserve(static_cast<std::size_t>(count));
+    for (py::ssize_t i = 0; i < count; ++i) problems.push_back(problem(i));
+    const auto results = solve_batch(std::span<const Problem>(problems), law, options, batch);
     for (py::ssize_t i = 0; i < count; ++i) {
       const auto& r = results[static_cast<std::size_t>(i)];
       Eigen::Map<VectorX>(row(qdot_E, i), ni) = r.qdot_E;

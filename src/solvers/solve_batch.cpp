@@ -60,11 +60,13 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
 /// run of hard problems (NLopt) is shared among the workers, and each result is written by the same
 /// worker from one batch to the next, so a reused heap-stored result is freed by the thread that
 /// made it (no allocator lock taken across threads). The first InvalidArgument by index is
-/// handed to refuse(i, e), which throws, once every item before it has been tried.
+/// handed to refuse(i, e), which throws, once every item before it has been tried. `min_block`:
+/// items a block at least (64 where each writes a byte of a shared array, so that two workers do
+/// not write one cache line).
 template <class MakeState, class Solve, class Refuse>
 void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeState& make_state,
-                    const Solve& solve, const Refuse& refuse) {
-  const std::size_t block = std::clamp<std::size_t>(count / 512, 1, 64);
+                    const Solve& solve, const Refuse& refuse, std::size_t min_block = 1) {
+  const std::size_t block = std::clamp<std::size_t>(count / 512, min_block, 64);
   const int n = workers_for(count, batch.threads);
   std::atomic<std::size_t> first_bad{count};
   std::mutex refused_lock;  // the error of the first invalid item, kept as it was thrown
@@ -112,6 +114,31 @@ void require_results(std::size_t results, std::size_t count, const char* per) {
                                          std::to_string(count) + "), got " +
                                          std::to_string(results));
 }
+
+/// The velocities of a batch of one configuration: n rows, one per degree of freedom of the
+/// solver; their count.
+template <int N, int C>
+std::size_t velocities_of(const ImpactSolverT<N, C>& solver,
+                          const Eigen::Ref<const Eigen::MatrixXd>& qdot_A) {
+  const int n = solver.problem().dofs();
+  if (qdot_A.rows() != n)
+    throw InvalidArgument("qdot_A", "must have " + std::to_string(n) +
+                                        " rows (one per degree of freedom, a column per impact), "
+                                        "got " +
+                                        std::to_string(qdot_A.rows()) + "x" +
+                                        std::to_string(qdot_A.cols()));
+  return static_cast<std::size_t>(qdot_A.cols());
+}
+
+/// The error the prepared solve gave for velocity i: its own refusal named by index
+/// (`qdot_A[7][1]`: velocity 7, its entry 1); another member's (W_N: a contact velocity that
+/// overflows) keeps its name and says which velocity.
+[[noreturn]] void refuse_velocity(std::size_t i, const InvalidArgument& e) {
+  const std::string index = "qdot_A[" + std::to_string(i) + "]";
+  const std::string reason = std::string(e.what()).substr(e.name().size() + 2);
+  if (e.name().rfind("qdot_A", 0) == 0) throw InvalidArgument(index + e.name().substr(6), reason);
+  throw InvalidArgument(e.name(), reason + " (" + index + ")");
+}
 }  // namespace
 
 template <int N, int C>
@@ -134,30 +161,49 @@ template <int N, int C>
 void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
                  std::span<ImpactResultT<N, C>> results, const BatchOptions& batch) {
   batch.validate();
-  const int n = solver.problem().dofs();
-  if (qdot_A.rows() != n)
-    throw InvalidArgument("qdot_A", "must have " + std::to_string(n) +
-                                        " rows (one per degree of freedom, a column per impact), "
-                                        "got " +
-                                        std::to_string(qdot_A.rows()) + "x" +
-                                        std::to_string(qdot_A.cols()));
-  const auto count = static_cast<std::size_t>(qdot_A.cols());
+  const std::size_t count = velocities_of(solver, qdot_A);
   require_results(results.size(), count, "velocity");
   run_on_workers(
       count, batch, [&] { return ImpactSolverT<N, C>(solver); },
       [&](ImpactSolverT<N, C>& own, std::size_t i) {
         own.solve_into(qdot_A.col(static_cast<Eigen::Index>(i)), results[i]);
       },
-      [](std::size_t i, const InvalidArgument& e) {
-        // A velocity's own refusal names it by index (`qdot_A[7][1]`: velocity 7, its entry 1);
-        // another member's (W_N: a contact velocity that overflows) keeps its name and says which
-        // velocity.
-        const std::string index = "qdot_A[" + std::to_string(i) + "]";
-        const std::string reason = std::string(e.what()).substr(e.name().size() + 2);
-        if (e.name().rfind("qdot_A", 0) == 0)
-          throw InvalidArgument(index + e.name().substr(6), reason);
-        throw InvalidArgument(e.name(), reason + " (" + index + ")");
-      });
+      refuse_velocity);
+}
+
+template <int N, int C>
+void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
+                 BatchAnswers& answers, const BatchOptions& batch) {
+  batch.validate();
+  const std::size_t count = velocities_of(solver, qdot_A);
+  answers.resize(solver.problem().dofs(), solver.problem().contacts(),
+                 static_cast<Eigen::Index>(count));
+  // A worker's own solver and the result it solves into, which stays in its cache.
+  struct Worker {
+    ImpactSolverT<N, C> solver;
+    ImpactResultT<N, C> result;
+  };
+  run_on_workers(
+      count, batch,
+      [&] {
+        return Worker{solver, {}};
+      },
+      [&](Worker& w, std::size_t i) {
+        const auto k = static_cast<Eigen::Index>(i);
+        w.solver.solve_into(qdot_A.col(k), w.result);
+        const ImpactResultT<N, C>& r = w.result;
+        answers.qdot_E.col(k) = r.qdot_E;
+        answers.P_N.col(k) = r.P_N;
+        answers.P_T.col(k) = r.P_T;
+        answers.D_NE.col(k) = r.D_NE;
+        answers.D_TE.col(k) = r.D_TE;
+        answers.energy_change(k) = r.energy_change;
+        answers.residual(k) = r.solver.residual;
+        answers.status[i] = r.solver.status;
+        answers.admissible[i] = r.admissibility.admissible ? 1 : 0;
+        answers.unique[i] = r.unique ? 1 : 0;
+      },
+      refuse_velocity, 64);
 }
 
 template <int N, int C>
@@ -191,6 +237,10 @@ template void solve_batch(const ImpactSolver&, const Eigen::Ref<const Eigen::Mat
                           std::span<ImpactResult>, const BatchOptions&);
 template void solve_batch(const SmallImpactSolver&, const Eigen::Ref<const Eigen::MatrixXd>&,
                           std::span<SmallImpactResult>, const BatchOptions&);
+template void solve_batch(const ImpactSolver&, const Eigen::Ref<const Eigen::MatrixXd>&,
+                          BatchAnswers&, const BatchOptions&);
+template void solve_batch(const SmallImpactSolver&, const Eigen::Ref<const Eigen::MatrixXd>&,
+                          BatchAnswers&, const BatchOptions&);
 template std::vector<ImpactResult> solve_batch(const ImpactSolver&,
                                                const Eigen::Ref<const Eigen::MatrixXd>&,
                                                const BatchOptions&);

@@ -168,13 +168,27 @@ TEST(SolveBatch, OneConfigurationManyVelocitiesGivesSolveImpactsAnswers) {
     for (int threads : {1, 2, 5}) {
       const std::vector<ImpactResult> a = solve_batch(heap, v, {threads});
       const std::vector<SmallImpactResult> b = solve_batch(small, v, {threads});
+      BatchAnswers columns;
+      solve_batch(small, v, columns, {threads});
       ASSERT_EQ(a.size(), alone.size());
       ASSERT_EQ(b.size(), alone.size());
+      ASSERT_EQ(columns.size(), v.cols());
       for (std::size_t i = 0; i < alone.size(); ++i) {
-        expect_identical(a[i], alone[i], static_cast<int>(i));
-        expect_identical(to_dynamic(b[i]), alone[i], static_cast<int>(i));
-        EXPECT_EQ(a[i].D_NE, alone[i].D_NE);
-        EXPECT_EQ(a[i].admissibility.total, alone[i].admissibility.total);
+        const ImpactResult& r = alone[i];
+        expect_identical(a[i], r, static_cast<int>(i));
+        expect_identical(to_dynamic(b[i]), r, static_cast<int>(i));
+        EXPECT_EQ(a[i].D_NE, r.D_NE);
+        EXPECT_EQ(a[i].admissibility.total, r.admissibility.total);
+        const auto k = static_cast<Eigen::Index>(i);
+        EXPECT_TRUE(columns.qdot_E.col(k) == r.qdot_E && columns.P_N.col(k) == r.P_N &&
+                    columns.P_T.col(k) == r.P_T && columns.D_NE.col(k) == r.D_NE &&
+                    columns.D_TE.col(k) == r.D_TE)
+            << "impact " << i;
+        EXPECT_EQ(columns.energy_change(k), r.energy_change) << i;
+        EXPECT_EQ(columns.residual(k), r.solver.residual) << i;
+        EXPECT_EQ(columns.status[i], r.solver.status) << i;
+        EXPECT_EQ(columns.admissible[i], r.admissibility.admissible ? 1 : 0) << i;
+        EXPECT_EQ(columns.unique[i], r.unique ? 1 : 0) << i;
       }
     }
     // The solver given is left as it was: nothing solved on it.
@@ -204,6 +218,13 @@ TEST(SolveBatch, OneConfigurationNamesTheFirstBadVelocity) {
   EXPECT_EQ(name_of(v.rightCols(10), 9).rfind("results: needs one entry per velocity (10)", 0), 0)
       << name_of(v.rightCols(10), 9);
   EXPECT_EQ(name_of(v.rightCols(10), 10), "accepted");
+  BatchAnswers columns;
+  try {
+    solve_batch(solver, v, columns, {2});
+    FAIL() << "a velocity that is not a number was solved";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "qdot_A[7][1]") << e.what();
+  }
 }
 
 TEST(SolveBatch, RefusesANegativeThreadCountAndAcceptsNoProblems) {

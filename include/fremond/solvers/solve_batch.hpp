@@ -6,6 +6,7 @@
 
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/batch_answers.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/impact_solver.hpp"
 #include "fremond/solvers/solver_options.hpp"
@@ -62,6 +63,16 @@ template <int MaxDofs, int MaxContacts>
 void solve_batch(const ImpactSolverT<MaxDofs, MaxContacts>& solver,
                  const Eigen::Ref<const Eigen::MatrixXd>& qdot_A,
                  std::span<ImpactResultT<MaxDofs, MaxContacts>> results,
+                 const BatchOptions& batch = {});
+
+/// The batch of one configuration with the answers kept as columns (BatchAnswers, resized to N
+/// impacts): each worker solves into a result of its own and copies out what the columns hold,
+/// the same numbers to the last bit. What a Monte Carlo run over many velocities keeps, in a tenth
+/// of the memory of whole results. Throws as the overload above (`results` aside); the columns
+/// are then unspecified.
+template <int MaxDofs, int MaxContacts>
+void solve_batch(const ImpactSolverT<MaxDofs, MaxContacts>& solver,
+                 const Eigen::Ref<const Eigen::MatrixXd>& qdot_A, BatchAnswers& answers,
                  const BatchOptions& batch = {});
 
 /// The batch of one configuration, its results returned.
