@@ -640,7 +640,11 @@ def batch_rows(runs, ratios):
                              "prepared, small"),
                             ("BM_Batch_PreparedBar_NewtonCoulomb", "Newton + Coulomb", "prepared, heap"),
                             ("BM_Batch_PreparedSmallBar_FremondCoulomb_p3", "Frémond + Coulomb p = 3",
-                             "prepared, small")):
+                             "prepared, small"),
+                            ("BM_Batch_PreparedSmallBarColumns_NewtonCoulomb", "Newton + Coulomb",
+                             "prepared, columns"),
+                            ("BM_Batch_PreparedSmallBarColumns_FremondCoulomb_p3",
+                             "Frémond + Coulomb p = 3", "prepared, columns")):
         got = {}
         for t in (1, 2):
             r = [b for b in runs if b["name"].startswith(f"{name}/{t}/") and not b.get("error_occurred")]
@@ -682,12 +686,13 @@ def public_path_targets(ratios, rates):
                  verdict(v < 150 if v else None)])
     for law, want in (("Newton + Coulomb", 10e6), ("Frémond + Coulomb p = 3", 2e6)):
         for forms, what in ((("small", "heap"), "independent bars"),
-                            (("prepared, small", "prepared, heap"), "one bar, many velocities")):
+                            (("prepared, small", "prepared, heap", "prepared, columns"),
+                             "one bar, many velocities")):
             two = max((rates.get((law, f), {}).get(2) or 0) for f in forms)
             if two:
                 rows.append([f"batch, {what}, {law}, 2 threads", f"≥ {want / 1e6:.0f} M/s",
                              f"{two / 1e6:.2f} M/s", verdict(two >= want)])
-    for form in ("small", "prepared, small"):
+    for form in ("small", "prepared, small", "prepared, columns"):
         g = rates.get(("Newton + Coulomb", form), {})
         gain = g[2] / g[1] if g.get(1) and g.get(2) else None
         if gain:
@@ -908,7 +913,8 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                       "each certified, on 1 and 2 threads; `small`: the stack-stored problems and "
                       "results, `heap`: the heap-stored ones; `prepared`: one bar at a fixed angle "
                       "and 4,096 velocities, solved on a prepared solver (`solve_batch(solver, "
-                      "qdot_A)`)." +
+                      "qdot_A)`), each answer kept as a whole result or (`columns`) as "
+                      "`BatchAnswers`' columns." +
                       (f" Siconos solves the bar on one core at {siconos_rate / 1e6:.2f} M/s "
                        "(from its fastest time above)." if siconos_rate else ""), "",
                       md_table(["law", "storage", "1 thread", "2 threads", "second core"], brows),
