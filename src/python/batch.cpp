@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -132,13 +133,21 @@ py::dict solve_arrays(const Array& M, const Array& W_N, const Array& qdot_A, con
     problems.reserve(static_cast<std::size_t>(count));
     for (py::ssize_t i = 0; i < count; ++i) problems.push_back(problem(i));
     const auto results = solve_batch(std::span<const Problem>(problems), law, options, batch);
+    // A row the answer has not (a method the law does not support leaves it empty) is NaN.
+    auto put = [&](Array& a, py::ssize_t i, const auto& v) {
+      Eigen::Map<VectorX> to(row(a, i), a.shape(1));
+      if (v.size() == to.size())
+        to = v;
+      else
+        to.setConstant(std::numeric_limits<double>::quiet_NaN());
+    };
     for (py::ssize_t i = 0; i < count; ++i) {
       const auto& r = results[static_cast<std::size_t>(i)];
-      Eigen::Map<VectorX>(row(qdot_E, i), ni) = r.qdot_E;
-      Eigen::Map<VectorX>(row(P_N, i), ci) = r.P_N;
-      Eigen::Map<VectorX>(row(P_T, i), ci) = r.P_T;
-      Eigen::Map<VectorX>(row(D_NE, i), ci) = r.D_NE;
-      Eigen::Map<VectorX>(row(D_TE, i), ci) = r.D_TE;
+      put(qdot_E, i, r.qdot_E);
+      put(P_N, i, r.P_N);
+      put(P_T, i, r.P_T);
+      put(D_NE, i, r.D_NE);
+      put(D_TE, i, r.D_TE);
       energy.mutable_data()[i] = r.energy_change;
       residual.mutable_data()[i] = r.solver.residual;
       status.mutable_data()[i] = static_cast<std::uint8_t>(r.solver.status);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -115,6 +116,16 @@ void require_results(std::size_t results, std::size_t count, const char* per) {
                                          std::to_string(results));
 }
 
+/// to = from, where the answer has it; NaN where it has none (a method the law does not support
+/// leaves the result's vectors empty).
+template <class To, class From>
+void put(To&& to, const From& from) {
+  if (from.size() == to.size())
+    to = from;
+  else
+    to.setConstant(std::numeric_limits<double>::quiet_NaN());
+}
+
 /// The velocities of a batch of one configuration: n rows, one per degree of freedom of the
 /// solver; their count.
 template <int N, int C>
@@ -192,11 +203,11 @@ void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen
         const auto k = static_cast<Eigen::Index>(i);
         w.solver.solve_into(qdot_A.col(k), w.result);
         const ImpactResultT<N, C>& r = w.result;
-        answers.qdot_E.col(k) = r.qdot_E;
-        answers.P_N.col(k) = r.P_N;
-        answers.P_T.col(k) = r.P_T;
-        answers.D_NE.col(k) = r.D_NE;
-        answers.D_TE.col(k) = r.D_TE;
+        put(answers.qdot_E.col(k), r.qdot_E);
+        put(answers.P_N.col(k), r.P_N);
+        put(answers.P_T.col(k), r.P_T);
+        put(answers.D_NE.col(k), r.D_NE);
+        put(answers.D_TE.col(k), r.D_TE);
         answers.energy_change(k) = r.energy_change;
         answers.residual(k) = r.solver.residual;
         answers.status[i] = r.solver.status;

@@ -63,6 +63,18 @@ def test_one_configuration_many_velocities():
         assert str(e).startswith("qdot_A[5][2]"), e
 
 
+def test_an_unsupported_method_gives_nan_rows():
+    # Stronge's law has no Lemke: each answer is `unsupported`, with no velocities or percussions,
+    # and their rows read NaN on both paths (one configuration, and a problem per row).
+    M, W_N, W_T, qdot_A = bar_arrays(20)
+    law = f.ImpactLaw.from_json('{"type": "stronge_coulomb", "e": 0.8, "mu": 0.5}')
+    options = f.SolverOptions(method="lemke")
+    for W_N_given, W_T_given in ((W_N[0], W_T[0]), (W_N, W_T)):
+        out = f.solve_batch_arrays(M, W_N_given, qdot_A, law, W_T=W_T_given, options=options)
+        assert all(f.SolverStatus(int(s)) == f.SolverStatus.unsupported for s in out["status"])
+        assert np.isnan(out["qdot_E"]).all() and np.isnan(out["P_N"]).all()
+
+
 def test_list_of_problems_and_frictionless_closed_form():
     # Newton frictionless on one contact (eq. 5): D_NE = -e D_NA where the contact approaches,
     # D_NE = D_NA (no percussion) where it separates.

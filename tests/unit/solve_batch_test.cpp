@@ -196,6 +196,24 @@ TEST(SolveBatch, OneConfigurationManyVelocitiesGivesSolveImpactsAnswers) {
   }
 }
 
+// A method the law does not solve (Stronge's law has no Lemke) answers `unsupported` with no
+// velocities or percussions: their columns are NaN, not whatever the memory held.
+TEST(SolveBatch, ColumnsOfAnUnsupportedMethodAreNaN) {
+  const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), true);
+  SolverOptions lemke;
+  lemke.method = SolverMethod::lemke;
+  const SmallImpactSolver solver(to_small(bar), StrongeLaw{0.8, true, 0.5}, lemke);
+  BatchAnswers columns;
+  solve_batch(solver, velocities(50), columns, {2});
+  ASSERT_EQ(columns.size(), 50);
+  for (std::size_t i = 0; i < 50; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    EXPECT_EQ(columns.status[i], SolverStatus::unsupported) << i;
+    EXPECT_TRUE(columns.qdot_E.col(k).array().isNaN().all()) << i;
+    EXPECT_TRUE(columns.P_N.col(k).array().isNaN().all()) << i;
+  }
+}
+
 TEST(SolveBatch, OneConfigurationNamesTheFirstBadVelocity) {
   const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), true);
   const ImpactSolver solver(bar, ImpactLaw::newton_coulomb(0.9, 1.0));
