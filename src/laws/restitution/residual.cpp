@@ -286,15 +286,8 @@ bool residual_at_own_velocities(const ImpactProblemT<N, C>& pb, const ContactSpa
     return false;
   // u = Σ_j |M⁻¹W_j P_j|: what q̇_E − q̇_A is summed from (Poisson: the larger of it and the same
   // sum for q̇_C); W's rows on it bound the rounding of every contact velocity after.
-  VecT<N> u = VecT<N>::Zero(n);
-  for (int j = 0; j < rows; ++j)
-    if (P(j) != 0.0) u += (cs.MinvW.col(j) * P(j)).cwiseAbs();
-  if (poisson) {
-    VecT<N> uC = VecT<N>::Zero(n);
-    for (int j = 0; j < rows; ++j)
-      if (P_C(j) != 0.0) uC += (cs.MinvW.col(j) * P_C(j)).cwiseAbs();
-    u = u.cwiseMax(uC);
-  }
+  VecT<N> u = velocity_terms(cs, rows, P);
+  if (poisson) u = u.cwiseMax(velocity_terms(cs, rows, P_C));
   // Both velocities are sums of at most rows + c + 3 rounded terms of size `terms`.
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   double v_scale = std::numeric_limits<double>::min(), worst = 0.0, terms = 0.0;

@@ -1,10 +1,13 @@
 #pragma once
 /// @file The natural maps of one contact's rows under the classical laws (docs/solvers.md):
 /// the complementarity of the normal row and Coulomb's law on the tangential one, in velocity
-/// units. The law's residual (residual.cpp) and the one-contact stage of its chain read the same
-/// functions, so that they agree to the last bit.
+/// units, and what bounds the rounding of an answer's own velocities. The law's residual
+/// (residual.cpp) and the one-contact stage of its chain read the same functions, so that they
+/// agree to the last bit.
 #include <algorithm>
 #include <cmath>
+
+#include "contact_space/contact_space.hpp"
 
 namespace fremond::detail {
 
@@ -52,6 +55,20 @@ inline double worst_row_map(bool poisson, bool tangential, double e, double mu, 
   worst = std::max(worst, std::fabs(complementarity(k.D_NE, pne - e * k.P_NC, gn)));
   if (tangential) worst = std::max(worst, std::fabs(coulomb(pte, k.D_TE, mu * pne, gt)));
   return worst;
+}
+
+/// u = Σ_j |M⁻¹W_j P_j| over the first `rows` rows of cs with a percussion (p(j) row j's):
+/// what q̇ − q̇_A is summed from, so that W's rows on u bound the rounding of the contact
+/// velocities at q̇ (residual_at_own_velocities). Entry by entry, rows in order.
+template <int N, int C, class Percussion>
+VecT<N> velocity_terms(const ContactSpaceT<N, C>& cs, int rows, const Percussion& p) {
+  VecT<N> u = VecT<N>::Zero(cs.dofs);
+  for (int j = 0; j < rows; ++j) {
+    const double pj = p(j);
+    if (pj != 0.0)
+      for (int i = 0; i < cs.dofs; ++i) u(i) += std::fabs(cs.MinvW(i, j) * pj);
+  }
+  return u;
 }
 
 /// The share of the tolerance that the residual at an answer's own velocities, and those

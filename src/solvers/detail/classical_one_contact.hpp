@@ -58,15 +58,6 @@ bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
   return true;
 }
 
-/// u += |M⁻¹W_j P_j| over the rows with a percussion (residual_at_own_velocities' terms), entry
-/// by entry: the same operations as its vector expression, without its dispatch.
-template <int N, int C>
-inline void add_velocity_terms(const ContactSpaceT<N, C>& cs, const double (&P)[2], VecT<N>& u) {
-  for (int j = 0; j < (cs.tangential ? 2 : 1); ++j)
-    if (P[j] != 0.0)
-      for (int i = 0; i < cs.dofs; ++i) u(i) += std::fabs(cs.MinvW(i, j) * P[j]);
-}
-
 /// The answer of one_approaching_contact's problems, written into `out` (a cleared result) when
 /// the contact modes would give it unchanged: one solution of the closed forms (G regular; for
 /// Poisson one compression and one expansion), velocities whose terms do not cancel
@@ -78,7 +69,7 @@ template <int N, int C>
 bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                         const RestitutionLaw& law, const SolverOptions& options,
                         ImpactResultT<N, C>& out) {
-  const int n = cs.dofs, rows = cs.tangential ? 2 : 1;
+  const int rows = cs.tangential ? 2 : 1;
   const bool f = cs.tangential, tangential = pb.has_tangential(), poisson = law.has_phases();
   const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
   const double dna = cs.D_A(0), dta = f ? cs.D_A(1) : 0.0;
@@ -120,13 +111,8 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
 
   // The residual at these velocities (residual_at_own_velocities), within its share of the
   // tolerance; else the data's residual decides, on the general path.
-  VecT<N> u = VecT<N>::Zero(n);
-  add_velocity_terms(cs, P, u);
-  if (poisson) {
-    VecT<N> uC = VecT<N>::Zero(n);
-    add_velocity_terms(cs, P_C, uC);
-    for (int i = 0; i < n; ++i) u(i) = std::max(u(i), uC(i));
-  }
+  VecT<N> u = velocity_terms(cs, rows, [&](int j) { return P[j]; });
+  if (poisson) u = u.cwiseMax(velocity_terms(cs, rows, [&](int j) { return P_C[j]; }));
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   const double dn = cs.D_N(0), dt = tangential ? cs.D_T(0) : 0.0;
   double terms = std::max(0.0, pb.W_N.col(0).cwiseAbs().dot(u));
