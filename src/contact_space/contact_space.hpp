@@ -357,17 +357,22 @@ bool update_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
 }
 
 /// W_iᵀM⁻¹W_i of every contact i of `pb` (normal into N, tangential into T: empty without W_T),
-/// each as the dot product of W_i with llt's solve of it: the classical residual's scales.
+/// each as |L⁻¹W_i|² with M = L Lᵀ (one triangular solve for all columns, and never negative):
+/// the classical residual's scales.
 template <int MaxDofs, int MaxContacts>
 void self_delassus(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const CholeskyT<MaxDofs>& llt,
                    VecT<MaxContacts>& N, VecT<MaxContacts>& T) {
   const int c = pb.contacts();
   N.resize(c);
   T.resize(pb.has_tangential() ? c : 0);
-  for (int i = 0; i < c; ++i) {
-    N(i) = pb.W_N.col(i).dot(llt.solve(pb.W_N.col(i)));
-    if (pb.has_tangential()) T(i) = pb.W_T.col(i).dot(llt.solve(pb.W_T.col(i)));
-  }
+  if (c == 0) return;
+  MatT<MaxDofs, MaxContacts> Y = pb.W_N;
+  llt.solve_lower_in_place(Y);
+  N = Y.colwise().squaredNorm().transpose();
+  if (!pb.has_tangential()) return;
+  Y = pb.W_T;
+  llt.solve_lower_in_place(Y);
+  T = Y.colwise().squaredNorm().transpose();
 }
 
 /// self_delassus() of the problem `cs` was built from, through cs's factor of M, computed on first
