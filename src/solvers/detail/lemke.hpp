@@ -20,14 +20,14 @@
 
 namespace fremond::detail::lcp {
 
-/// The tableau's storage: on the stack for a finite MaxN (no heap, no zeroing), else on the heap.
-/// Row-major with a leading dimension of n + 2 for the actual size n, so that the small problems
-/// touch only the entries they use.
 /// y_c −= f x_c for c < len: a pivot's update of one tableau row, most of Lemke's cost. Four
 /// entries at a time on a processor with AVX2, with the same bits (a product, then a difference,
 /// never fused).
 void subtract_multiple(double* y, const double* x, double f, int len);
 
+/// The tableau's storage: on the stack for a finite MaxN (no heap, no zeroing), else on the heap.
+/// Row-major with a leading dimension of n + 2 for the actual size n, so that the small problems
+/// touch only the entries they use.
 template <int MaxN>
 struct TableauStorage {
   std::array<double, static_cast<std::size_t>(MaxN) * (MaxN + 2)> values_;
