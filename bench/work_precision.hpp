@@ -157,7 +157,8 @@ inline bool measure(const FremondCase& c, const SolverOptions& opt, Point& pt,
     if (by[m] > 0) {
       if (!pt.answered_by.empty()) pt.answered_by += "|";
       pt.answered_by += std::string(to_string(static_cast<SolverMethod>(m)));
-      if (by[m] != static_cast<int>(k_done)) pt.answered_by += "*" + std::to_string(by[m]);
+      if (by[m] != static_cast<int>(k_done))
+        pt.answered_by.append("*").append(std::to_string(by[m]));
     }
   pt.status = std::string(to_string(worst));
   pt.rel_error = any_reference ? err : std::nan("");

@@ -15,8 +15,6 @@
 namespace fremond {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // The paper's bar: m = 1, l = 0.5, J = m l²/3. Its lower end (contact 0, body point r = (−l, 0))
 // at angle θ is a = (−l cos θ, −l sin θ) from the centre, so on the ground (n = (0, 1), t = (1, 0))
 // W_N = (0, 1, −l cos θ), W_T = (1, 0, l sin θ) and G = Wᵀ M⁻¹ W has, per unit mass,
@@ -84,7 +82,7 @@ AtlasOptions newton_coulomb_map(double mu, int n) {
   o.e = 0.9;
   o.theta_count = o.psi_count = n;
   o.theta_min = 0.0;
-  o.theta_max = kPi;  // both sides: the lower end's a_x changes sign at π/2
+  o.theta_max = std::numbers::pi;  // both sides: the lower end's a_x changes sign at π/2
   o.speed = 1.0;
   return o;
 }
@@ -213,7 +211,7 @@ TEST(Atlas, PaperBarFirstImpactIsOnTheMap) {
     const SmallImpactResult direct = solve_impact(pb, scene.law);
     const double D_NA = pb.W_N.col(0).dot(pb.qdot_A), D_TA = pb.W_T.col(0).dot(pb.qdot_A);
     const double theta = first.state.q(2), psi = std::atan2(D_NA, D_TA);
-    EXPECT_DOUBLE_EQ(theta, kPi / 4);
+    EXPECT_DOUBLE_EQ(theta, std::numbers::pi / 4);
 
     AtlasOptions o;
     o.laws = {which == PaperLaw::newton_coulomb ? "newton_coulomb" : "fremond"};
@@ -251,7 +249,7 @@ TEST(Atlas, DissipativeLawsNeverCreateEnergy) {
   o.values = {0.0, 0.3, 1.0, 2.0};
   o.spins = {-1.0, 0.0, 1.0};
   o.theta_count = o.psi_count = 40;
-  o.theta_max = kPi;
+  o.theta_max = std::numbers::pi;
   std::size_t calls = 0;
   o.progress = [&](std::size_t done, std::size_t total) {
     ++calls;

@@ -16,13 +16,13 @@
 namespace fremond {
 namespace {
 
-constexpr double kMass = 0.2, kGravity = 9.81;
+constexpr double kBallMass = 0.2, kGravity = 9.81;
 const std::vector<double> kHeights{0.02, 0.05, 0.1, 0.2, 0.4, 0.7, 1.0, 1.5, 2.0, 3.0};
 
 // The ball's vertical motion alone: q = y, M = m, W_N = 1; it hits the ground at √(2 g h).
 ImpactProblem drop(double height) {
   ImpactProblem pb;
-  pb.M = MatrixX::Constant(1, 1, kMass);
+  pb.M = MatrixX::Constant(1, 1, kBallMass);
   pb.W_N = MatrixX::Constant(1, 1, 1.0);
   pb.qdot_A = VectorX::Constant(1, -std::sqrt(2 * kGravity * height));
   return pb;

@@ -16,7 +16,7 @@
 namespace fremond {
 namespace {
 
-std::vector<ImpactLaw> every_law() {
+std::vector<ImpactLaw> every_scene_law() {
   StrongeLaw hertz;
   hertz.e = 1.0;
   hertz.eta = 1.5;
@@ -144,7 +144,7 @@ TEST(MultiBodyScene, NewtonsCradleUnderEveryLaw) {
     std::vector<double> m(static_cast<std::size_t>(n), 1.0), v(static_cast<std::size_t>(n), 0.0);
     v[0] = 1.0;
     const ImpactProblem chain = ball_chain(m, v);
-    for (const ImpactLaw& law : every_law()) {
+    for (const ImpactLaw& law : every_scene_law()) {
       const MultiBodyScene s = cradle_scene(p, law);
       const std::vector<int> idx = touching_contacts(s, s.initial.q);
       ASSERT_EQ(static_cast<int>(idx.size()), n - 1);
@@ -193,7 +193,7 @@ TEST(MultiBodyScene, BallDroppedOnARestingBallUnderEveryLaw) {
 
   const std::vector<double> m{1.0, 1.0}, v{0.0, -1.0};
   const ImpactProblem chain = ball_chain(m, v, true);  // contacts: the pair, the ground
-  for (const ImpactLaw& law : every_law()) {
+  for (const ImpactLaw& law : every_scene_law()) {
     const MultiBodyScene s = ball_on_ball_scene(p, law);
     const ImpactResult r = solve_impact(impact_problem(s, s.initial, idx), law_of(s, idx));
     const ImpactResult ref = solve_impact(chain, law);

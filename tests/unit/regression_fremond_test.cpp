@@ -166,7 +166,7 @@ ImpactProblem make(Eigen::MatrixXd M, Eigen::MatrixXd WN, Eigen::MatrixXd WT, Ei
   return pb;
 }
 
-SolverOptions forced(SolverMethod m) {
+SolverOptions forced_method(SolverMethod m) {
   SolverOptions o;
   o.method = m;
   return o;
@@ -180,9 +180,9 @@ TEST(RegressionFremond, NloptWithCoulombReturnsOnAPointMass) {
                                 Eigen::Vector2d(1, 0), Eigen::Vector2d(1, -1));
   const ImpactLaw law = ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 1.0);
   EXPECT_TRUE(returns_within(30, [&] {
-    const auto r = solve_impact(pb, law, forced(SolverMethod::nlopt));
+    const auto r = solve_impact(pb, law, forced_method(SolverMethod::nlopt));
     EXPECT_NE(r.solver.status, SolverStatus::not_run);
-    EXPECT_EQ(robust::check_result(pb, law, forced(SolverMethod::nlopt), r), "");
+    EXPECT_EQ(robust::check_result(pb, law, forced_method(SolverMethod::nlopt), r), "");
   }));
 }
 
@@ -313,7 +313,7 @@ TEST(RegressionFremond, NloptOutOfBudgetLeavesNoNaN) {
   normal.potentials.emplace_back(
       std::make_unique<PowerPotential>(0.00071796536218804593, 35.39201297913705));
   const ImpactLaw law = ImpactLaw::fremond(std::move(normal));
-  const SolverOptions opt = forced(SolverMethod::nlopt);
+  const SolverOptions opt = forced_method(SolverMethod::nlopt);
   EXPECT_TRUE(returns_within(120, [&] {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
@@ -547,7 +547,7 @@ TEST(RegressionFremond, NoNaNInTheReactionWhateverTheMethod) {
     tangential.potentials.emplace_back(std::make_unique<DeadZonePowerPotential>(k[i], q[i], r[i]));
   const ImpactLaw law = ImpactLaw::fremond(PowerPotential(234.45196439246172, 13.729012979061201),
                                            std::move(tangential));
-  for (const SolverOptions& opt : {SolverOptions{}, forced(SolverMethod::nlopt)}) {
+  for (const SolverOptions& opt : {SolverOptions{}, forced_method(SolverMethod::nlopt)}) {
     const auto r = solve_impact(pb, law, opt);
     EXPECT_TRUE(r.P_N_reaction.allFinite()) << r.P_N_reaction.transpose();
     EXPECT_TRUE(r.qdot_E.allFinite());
@@ -898,7 +898,8 @@ TEST(RegressionFremond, UprightBarUnderCoulombAgreesWithTheSplittingFromZero) {
   const ImpactResult r = solve_and_check(file);
   ASSERT_TRUE(r.ok());
   expect_coulomb_on_mean_velocity(r, {0.1052513990738896});
-  const ImpactResult s = solve_impact(file.problem, file.law, forced(SolverMethod::proximal));
+  const ImpactResult s =
+      solve_impact(file.problem, file.law, forced_method(SolverMethod::proximal));
   ASSERT_TRUE(s.ok()) << why(s);
   expect_coulomb_on_mean_velocity(s, {0.1052513990738896});
   const double v = std::max(r.D_NA.cwiseAbs().maxCoeff(), r.D_TA.cwiseAbs().maxCoeff());
@@ -953,7 +954,7 @@ TEST(RegressionFremond, BlockLandingFlatSlidesAtOneCornerAndSticksAtTheOther) {
     EXPECT_NEAR(r.P_N(i), -k * zN * std::fabs(zN), 1e-10 * r.P_N(i)) << "contact " << i;
   }
   // The enumeration of modes, forced, gives the same answer.
-  const ImpactResult m = solve_impact(pb, law, forced(SolverMethod::mode_enumeration));
+  const ImpactResult m = solve_impact(pb, law, forced_method(SolverMethod::mode_enumeration));
   ASSERT_TRUE(m.ok()) << why(m);
   EXPECT_NEAR(m.P_T(0), r.P_T(0), 1e-12 * r.P_N(0));
   EXPECT_NEAR(m.P_N(1), r.P_N(1), 1e-12 * r.P_N(1));
@@ -966,7 +967,7 @@ TEST(RegressionFremond, HardCaseIsNoFurtherFromTheLawThanNlopt) {
   const auto [pb, law] = testing::every_method_failing_case();
   const SolverOptions opt;
   const ImpactResult r = solve_impact(pb, law, opt);
-  const ImpactResult last = solve_impact(pb, law, forced(SolverMethod::nlopt));
+  const ImpactResult last = solve_impact(pb, law, forced_method(SolverMethod::nlopt));
   EXPECT_EQ(robust::check_result(pb, law, opt, r), "");
   EXPECT_DOUBLE_EQ(r.solver.residual, law_residual(pb, law, r));
   // Whatever the status, the answer is no further from the law than NLopt's alone (9e12 here).

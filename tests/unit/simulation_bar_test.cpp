@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <vector>
 
 #include "fremond/scenes/kinematics.hpp"
@@ -16,7 +17,6 @@
 namespace fremond {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr PaperLaw kLaws[] = {PaperLaw::newton, PaperLaw::newton_coulomb, PaperLaw::poisson_coulomb,
                               PaperLaw::fremond_coulomb, PaperLaw::fremond_viscous};
 
@@ -68,8 +68,9 @@ TEST(SimulationBar, EveryPaperLawRunsThreeAndThirtySeconds) {
       const ImpactRecord& first = log.impacts.front();
       EXPECT_EQ(first.contact_count, 1);
       EXPECT_EQ(first.contacts[0], 0);
-      EXPECT_NEAR(first.t, std::sqrt(2 * (1 - 0.5 * std::sin(kPi / 4)) / 9.81), 1e-14);
-      EXPECT_NEAR(first.D_NA(0), -std::sqrt(2 * 9.81 * (1 - 0.5 * std::sin(kPi / 4))), 1e-12);
+      EXPECT_NEAR(first.t, std::sqrt(2 * (1 - 0.5 * std::sin(std::numbers::pi / 4)) / 9.81), 1e-14);
+      EXPECT_NEAR(first.D_NA(0), -std::sqrt(2 * 9.81 * (1 - 0.5 * std::sin(std::numbers::pi / 4))),
+                  1e-12);
       // Flagged impacts are the law's own answers (and only Newton + Coulomb has them, §4.1).
       if (law != PaperLaw::newton_coulomb) {
         EXPECT_EQ(r.inadmissible_impacts, 0) << what;

@@ -13,7 +13,7 @@
 namespace fremond {
 namespace {
 
-struct Log : MultiBodyObserver {
+struct BodiesLog : MultiBodyObserver {
   std::vector<MultiBodyImpact> impacts;
   std::vector<MultiBodySample> samples;
   void on_impact(const MultiBodyImpact& i) override { impacts.push_back(i); }
@@ -32,7 +32,7 @@ SimulationOptions until(double t_end) {
 // at t = 1, x = (−1/3, 0.2 + 2/3, 0.4 + 2/3).
 TEST(SimulateBodies, NewtonsCradleFliesApartAfterOneImpact) {
   const MultiBodyScene s = cradle_scene(CradleParameters{}, ImpactLaw::newton(1.0));
-  Log log;
+  BodiesLog log;
   const MultiBodyResult r = simulate(s, until(1.0), &log);
   ASSERT_EQ(r.status, SimulationStatus::completed) << r.message;
   ASSERT_EQ(r.impacts, 1);
@@ -73,7 +73,7 @@ TEST(SimulateBodies, NewtonsCradleOfFiveUnderStronge) {
 TEST(SimulateBodies, BallDroppedOnARestingBallBouncesBackElastically) {
   const double g = 9.81, h = 0.5, t1 = std::sqrt(2 * h / g), v = std::sqrt(2 * g * h);
   const MultiBodyScene s = ball_on_ball_scene(BallOnBallParameters{}, ImpactLaw::newton(1.0));
-  Log log;
+  BodiesLog log;
   const MultiBodyResult r = simulate(s, until(1.0), &log);
   ASSERT_EQ(r.status, SimulationStatus::completed) << r.message;
   ASSERT_EQ(r.impacts, 2);
@@ -93,7 +93,7 @@ TEST(SimulateBodies, BallDroppedOnARestingBallComesToRest) {
   const double g = 9.81, h = 0.5, v = std::sqrt(2 * g * h);
   const double t_inf = std::sqrt(2 * h / g) + 2 * v * 0.8 / (g * 0.2);
   const MultiBodyScene s = ball_on_ball_scene(BallOnBallParameters{}, ImpactLaw::newton(0.8));
-  Log log;
+  BodiesLog log;
   const MultiBodyResult r = simulate(s, until(t_inf + 1.0), &log);
   ASSERT_EQ(r.status, SimulationStatus::completed) << r.message;
   EXPECT_EQ(r.accumulations, 1);

@@ -3,6 +3,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <numbers>
 
 #include "fremond/core/error.hpp"
 #include "fremond/potentials/power.hpp"
@@ -13,8 +14,6 @@
 namespace fremond {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // One contact, normal law alone, leaving with D_NE = e a from D_NA = −a (no reaction): z =
 // −a(1−e)/2, P = k |z|^(p−1), and D_NE − D_NA = (1 + e) a = G P give k = (1 + e) a / (G (a(1 −
 // e)/2)^(p−1)).
@@ -24,8 +23,8 @@ double closed_form_k(double G, double a, double e, double p) {
 
 TEST(Calibration, PaperBarStiffnessMatchesTheClosedForm) {
   // The bar's first impact: lower end at θ = π/4 after a drop of 1 − l sin θ, G_NN = 1 + 3cos²θ.
-  const double a = std::sqrt(2 * 9.81 * (1 - 0.5 * std::sin(kPi / 4)));
-  const double G = 1 + 3 * std::cos(kPi / 4) * std::cos(kPi / 4);
+  const double a = std::sqrt(2 * 9.81 * (1 - 0.5 * std::sin(std::numbers::pi / 4)));
+  const double G = 1 + 3 * std::cos(std::numbers::pi / 4) * std::cos(std::numbers::pi / 4);
   const double k = paper_bar_normal_stiffness();
   EXPECT_NEAR(k, closed_form_k(G, a, 0.9, 3.0), 1e-10 * k);
   EXPECT_NEAR(k, 85.36, 0.01);  // docs/laws.md: ≈ 85.36 (≈ 21.34 in the paper's scaling)

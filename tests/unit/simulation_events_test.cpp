@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include <Eigen/LU>
@@ -17,8 +18,6 @@
 
 namespace fremond {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(FreeFlight, GapFunctionMatchesTheKinematicsAlongTheFlight) {
   std::mt19937_64 rng(7);
@@ -53,7 +52,7 @@ TEST(FreeFlight, GapFunctionMatchesTheKinematicsAlongTheFlight) {
 TEST(FreeFlight, SpecSection5ContactDirectionsOfTheBar) {
   // the paper's Fig. 1: lower end at θ = π/4, W_N = (0, 1, −l cos θ), W_T = (1, 0, l sin θ).
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
-  const double l = 0.5, th = kPi / 4;
+  const double l = 0.5, th = std::numbers::pi / 4;
   const ContactFrame f = contact_frame(bar, 0, Eigen::Vector3d(0.0, 1.0, th));
   EXPECT_NEAR(f.gap, 1.0 - l * std::sin(th), 1e-15);
   EXPECT_NEAR((f.W_N - Eigen::Vector3d(0, 1, -l * std::cos(th))).norm(), 0.0, 1e-15);
@@ -122,7 +121,7 @@ double brute_first_root(const GapFunction& g, double s_max, double ds) {
 // every 0.1 s): its ends dip down many times.
 FreeFlight random_spinning_bar_flight(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double y = 0.4 + 0.5 * u(rng), theta = 2 * kPi * u(rng);
+  const double y = 0.4 + 0.5 * u(rng), theta = 2 * std::numbers::pi * u(rng);
   const double ydot = 3 * u(rng), omega = (u(rng) - 0.5) * 120;
   return FreeFlight{0.0, {Eigen::Vector3d(0, y, theta), Eigen::Vector3d(1, ydot, omega)}, 9.81};
 }
@@ -195,7 +194,7 @@ TEST(EventDetection, ALeavingContactDoesNotRetrigger) {
   EXPECT_NEAR(r.s, 2 * 2.0 / 9.81, 1e-15);
   // Touching, at rest, and lifted by the rotation (g'' > 0): no event either.
   const FreeFlight spin{
-      0.0, {Eigen::Vector3d(0, 0.5, -kPi / 2), Eigen::Vector3d(0, 0, 10.0)}, 9.81};
+      0.0, {Eigen::Vector3d(0, 0.5, -std::numbers::pi / 2), Eigen::Vector3d(0, 0, 10.0)}, 9.81};
   const Scene bar = bar_scene({}, ImpactLaw::newton(0.9));
   const GapFunction g1 = GapFunction::make(bar.body.points[1], bar.obstacles[0], spin);
   double g, gd, gdd;

@@ -72,7 +72,7 @@ TEST(SimulationOptions, EachOutOfRangeValueIsNamed) {
   refused([](SimulationOptions& o) { o.solver.tolerance = 1.0; }, "solver");
 }
 
-struct Log : SimulationObserver {
+struct EventLog : SimulationObserver {
   std::vector<TrajectorySample> samples;
   std::vector<ImpactRecord> impacts;
   std::vector<double> progress;
@@ -85,7 +85,7 @@ TEST(SimulationOptions, SamplesFallOnTheGridAndAroundEveryImpact) {
   SimulationOptions o;
   o.t_end = 1.0;
   o.sample_interval = 0.01;
-  Log log;
+  EventLog log;
   const SimulationResult r = simulate(ball_scene({}, ImpactLaw::newton(0.9)), o, &log);
   ASSERT_TRUE(r.ok());
   ASSERT_EQ(r.impacts, 1);  // at 0.4515 s; the next at 0.4515 + 2·0.9·4.429/9.81 = 1.264 s
@@ -116,7 +116,7 @@ TEST(SimulationOptions, SamplesFallOnTheGridAndAroundEveryImpact) {
 TEST(SimulationOptions, MaxImpactsStopsTheRunThere) {
   SimulationOptions o;
   o.max_impacts = 3;
-  Log log;
+  EventLog log;
   const SimulationResult r = simulate(bar_scene({}, ImpactLaw::newton(0.9)), o, &log);
   EXPECT_EQ(r.status, SimulationStatus::max_impacts);
   EXPECT_TRUE(r.ok());
@@ -136,7 +136,7 @@ TEST(SimulationOptions, AFlightTooFastToResolveStopsTheRunWhereItStands) {
   o.max_gap_evaluations = 50000;
   for (double omega : {1e3, 1e9}) {
     bar.initial = {Eigen::Vector3d(0, 1.0, 0.3), Eigen::Vector3d(0, 0, omega)};
-    Log log;
+    EventLog log;
     const SimulationResult r = simulate(bar, o, &log);
     EXPECT_EQ(r.impacts, 0);
     if (omega < 1e6) {

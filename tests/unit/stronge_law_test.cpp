@@ -12,7 +12,7 @@
 namespace fremond {
 namespace {
 
-ImpactLaw stronge(double e, double mu) {
+ImpactLaw stronge_impact_law(double e, double mu) {
   StrongeLaw law;
   law.e = e;
   law.coulomb = true;
@@ -37,7 +37,7 @@ TEST(StrongeLaw, PaperBarFirstImpactSlipsThenSticks) {
   const double P_T = -p1 + 0.6 * (P_N - p1);
   const double dE = -(1.0 - e * e) * -W_c - 0.5 * 2.0 * p1;  // − μ∫|D_T|dp over the slip
 
-  const ImpactResult r = solve_impact(pb, stronge(e, 1.0));
+  const ImpactResult r = solve_impact(pb, stronge_impact_law(e, 1.0));
   ASSERT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
   EXPECT_NEAR(r.P_N(0), P_N, 1e-13 * P_N);
   EXPECT_NEAR(r.P_T(0), P_T, 1e-13 * P_N);
@@ -46,7 +46,7 @@ TEST(StrongeLaw, PaperBarFirstImpactSlipsThenSticks) {
   EXPECT_NEAR(r.energy_change, dE, 1e-12 * r.admissibility.kinetic_energy_A);
   EXPECT_LT(r.energy_change, 0.0);
   EXPECT_TRUE(r.admissibility.admissible) << to_string(r.admissibility.failed);
-  EXPECT_LE(law_residual(pb, stronge(e, 1.0), r), 1e-14);
+  EXPECT_LE(law_residual(pb, stronge_impact_law(e, 1.0), r), 1e-14);
   // Newton + Coulomb with the same e and μ creates energy at this impact (the paper's §4).
   EXPECT_GT(solve_impact(pb, ImpactLaw::newton_coulomb(e, 1.0)).energy_change, 0.0);
 }
@@ -108,22 +108,23 @@ TEST(StrongeLaw, IndependentContactsApartCoupledContactsDistributed) {
   two.W_T.block(3, 1, 3, 1) = one.W_T;
   two.qdot_A = Eigen::VectorXd(6);
   two.qdot_A << one.qdot_A, 0.5 * one.qdot_A;
-  const ImpactResult alone = solve_impact(one, stronge(0.9, 1.0));
-  const ImpactResult both = solve_impact(two, stronge(0.9, 1.0));
+  const ImpactResult alone = solve_impact(one, stronge_impact_law(0.9, 1.0));
+  const ImpactResult both = solve_impact(two, stronge_impact_law(0.9, 1.0));
   ASSERT_EQ(both.solver.status, SolverStatus::converged) << both.solver.message;
   EXPECT_NEAR(both.P_N(0), alone.P_N(0), 1e-14 * alone.P_N(0));
   EXPECT_NEAR(both.P_N(1), 0.5 * alone.P_N(0), 1e-14 * alone.P_N(0));  // linear in the velocity
   EXPECT_TRUE(both.admissibility.admissible);
 
   const ImpactProblem flat = fixtures::bar(0.0, Eigen::Vector3d(0.3, -1.0, 0.2), true);
-  const ImpactResult r = solve_impact(flat, stronge(0.9, 1.0));
+  const ImpactResult r = solve_impact(flat, stronge_impact_law(0.9, 1.0));
   EXPECT_EQ(r.solver.status, SolverStatus::converged) << r.solver.message;
   EXPECT_EQ(r.solver.method, SolverMethod::impulse_integration);
   EXPECT_TRUE(r.admissibility.admissible) << to_string(r.admissibility.failed);
   EXPECT_LT(r.energy_change, 0.0);
   SolverOptions closed;
   closed.method = SolverMethod::closed_form;
-  EXPECT_EQ(solve_impact(flat, stronge(0.9, 1.0), closed).solver.status, SolverStatus::unsupported);
+  EXPECT_EQ(solve_impact(flat, stronge_impact_law(0.9, 1.0), closed).solver.status,
+            SolverStatus::unsupported);
 }
 
 // On random one-contact problems: P_N ≥ 0, |P_T| ≤ μP_N, momentum M(q̇_E − q̇_A) = W P, no
@@ -143,7 +144,7 @@ TEST(StrongeLaw, RandomOneContactProblemsDissipate) {
     const double D_NA = pb.W_N.col(0).dot(pb.qdot_A);
     if (D_NA > 0.0) pb.qdot_A -= 2.0 * D_NA / pb.W_N.squaredNorm() * pb.W_N.col(0);
     const double e = pos(rng), mu = 2.0 * pos(rng);
-    const ImpactResult r = solve_impact(pb, stronge(e, mu));
+    const ImpactResult r = solve_impact(pb, stronge_impact_law(e, mu));
     if (r.solver.status == SolverStatus::unsupported) continue;  // w_T ∥ w_N in M⁻¹
     ASSERT_EQ(r.solver.status, SolverStatus::converged) << k;
     ++solved;
