@@ -51,10 +51,6 @@ struct AtlasArguments {
   bool no_progress = false;
 };
 
-[[noreturn]] void exit_with(int code) {
-  throw CLI::RuntimeError(code);
-}
-
 // The library names the options as AtlasOptions spells them; the user typed flags.
 InvalidArgument as_flag(const InvalidArgument& e, bool sweeps_e) {
   static const std::pair<const char*, const char*> kFlags[] = {

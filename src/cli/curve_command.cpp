@@ -51,16 +51,6 @@ struct TangentialArguments {
 };
 
 // A short number for the comment lines.
-std::string brief(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-[[noreturn]] void exit_with(int code) {
-  throw CLI::RuntimeError(code);
-}
-
 // The library names its parameters as the structs spell them; the user typed options.
 InvalidArgument as_option(const InvalidArgument& e, const std::string& option) {
   return InvalidArgument(option, std::string(e.what()).substr(e.name().size() + 2));

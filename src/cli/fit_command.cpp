@@ -15,6 +15,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/measured_input.hpp"
+#include "cli/output.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/fit/fit_law.hpp"
 #include "io/detail/json_number.hpp"
@@ -112,12 +113,6 @@ std::vector<LawFamily> families_of(const FitArguments& a) {
     }
   }
   return out;
-}
-
-std::string brief(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 using io::detail::json_number;

@@ -87,10 +87,6 @@ SolverOptions solver_options(const ImpactArguments& args) {
   return options;
 }
 
-[[noreturn]] void exit_with(int code) {
-  throw CLI::RuntimeError(code);
-}
-
 // A result that cannot be written in full (disk full, closed pipe, size limit) is a failure: a
 // caller reading only the exit status must not take a cut-off result for an answer.
 void print(const std::string& json) {

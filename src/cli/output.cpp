@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <CLI/CLI.hpp>
+
 #include "fremond/core/error.hpp"
 
 namespace fremond::cli {
@@ -51,6 +53,16 @@ std::string number17(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
+}
+
+std::string brief(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+void exit_with(int code) {
+  throw CLI::RuntimeError(code);
 }
 
 }  // namespace fremond::cli

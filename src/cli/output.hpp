@@ -1,5 +1,6 @@
 #pragma once
-// Writing the commands' results: files are complete or absent, standard output is checked.
+// Writing the commands' results (files are complete or absent, standard output is checked), and
+// ending a command with its exit status.
 #include <filesystem>
 #include <string>
 
@@ -16,5 +17,11 @@ bool write_stdout(const std::string& text);
 
 /// A number as text with %.17g, which reads back to the same double.
 std::string number17(double v);
+
+/// A number as text with %.6g, for messages.
+std::string brief(double v);
+
+/// Ends the command with exit status `code` (through CLI11, which unwinds to main).
+[[noreturn]] void exit_with(int code);
 
 }  // namespace fremond::cli

@@ -73,10 +73,6 @@ extern "C" void stop_the_run(int sig) {
   std::signal(sig, SIG_DFL);
 }
 
-[[noreturn]] void exit_with(int code) {
-  throw CLI::RuntimeError(code);
-}
-
 [[noreturn]] void refuse(const std::string& what) {
   std::fprintf(stderr, "fremond simulate: error: %s\n", what.c_str());
   exit_with(kExitRefused);
