@@ -50,7 +50,6 @@ struct TangentialArguments {
   std::optional<double> k_N, p, D_NA, k_T, q, r;
 };
 
-// A short number for the comment lines.
 // The library names its parameters as the structs spell them; the user typed options.
 InvalidArgument as_option(const InvalidArgument& e, const std::string& option) {
   return InvalidArgument(option, std::string(e.what()).substr(e.name().size() + 2));
