@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace fremond::detail {
 
@@ -10,13 +11,13 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 }  // namespace
 
-Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
-              bool coulomb, const std::vector<double>& e, const std::vector<double>& mu) {
+Layout layout(RowMajorMatrix&& G, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
+              const std::vector<double>& e, const std::vector<double>& mu) {
   Layout L;
   L.step = tangential ? 2 : 1;
   L.contacts = static_cast<int>(D_A.size()) / L.step;
   L.friction = tangential && coulomb;
-  L.G = G;
+  L.G.swap(G);
   L.G.makeCompressed();
   const auto n = static_cast<std::size_t>(L.contacts);
   L.block.resize(n);
@@ -27,11 +28,11 @@ Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, 
     const int r = L.step * i;
     const auto k = static_cast<std::size_t>(i);
     auto& B = L.block[k];
-    B.a = G.coeff(r, r);
+    B.a = L.G.coeff(r, r);
     if (tangential) {
-      B.b = G.coeff(r, r + 1);
-      B.c = G.coeff(r + 1, r);
-      B.d = G.coeff(r + 1, r + 1);
+      B.b = L.G.coeff(r, r + 1);
+      B.c = L.G.coeff(r + 1, r);
+      B.d = L.G.coeff(r + 1, r + 1);
     }
     L.mu[k] = L.friction ? mu[k] : 0.0;
     const double DNA = D_A(r);
@@ -44,6 +45,12 @@ Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, 
 
 Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
   Measure m;
+  measure(L, D_A, P, m);
+  return m;
+}
+
+void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P, Measure& m) {
+  m.residual = m.excess = m.squares = 0.0;
   const int rows = static_cast<int>(D_A.size());
   m.D_E.resize(rows);
   m.rounding.resize(rows);
@@ -75,7 +82,6 @@ Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::Vector
     m.residual = std::max(m.residual, R);
     m.excess = std::max(m.excess, R - floor);
   }
-  return m;
 }
 
 void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X) {
@@ -135,9 +141,11 @@ struct RowsOfG {
 // degrees of freedom.
 struct RowsThroughVelocities {
   const Layout& L;
-  Eigen::VectorXd v;
-  RowsThroughVelocities(const Layout& layout, const Eigen::VectorXd& P)
-      : L(layout), v(layout.X.lazyProduct(P)) {}
+  Eigen::VectorXd& v;
+  RowsThroughVelocities(const Layout& layout, const Eigen::VectorXd& P, Eigen::VectorXd& room)
+      : L(layout), v(room) {
+    v.noalias() = L.X.lazyProduct(P);
+  }
   double times(int row) const {
     const auto n = v.size();
     const double* w = L.W.data() + n * row;
@@ -156,9 +164,10 @@ struct RowsThroughVelocities {
 
 // One Gauss–Seidel sweep, over the contacts in order or `backward`; returns the largest change of
 // a contact's velocity it made.
-double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward) {
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward,
+             Eigen::VectorXd& velocities) {
   if (L.has_velocity_factors()) {
-    RowsThroughVelocities rows(L, P);
+    RowsThroughVelocities rows(L, P, velocities);
     return sweep_with(L, D_A, P, backward, rows);
   }
   RowsOfG rows{L, P};

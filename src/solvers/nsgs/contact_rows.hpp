@@ -33,8 +33,9 @@ struct Layout {
 
 /// The layout of G (rows grouped by contact: with `tangential`, row 2i contact i's normal and
 /// 2i + 1 its tangent), D_A and each contact's e and μ (μ read only with `coulomb`).
-Layout layout(const Eigen::SparseMatrix<double>& G, const Eigen::VectorXd& D_A, bool tangential,
-              bool coulomb, const std::vector<double>& e, const std::vector<double>& mu);
+/// G in row-major storage (the sweeps read it by rows) is taken over; a column-major one converts.
+Layout layout(RowMajorMatrix&& G, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
+              const std::vector<double>& e, const std::vector<double>& mu);
 
 /// Gives L the factors G = Wᵀ X (n × rows each, a column per row of L, in L's order) where 2n is
 /// at most L's rows (where they cost less than G's rows); a no-op otherwise, L then working on G
@@ -64,9 +65,13 @@ struct Measure {
 };
 
 Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P);
+/// The same into `m`, whose vectors keep their storage from one measure to the next.
+void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P, Measure& m);
 
 /// One Gauss–Seidel sweep of the contacts' local laws (coulomb_contact), in order or `backward`;
-/// returns the largest change of a contact's velocity it made.
-double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward);
+/// returns the largest change of a contact's velocity it made. `velocities`: the room the sweep
+/// keeps the body's velocities in when L has velocity factors, its storage reused by the next.
+double sweep(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P, bool backward,
+             Eigen::VectorXd& velocities);
 
 }  // namespace fremond::detail

@@ -25,9 +25,9 @@ struct ContactMode {
 
 // The modes the natural map reads at P: apart where P_N − w_N/G_NN ≤ 0; else stuck where the
 // tangential point P_T − D_TE/G_TT lies inside μ times the normal one, sliding its way otherwise.
-std::vector<ContactMode> modes_at(const Layout& L, const Eigen::VectorXd& P,
-                                  const Eigen::VectorXd& D_E) {
-  std::vector<ContactMode> modes(static_cast<std::size_t>(L.contacts));
+void modes_at(const Layout& L, const Eigen::VectorXd& P, const Eigen::VectorXd& D_E,
+              std::vector<ContactMode>& modes) {
+  modes.assign(static_cast<std::size_t>(L.contacts), ContactMode{});
   for (int i = 0; i < L.contacts; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const auto& A = L.block[k];
@@ -49,26 +49,36 @@ std::vector<ContactMode> modes_at(const Layout& L, const Eigen::VectorXd& P,
     else
       modes[k] = {Mode::slide, sigma_T > 0.0 ? 1.0 : -1.0};
   }
-  return modes;
 }
 
 // The mode's equations A x = b on the unknowns x (a contact's P_N, and its P_T where it sticks),
 // one equation a row held at zero velocity; the percussions are then P = E x. With the layout's
 // velocity factors A = Uᵀ V (U: W's columns of the equations' rows, V = X E), n × unknowns each,
-// and A itself is not formed.
+// and A itself is not formed. Its vectors and factors are sized for every row at once and used
+// on their first `unknowns()` entries, so that a run's steps allocate nothing on a rigid body.
 struct ModeSystem {
   Eigen::SparseMatrix<double> A;
   Eigen::MatrixXd U, V;
   Eigen::VectorXd b, scale;  // scale: each equation's own G diagonal
   std::vector<int> unknown;  // contact → its first unknown, −1 apart
   std::vector<int> row_of;   // unknown → its row of G
+  std::vector<Eigen::Triplet<double>> entries;
+
+  Eigen::Index unknowns() const { return static_cast<Eigen::Index>(row_of.size()); }
+  bool factored() const { return U.rows() != 0; }
+  auto U_cols() const { return U.leftCols(unknowns()); }
+  auto V_cols() const { return V.leftCols(unknowns()); }
 
   // Coefficient-wise products (lazyProduct): n is a rigid body's few degrees of freedom, where a
-  // general matrix-vector kernel's set-up costs more than the products.
-  Eigen::VectorXd times(const Eigen::VectorXd& x) const {
-    if (U.size() == 0) return A * x;
-    const Eigen::VectorXd v = V.lazyProduct(x);
-    return U.transpose().lazyProduct(v);
+  // general matrix-vector kernel's set-up costs more than the products. `v`: n entries of room.
+  template <class X, class Out>
+  void times(const X& x, Eigen::VectorXd& v, Out&& out) const {
+    if (!factored()) {
+      out.noalias() = A * x;
+      return;
+    }
+    v.noalias() = V_cols().lazyProduct(x);
+    out.noalias() = U_cols().transpose().lazyProduct(v);
   }
 };
 
@@ -76,10 +86,9 @@ struct ModeSystem {
 // column of a contact's normal unknown is X's normal column, plus s μ its tangential one where it
 // slides (P_T = s μ P_N), and of a sticking contact's tangential unknown X's tangential column.
 void velocity_factors_of(const Layout& L, const std::vector<ContactMode>& modes, ModeSystem& S) {
-  const auto n = L.X.rows(), u = static_cast<Eigen::Index>(S.row_of.size());
-  S.U.resize(n, u);
-  S.V.resize(n, u);
-  for (Eigen::Index eq = 0; eq < u; ++eq)
+  S.U.resize(L.X.rows(), L.X.cols());
+  S.V.resize(L.X.rows(), L.X.cols());
+  for (Eigen::Index eq = 0; eq < S.unknowns(); ++eq)
     S.U.col(eq) = L.W.col(S.row_of[static_cast<std::size_t>(eq)]);
   for (int i = 0; i < L.contacts; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -95,10 +104,10 @@ void velocity_factors_of(const Layout& L, const std::vector<ContactMode>& modes,
   }
 }
 
-ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
-                     const std::vector<ContactMode>& modes) {
-  ModeSystem S;
+void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<ContactMode>& modes,
+               ModeSystem& S) {
   S.unknown.assign(modes.size(), -1);
+  S.row_of.clear();
   for (int i = 0; i < L.contacts; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (modes[k].mode == Mode::apart) continue;
@@ -107,8 +116,8 @@ ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
     if (L.step == 2 && modes[k].mode == Mode::stick) S.row_of.push_back(L.step * i + 1);
   }
   const int n = static_cast<int>(S.row_of.size());
-  S.b.resize(n);
-  S.scale.resize(n);
+  S.b.resize(D_A.size());
+  S.scale.resize(D_A.size());
   for (int eq = 0; eq < n; ++eq) {
     const int R = S.row_of[static_cast<std::size_t>(eq)];
     const auto& B = L.block[static_cast<std::size_t>(R / L.step)];
@@ -118,10 +127,10 @@ ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
   }
   if (L.has_velocity_factors()) {
     velocity_factors_of(L, modes, S);
-    return S;
+    return;
   }
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(n) * 12);
+  S.entries.clear();
+  S.entries.reserve(static_cast<std::size_t>(n) * 12);
   for (int eq = 0; eq < n; ++eq) {
     const int R = S.row_of[static_cast<std::size_t>(eq)];
     for (int p = L.G.outerIndexPtr()[R]; p < L.G.outerIndexPtr()[R + 1]; ++p) {
@@ -132,29 +141,56 @@ ModeSystem system_of(const Layout& L, const Eigen::VectorXd& D_A,
       if (u < 0) continue;
       const bool tangent_column = j % L.step == 1;
       if (modes[k].mode == Mode::stick)
-        entries.emplace_back(eq, u + (tangent_column ? 1 : 0), v);
+        S.entries.emplace_back(eq, u + (tangent_column ? 1 : 0), v);
       else if (!tangent_column)
-        entries.emplace_back(eq, u, v);
+        S.entries.emplace_back(eq, u, v);
       else if (modes[k].s != 0.0)
-        entries.emplace_back(eq, u, v * modes[k].s * L.mu[k]);
+        S.entries.emplace_back(eq, u, v * modes[k].s * L.mu[k]);
     }
   }
   S.A.resize(n, n);
-  S.A.setFromTriplets(entries.begin(), entries.end());
-  return S;
+  S.A.setFromTriplets(S.entries.begin(), S.entries.end());
 }
 
-// The proximal steps x += K⁻¹(b − A x) with K = A + δ D applied by `solve`, until the equations'
-// residual is below 1e-3 of the target or stops halving (four at most).
+// The storage of one run of mode_newton, kept from step to step: every vector is sized for all
+// the rows (or the body's velocities) once, and a step uses its first `unknowns` entries.
+struct ModeWork {
+  std::vector<ContactMode> modes;
+  ModeSystem S;
+  Eigen::VectorXd x, r, step, v;    // unknowns (rows of room); v: the body's velocities
+  Eigen::VectorXd inv, y, t, z, w;  // Woodbury's: unknowns (inv, y, t), n (z, w)
+  Eigen::MatrixXd H;                // n × n
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::VectorXd next, d, trial;  // rows
+  Measure tried;                   // at `trial`
+
+  ModeWork(const Layout& L, Eigen::Index rows) {
+    const Eigen::Index n = L.X.rows();
+    for (Eigen::VectorXd* u : {&x, &r, &step, &inv, &y, &t}) u->resize(rows);
+    for (Eigen::VectorXd* u : {&v, &z, &w}) u->resize(n);
+    for (Eigen::VectorXd* u : {&next, &d, &trial}) u->resize(rows);
+    H.resize(n, n);
+    lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+  }
+};
+
+// The proximal steps x += K⁻¹(b − A x) with K = A + δ D applied by `solve` (into W.step), until
+// the equations' residual is below 1e-3 of the target or stops halving (four at most).
 template <class Solve>
-bool refine(const ModeSystem& S, double target, const Solve& solve, Eigen::VectorXd& x) {
+bool refine(ModeWork& W, double target, const Solve& solve) {
+  const ModeSystem& S = W.S;
+  const Eigen::Index u = S.unknowns();
+  auto x = W.x.head(u);
+  auto r = W.r.head(u);
   double last = std::numeric_limits<double>::infinity();
   for (int step = 0; step < 4 && x.allFinite(); ++step) {
-    const Eigen::VectorXd r = S.b - S.times(x);
+    S.times(x, W.v, r);
+    r = S.b.head(u) - r;
     const double size = r.lpNorm<Eigen::Infinity>();
     if (size <= 1e-3 * target || !(size < 0.5 * last)) break;
     last = size;
-    x += solve(r);
+    solve(r, W.step.head(u));
+    x += W.step.head(u);
   }
   return x.allFinite();
 }
@@ -164,37 +200,39 @@ bool refine(const ModeSystem& S, double target, const Solve& solve, Eigen::Vecto
 // current point keeps its signs and cone. (A + δ D) Δ = b − A x, D each equation's G diagonal,
 // repeated: the proximal-point iteration, whose limit is that nearest solution. False when the
 // factorisation fails.
-bool solve_mode(const ModeSystem& S, double target, double delta, Eigen::VectorXd& x) {
-  if (S.U.size() != 0) {
+bool solve_mode(ModeWork& W, double target, double delta) {
+  const ModeSystem& S = W.S;
+  const Eigen::Index u = S.unknowns();
+  if (S.factored()) {
     // Woodbury: with B = δ D, (B + Uᵀ V)⁻¹ r = B⁻¹ r − B⁻¹ Uᵀ H⁻¹ V B⁻¹ r, H = I + V B⁻¹ Uᵀ of
     // size n. Its cancellation where δ is small is the refinement's to correct.
-    const Eigen::VectorXd inv = (delta * S.scale).cwiseInverse();
-    Eigen::MatrixXd H = S.V * inv.asDiagonal() * S.U.transpose();
-    H.diagonal().array() += 1.0;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(H);
-    return refine(
-        S, target,
-        [&](const Eigen::VectorXd& r) {
-          const Eigen::VectorXd y = inv.cwiseProduct(r);
-          const Eigen::VectorXd z = lu.solve(S.V.lazyProduct(y));
-          return (y - inv.cwiseProduct(S.U.transpose().lazyProduct(z))).eval();
-        },
-        x);
+    auto inv = W.inv.head(u);
+    inv = (delta * S.scale.head(u)).cwiseInverse();
+    W.H.noalias() = S.V_cols() * inv.asDiagonal() * S.U_cols().transpose();
+    W.H.diagonal().array() += 1.0;
+    W.lu.compute(W.H);
+    return refine(W, target, [&](const auto& r, auto out) {
+      auto y = W.y.head(u);
+      y = inv.cwiseProduct(r);
+      W.w.noalias() = S.V_cols().lazyProduct(y);
+      W.z = W.lu.solve(W.w);
+      auto t = W.t.head(u);
+      t.noalias() = S.U_cols().transpose().lazyProduct(W.z);
+      out = y - inv.cwiseProduct(t);
+    });
   }
   Eigen::SparseMatrix<double> K = S.A;
   for (int j = 0; j < K.rows(); ++j) K.coeffRef(j, j) += delta * S.scale(j);
   // A few dozen unknowns (a plate on many contacts: G dense) factor faster dense.
   if (K.rows() <= kDenseUnknowns) {
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(K)};
-    return refine(
-        S, target, [&](const Eigen::VectorXd& r) { return lu.solve(r).eval(); }, x);
+    return refine(W, target, [&](const auto& r, auto out) { out = lu.solve(r); });
   }
   K.makeCompressed();
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   lu.compute(K);
   if (lu.info() != Eigen::Success) return false;
-  return refine(
-      S, target, [&](const Eigen::VectorXd& r) { return lu.solve(r).eval(); }, x);
+  return refine(W, target, [&](const auto& r, auto out) { out = lu.solve(r); });
 }
 
 }  // namespace
@@ -204,6 +242,8 @@ ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen
   ModeNewtonOutcome out;
   auto met = [target](const Measure& x) { return x.residual <= target || x.excess <= target; };
   out.converged = met(m);
+  if (out.converged || max_steps <= 0) return out;
+  ModeWork W(L, D_A.size());
   Eigen::VectorXd at = P;
   Measure here = m;
   // The proximal weight δ adapts as Levenberg–Marquardt's does: far from the answer the modes
@@ -212,30 +252,34 @@ ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen
   double delta = 1e-4;
   int failures = 0, slow = 0;
   while (!out.converged && out.steps < max_steps && failures < 4 && slow < 2) {
-    const std::vector<ContactMode> modes = modes_at(L, at, here.D_E);
-    const ModeSystem S = system_of(L, D_A, modes);
-    Eigen::VectorXd x(static_cast<Eigen::Index>(S.row_of.size()));
+    modes_at(L, at, here.D_E, W.modes);
+    system_of(L, D_A, W.modes, W.S);
+    const ModeSystem& S = W.S;
     for (std::size_t u = 0; u < S.row_of.size(); ++u)
-      x(static_cast<Eigen::Index>(u)) = at(S.row_of[u]);
-    if (!S.row_of.empty() && !solve_mode(S, target, delta, x)) break;
+      W.x(static_cast<Eigen::Index>(u)) = at(S.row_of[u]);
+    if (!S.row_of.empty() && !solve_mode(W, target, delta)) break;
     ++out.steps;
-    Eigen::VectorXd next = Eigen::VectorXd::Zero(at.size());
+    W.next.setZero();
     for (int i = 0; i < L.contacts; ++i) {
       const auto k = static_cast<std::size_t>(i);
       const int u = S.unknown[k];
       if (u < 0) continue;
       const int r = L.step * i;
-      next(r) = x(u);
+      W.next(r) = W.x(u);
       if (L.step == 2)
-        next(r + 1) = modes[k].mode == Mode::stick ? x(u + 1) : modes[k].s * L.mu[k] * x(u);
+        W.next(r + 1) =
+            W.modes[k].mode == Mode::stick ? W.x(u + 1) : W.modes[k].s * L.mu[k] * W.x(u);
     }
     // Backtracking on ½ Σ R² (Armijo): the mode's equations are its Jacobian on the branch read
     // at the current point, so the step descends it.
-    const Eigen::VectorXd d = next - at;
+    W.d = W.next - at;
     const double f0 = here.squares;
     double t = 1.0;
-    for (; t > 0.01; t *= 0.5)
-      if (measure(L, D_A, at + t * d).squares <= (1.0 - 1e-4 * t) * f0) break;
+    for (; t > 0.01; t *= 0.5) {
+      W.trial = at + t * W.d;
+      measure(L, D_A, W.trial, W.tried);
+      if (W.tried.squares <= (1.0 - 1e-4 * t) * f0) break;
+    }
     if (!(t > 0.01)) {
       delta *= 10.0;
       ++failures;
@@ -243,9 +287,10 @@ ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen
     }
     failures = 0;
     delta = t == 1.0 ? std::max(0.1 * delta, 1e-12) : std::min(4.0 * delta, 1.0);
-    at += t * d;
+    // The accepted point and its measure are the last trial's.
+    std::swap(at, W.trial);
     const double before = here.residual;
-    here = measure(L, D_A, at);
+    std::swap(here, W.tried);
     // Newton, once its modes are right, ends in a step or two; steps that do not halve the
     // residual are the sweeps' work, done cheaper by the sweeps.
     slow = here.residual > 0.5 * before ? slow + 1 : 0;

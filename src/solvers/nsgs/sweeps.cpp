@@ -27,6 +27,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
                              const SweepOptions& options, AttemptStart first, SolverReport& log) {
   const double target = options.tolerance * L.v_scale;
   Measure m;
+  Eigen::VectorXd velocities;  // the sweeps' room for the body's velocities
   int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0, best_at = 0;
   double best = std::numeric_limits<double>::infinity();
   // The residual costs a sweep: measured every 64 sweeps, every 16 on a few contacts, where a
@@ -53,7 +54,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
   // measured when that change is small, and every `every` sweeps to see a stall.
   while (sweeps < options.max_sweeps) {
     // Forward, then backward: a blow crosses a pile in one sweep either way.
-    const double change = sweep(L, D_A, P, sweeps % 2 == 1);
+    const double change = sweep(L, D_A, P, sweeps % 2 == 1, velocities);
     ++sweeps;
     if (!std::isfinite(change)) {
       out.status = SolverStatus::failed;
@@ -62,7 +63,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       break;
     }
     if (change > target && sweeps % every != 0 && !(early && sweeps == kEarlyMeasure)) continue;
-    m = measure(L, D_A, P);
+    measure(L, D_A, P, m);
     if (m.residual <= target || m.excess <= target) {
       converge(false);
       break;
@@ -101,7 +102,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
     }
   }
   if (m.D_E.size() != D_A.size() || out.status == SolverStatus::max_iterations)
-    m = measure(L, D_A, P);
+    measure(L, D_A, P, m);
   out.iterations = sweeps + newton_steps;
   out.method = by_newton ? SolverMethod::semismooth_newton : SolverMethod::nsgs;
   if (!by_newton) log.record(SolverMethod::nsgs, from, out.status, m.residual / L.v_scale);
