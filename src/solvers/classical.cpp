@@ -643,11 +643,13 @@ struct ClassicalChain {
   // pivots are few and it is about as fast. So many contacts are beyond the enumeration
   // (kMaxEnumerated): checking uniqueness changes nothing here.
   bool many_contacts() const {
-    static_assert(classical::kSweepsFromContacts > classical::kMaxEnumerated);
+    static_assert(classical::kSweepsFromContacts > classical::kMaxEnumerated &&
+                  classical::kSweepsRegularFromContacts > classical::kMaxEnumerated);
     if (is_poisson(law)) return false;
     if (opt.method == SolverMethod::nsgs) return true;
     return opt.method == SolverMethod::automatic && cs.tangential &&
-           cs.active >= classical::kSweepsFromContacts && cs.rows() > cs.dofs;
+           cs.active >= (cs.rows() > cs.dofs ? classical::kSweepsFromContacts
+                                             : classical::kSweepsRegularFromContacts);
   }
   bool one_contact() const { return classical::one_approaching_contact(cs, opt); }
   bool no_mode_found() const { return lo.solutions.size == 0; }
