@@ -58,6 +58,7 @@ void modes_at(const Layout& L, const Eigen::VectorXd& P, const Eigen::VectorXd& 
 // on their first `unknowns()` entries, so that a run's steps allocate nothing on a rigid body.
 struct ModeSystem {
   Eigen::SparseMatrix<double> A;
+  Eigen::MatrixXd dense;  // A itself, on its first unknowns, where they are few (kDenseUnknowns)
   Eigen::MatrixXd U, V;
   Eigen::VectorXd b, scale;  // scale: each equation's own G diagonal
   std::vector<int> unknown;  // contact → its first unknown, −1 apart
@@ -66,6 +67,9 @@ struct ModeSystem {
 
   Eigen::Index unknowns() const { return static_cast<Eigen::Index>(row_of.size()); }
   bool factored() const { return U.rows() != 0; }
+  bool is_dense() const { return !factored() && unknowns() <= kDenseUnknowns; }
+  auto dense_A() const { return dense.topLeftCorner(unknowns(), unknowns()); }
+  auto dense_A() { return dense.topLeftCorner(unknowns(), unknowns()); }
   auto U_cols() const { return U.leftCols(unknowns()); }
   auto V_cols() const { return V.leftCols(unknowns()); }
 
@@ -73,6 +77,10 @@ struct ModeSystem {
   // general matrix-vector kernel's set-up costs more than the products. `v`: n entries of room.
   template <class X, class Out>
   void times(const X& x, Eigen::VectorXd& v, Out&& out) const {
+    if (is_dense()) {
+      out.noalias() = dense_A().lazyProduct(x);
+      return;
+    }
     if (!factored()) {
       out.noalias() = A * x;
       return;
@@ -129,8 +137,22 @@ void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<Co
     velocity_factors_of(L, modes, S);
     return;
   }
-  S.entries.clear();
-  S.entries.reserve(static_cast<std::size_t>(n) * 12);
+  // A's entries, each added where it goes (a sliding contact's two columns onto one unknown):
+  // into the dense A on few unknowns, else into the triplets of the sparse one.
+  const bool dense = S.is_dense();
+  if (dense) {
+    S.dense.resize(D_A.size(), D_A.size());
+    S.dense_A().setZero();
+  } else {
+    S.entries.clear();
+    S.entries.reserve(static_cast<std::size_t>(n) * 12);
+  }
+  auto add = [&](int eq, int u, double v) {
+    if (dense)
+      S.dense(eq, u) += v;
+    else
+      S.entries.emplace_back(eq, u, v);
+  };
   for (int eq = 0; eq < n; ++eq) {
     const int R = S.row_of[static_cast<std::size_t>(eq)];
     for (int p = L.G.outerIndexPtr()[R]; p < L.G.outerIndexPtr()[R + 1]; ++p) {
@@ -141,13 +163,14 @@ void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<Co
       if (u < 0) continue;
       const bool tangent_column = j % L.step == 1;
       if (modes[k].mode == Mode::stick)
-        S.entries.emplace_back(eq, u + (tangent_column ? 1 : 0), v);
+        add(eq, u + (tangent_column ? 1 : 0), v);
       else if (!tangent_column)
-        S.entries.emplace_back(eq, u, v);
+        add(eq, u, v);
       else if (modes[k].s != 0.0)
-        S.entries.emplace_back(eq, u, v * modes[k].s * L.mu[k]);
+        add(eq, u, v * modes[k].s * L.mu[k]);
     }
   }
+  if (dense) return;
   S.A.resize(n, n);
   S.A.setFromTriplets(S.entries.begin(), S.entries.end());
 }
@@ -221,13 +244,15 @@ bool solve_mode(ModeWork& W, double target, double delta) {
       out = y - inv.cwiseProduct(t);
     });
   }
-  Eigen::SparseMatrix<double> K = S.A;
-  for (int j = 0; j < K.rows(); ++j) K.coeffRef(j, j) += delta * S.scale(j);
   // A few dozen unknowns (a plate on many contacts: G dense) factor faster dense.
-  if (K.rows() <= kDenseUnknowns) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(K)};
+  if (S.is_dense()) {
+    Eigen::MatrixXd K = S.dense_A();
+    K.diagonal() += delta * S.scale.head(u);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
     return refine(W, target, [&](const auto& r, auto out) { out = lu.solve(r); });
   }
+  Eigen::SparseMatrix<double> K = S.A;
+  for (int j = 0; j < K.rows(); ++j) K.coeffRef(j, j) += delta * S.scale(j);
   K.makeCompressed();
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   lu.compute(K);
