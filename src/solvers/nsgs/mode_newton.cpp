@@ -58,7 +58,7 @@ void modes_at(const Layout& L, const Eigen::VectorXd& P, const Eigen::VectorXd& 
 // on their first `unknowns()` entries, so that a run's steps allocate nothing on a rigid body.
 struct ModeSystem {
   Eigen::SparseMatrix<double> A;
-  Eigen::MatrixXd dense;  // A itself, on its first unknowns, where they are few (kDenseUnknowns)
+  Eigen::MatrixXd dense;  // A on few unknowns (kDenseUnknowns): room for that many, at most rows
   Eigen::MatrixXd U, V;
   Eigen::VectorXd b, scale;  // scale: each equation's own G diagonal
   std::vector<int> unknown;  // contact → its first unknown, −1 apart
@@ -141,7 +141,8 @@ void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<Co
   // into the dense A on few unknowns, else into the triplets of the sparse one.
   const bool dense = S.is_dense();
   if (dense) {
-    S.dense.resize(D_A.size(), D_A.size());
+    const auto room = std::min<Eigen::Index>(D_A.size(), kDenseUnknowns);
+    S.dense.resize(room, room);
     S.dense_A().setZero();
   } else {
     S.entries.clear();
