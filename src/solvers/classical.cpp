@@ -636,12 +636,12 @@ struct ClassicalChain {
     return opt.method == SolverMethod::nsgs && is_poisson(law);
   }
   // Newton + Coulomb on kSweepsFromContacts contacts or more whose rows outnumber the degrees of
-  // freedom (G singular), or nsgs asked for: a sweep costs G's entries (rows times the dofs on a
-  // body of few dofs, through its velocities), where Lemke's pivots on the friction LCP grow with
-  // their cube (a plate on 32 contacts: 390 µs by Lemke, 48 µs by the sweeps). With G regular (a
-  // random body of 30 dofs on 15 contacts) or without friction (the LCP is G itself), Lemke's
-  // pivots are few and it is about as fast. So many contacts are beyond the enumeration
-  // (kMaxEnumerated): checking uniqueness changes nothing here.
+  // freedom (G singular), on kSweepsRegularFromContacts or more otherwise, or nsgs asked for: a
+  // sweep costs G's entries (rows times the dofs on a body of few dofs, through its velocities),
+  // where Lemke's pivots on the friction LCP grow with their cube (a plate on 32 contacts: 390 µs
+  // by Lemke, 48 µs by the sweeps). Without friction (the LCP is G itself) Lemke's pivots are few
+  // and it is about as fast. So many contacts are beyond the enumeration (kMaxEnumerated):
+  // checking uniqueness changes nothing here.
   bool many_contacts() const {
     static_assert(classical::kSweepsFromContacts > classical::kMaxEnumerated &&
                   classical::kSweepsRegularFromContacts > classical::kMaxEnumerated);
