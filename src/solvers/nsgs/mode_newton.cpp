@@ -181,18 +181,17 @@ void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<Co
 struct ModeWork {
   std::vector<ContactMode> modes;
   ModeSystem S;
-  Eigen::VectorXd x, r, step, v;    // unknowns (rows of room); v: the body's velocities
-  Eigen::VectorXd inv, y, t, z, w;  // Woodbury's: unknowns (inv, y, t), n (z, w)
-  Eigen::MatrixXd H;                // n × n
+  Eigen::VectorXd x, r, step, inv, y, t;  // the unknowns' (inv, y, t: Woodbury's)
+  Eigen::VectorXd next, d, trial;         // percussions
+  Eigen::VectorXd v, z, w;                // the body's n velocities (z, w: Woodbury's)
+  Eigen::MatrixXd H;                      // n × n
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  Eigen::VectorXd next, d, trial;  // rows
-  Measure tried;                   // at `trial`
+  Measure tried;  // at `trial`
 
   ModeWork(const Layout& L, Eigen::Index rows) {
     const Eigen::Index n = L.X.rows();
-    for (Eigen::VectorXd* u : {&x, &r, &step, &inv, &y, &t}) u->resize(rows);
+    for (Eigen::VectorXd* u : {&x, &r, &step, &inv, &y, &t, &next, &d, &trial}) u->resize(rows);
     for (Eigen::VectorXd* u : {&v, &z, &w}) u->resize(n);
-    for (Eigen::VectorXd* u : {&next, &d, &trial}) u->resize(rows);
     H.resize(n, n);
     lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
   }
