@@ -254,7 +254,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     // finite mean whose sum overflows, and 0·∞ would make a separating contact's energy NaN.
     const double zN = 0.5 * r.D_NA(i) + 0.5 * r.D_NE(i);
     const double zT = 0.5 * r.D_TA(i) + 0.5 * r.D_TE(i);
-    const double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
+    // A work beyond the largest double is ±∞; where its two terms are infinite with opposite signs
+    // it is unknown, and counts as −∞: energy created, the answer not certified.
+    double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
+    if (std::isnan(pc)) pc = -std::numeric_limits<double>::infinity();
     rep.per_contact(i) = pc;
     // A separating contact's reaction does positive work on its own true mean velocity by the
     // convention that holds it (docs/concepts.md): reported, and left to the total's check.
@@ -299,6 +302,13 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     fy = std::max(fy, t.fenchel_young);
   }
   rep.total = rep.per_contact.sum();
+  // Partial sums that overflow both ways (∞ − ∞): finite works are summed again scaled by 2⁻⁶⁰,
+  // exact for works that large, to their sum or, beyond the largest double, ±∞; infinite works of
+  // both signs leave the total unknown, −∞ as above.
+  if (std::isnan(rep.total))
+    rep.total = rep.per_contact.allFinite()
+                    ? std::ldexp((std::ldexp(1.0, -60) * rep.per_contact).sum(), 60)
+                    : -std::numeric_limits<double>::infinity();
   rep.reaction = reaction;
   rep.dissipation = own_terms ? dissipation : rep.total;
   rep.complementarity = compl_viol;

@@ -78,5 +78,31 @@ TEST(AdmissibilityAtRounding, EnergyFromIllConditionedVelocitiesAllowsTheirRound
   EXPECT_EQ(rep.violation, -wrong.energy_change);
 }
 
+// Works near the largest double on four contacts, +a, −a, +a, −a: each is finite, and the
+// vectorised sum pairs (+a) + (+a) = ∞ against (−a) + (−a) = −∞, a NaN total (stress
+// fremond_viscous #1414 of seed 4242: a stalled answer whose percussions are 1e300). The total is
+// their exact sum, 0, and the certificate still reads every contact's work.
+TEST(AdmissibilityAtRounding, WorksThatOverflowInPairsSumToTheirTotal) {
+  ImpactProblem pb;
+  pb.M = Eigen::MatrixXd::Identity(1, 1);
+  pb.W_N = Eigen::MatrixXd::Ones(1, 4);
+  pb.qdot_A = Eigen::VectorXd::Constant(1, -1.0);
+  const ImpactLaw law = ImpactLaw::newton(0.5);
+  ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  const double a = 1e308;
+  for (int i = 0; i < 4; ++i) {
+    // per contact −P_N (D_NA + D_NE)/2 = ±a with P_N = 1e300 and D_NA = ∓2e8, D_NE = 0.
+    r.P_N(i) = 1e300;
+    r.D_NA(i) = i % 2 == 0 ? -2e8 : 2e8;
+    r.D_NE(i) = 0.0;
+  }
+  const auto rep = check_admissibility(pb, law, r);
+  ASSERT_TRUE(rep.per_contact.allFinite());
+  EXPECT_EQ(rep.per_contact(0), a);
+  EXPECT_EQ(rep.per_contact(1), -a);
+  EXPECT_EQ(rep.total, 0.0);
+}
+
 }  // namespace
 }  // namespace fremond
