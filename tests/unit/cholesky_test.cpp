@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "core/detail/cholesky.hpp"
+#include "core/detail/refined_solve.hpp"
 
 namespace {
 
@@ -169,4 +171,73 @@ TEST(Cholesky, MatrixIsDiagonalReadsBothTriangles) {
         EXPECT_EQ(heap.matrix_is_diagonal(), diagonal) << "n = " << n << " at " << i << "," << j;
         EXPECT_EQ(small.info(), Eigen::Success);
       }
+}
+
+// condition_bound() decides where M⁻¹B is refined (refined_solve.hpp): it must never fall below
+// cond₂(A), which the eigenvalues give here, and its looseness is at most ‖A‖₁/‖A‖₂ ≤ √n times
+// ‖L⁻¹‖_F²/‖L⁻¹‖₂² ≤ n. Stack and heap storage, κ from 1 to 1e9, scales from 1e-150 to 1e150.
+TEST(Cholesky, ConditionBoundHoldsTheConditionNumberWithinTheSize) {
+  std::mt19937 gen(29);
+  for (int trial = 0; trial < 420; ++trial) {
+    const int n = 2 + trial % 30;  // n = 1 is diagonal
+    const double decades = (trial / 30) % 10;
+    const Eigen::MatrixXd A = random_spd(n, decades, gen) * std::pow(10.0, (trial % 7) * 50 - 150);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+    const double kappa = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+    const CholeskyT<fremond::Dynamic> heap(A);
+    ASSERT_EQ(heap.info(), Eigen::Success) << trial;
+    if (heap.matrix_is_diagonal()) continue;  // κ = 1 can round to exactly diagonal
+    const double bound = heap.condition_bound();
+    EXPECT_GE(bound, kappa * (1 - 1e-6)) << trial;
+    EXPECT_LE(bound, n * std::sqrt(double(n)) * kappa * (1 + 1e-6)) << trial;
+    if (n <= 6) {
+      // The two factors' inverses agree to about κε.
+      EXPECT_NEAR(Small(MatT<6, 6>(A)).condition_bound(), bound, 1e-14 * kappa * bound) << trial;
+    }
+  }
+  // A diagonal matrix's solves are divisions and need no bound; a failed factor has none.
+  EXPECT_EQ(Small(MatT<6, 6>(Eigen::MatrixXd::Identity(3, 3))).condition_bound(),
+            std::numeric_limits<double>::infinity());
+  Eigen::MatrixXd indefinite = Eigen::MatrixXd::Identity(3, 3);
+  indefinite(0, 1) = indefinite(1, 0) = 2.0;
+  EXPECT_EQ(CholeskyT<fremond::Dynamic>(indefinite).condition_bound(),
+            std::numeric_limits<double>::infinity());
+}
+
+// Where the bound is at most kPlainSolveCondition, refine_solve leaves the plain solve: that is
+// sound only if the plain solve is then within kPlainSolveCondition·ε of M⁻¹B, relative to each
+// column. Checked against a solve in extended precision on matrices at the threshold.
+TEST(Cholesky, PlainSolvesUnderTheConditionThresholdAreAccurate) {
+  using Long = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  std::mt19937 gen(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double eps = std::numeric_limits<double>::epsilon();
+  int plain = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const int n = 2 + trial % 24;
+    // κ up to the threshold over n, where the bound reaches the threshold.
+    const double decades = std::log10(fremond::detail::kPlainSolveCondition / n) * (trial % 5) / 4;
+    const Eigen::MatrixXd M = random_spd(n, decades, gen);
+    const CholeskyT<fremond::Dynamic> llt(M);
+    Eigen::MatrixXd B(n, 4);
+    for (double& x : B.reshaped()) x = u(gen);
+    Eigen::MatrixXd X(n, 4);
+    for (int j = 0; j < 4; ++j) X.col(j) = llt.solve(B.col(j));
+    const Eigen::MatrixXd plain_X = X;
+    const bool refined = fremond::detail::refine_solve(M, llt, B, X);
+    if (llt.condition_bound() > fremond::detail::kPlainSolveCondition) continue;
+    ++plain;
+    EXPECT_FALSE(refined) << trial;
+    EXPECT_EQ((X - plain_X).cwiseAbs().maxCoeff(), 0.0) << trial;
+    const Long exact = M.cast<long double>().llt().solve(B.cast<long double>());
+    for (int j = 0; j < 4; ++j) {
+      const long double error = (X.col(j).cast<long double>() - exact.col(j)).cwiseAbs().maxCoeff();
+      const double relative = double(error / exact.col(j).cwiseAbs().maxCoeff());
+      worst = std::max(worst, relative);
+      EXPECT_LE(relative, fremond::detail::kPlainSolveCondition * eps) << trial;
+    }
+  }
+  EXPECT_GT(plain, 400);
+  EXPECT_GT(worst, 0.0);  // the check reads real rounding
 }
