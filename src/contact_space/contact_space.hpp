@@ -256,6 +256,17 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
     } else {
       cs.MinvW = cs.W;  // Y = L⁻¹W, then M⁻¹W = L⁻ᵀY
       cs.llt.solve_lower_in_place(cs.MinvW);
+      // Every contact held, with its tangential rows: W is [W_N W_T] and Y holds self_delassus()'s
+      // solve, to the last bit.
+      if (a == c && cs.tangential == pb.has_tangential()) {
+        cs.self_N.resize(c);
+        cs.self_T.resize(cs.tangential ? c : 0);
+        for (int i = 0; i < c; ++i) {
+          cs.self_N(i) = cs.MinvW.col(i).squaredNorm();
+          if (cs.tangential) cs.self_T(i) = cs.MinvW.col(c + i).squaredNorm();
+        }
+        cs.self_ready = true;
+      }
       if constexpr (small) {
         small_dense::gram(cs.MinvW, cs.G);
       } else {
@@ -357,22 +368,25 @@ bool update_velocities(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
 }
 
 /// W_iᵀM⁻¹W_i of every contact i of `pb` (normal into N, tangential into T: empty without W_T),
-/// each as |L⁻¹W_i|² with M = L Lᵀ (one triangular solve for all columns, and never negative):
-/// the classical residual's scales.
+/// each as |L⁻¹W_i|² with M = L Lᵀ (one triangular solve of [W_N W_T], and never negative): the
+/// classical residual's scales. A contact space that holds every contact with its tangential rows
+/// solves the same columns in the same order, and takes them from its own solve
+/// (build_contact_space_general).
 template <int MaxDofs, int MaxContacts>
 void self_delassus(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const CholeskyT<MaxDofs>& llt,
                    VecT<MaxContacts>& N, VecT<MaxContacts>& T) {
-  const int c = pb.contacts();
+  const int c = pb.contacts(), rows = pb.has_tangential() ? 2 * c : c;
   N.resize(c);
   T.resize(pb.has_tangential() ? c : 0);
   if (c == 0) return;
-  MatT<MaxDofs, MaxContacts> Y = pb.W_N;
+  MatT<MaxDofs, times2(MaxContacts)> Y(pb.dofs(), rows);
+  Y.leftCols(c) = pb.W_N;
+  if (pb.has_tangential()) Y.rightCols(c) = pb.W_T;
   llt.solve_lower_in_place(Y);
-  N = Y.colwise().squaredNorm().transpose();
-  if (!pb.has_tangential()) return;
-  Y = pb.W_T;
-  llt.solve_lower_in_place(Y);
-  T = Y.colwise().squaredNorm().transpose();
+  for (int i = 0; i < c; ++i) {
+    N(i) = Y.col(i).squaredNorm();
+    if (pb.has_tangential()) T(i) = Y.col(c + i).squaredNorm();
+  }
 }
 
 /// self_delassus() of the problem `cs` was built from, through cs's factor of M, computed on first
