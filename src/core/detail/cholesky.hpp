@@ -37,7 +37,14 @@ class CholeskyT {
       scan_diagonal(A, lower, matrix_diagonal_);
       llt_.compute(A);
     }
-    bound_condition(A);
+    // ‖A‖₁ now (the factor keeps only one triangle of A), ‖L⁻¹‖_F² when condition_bound() asks.
+    condition_bound_ = std::numeric_limits<double>::infinity();
+    if (!matrix_diagonal_ && info() == Eigen::Success) {
+      norm1_ = 0.0;
+      for (Eigen::Index j = 0; j < A.cols(); ++j)
+        norm1_ = std::max(norm1_, A.col(j).cwiseAbs().sum());
+      condition_bound_ = -1.0;
+    }
     return *this;
   }
 
@@ -57,10 +64,14 @@ class CholeskyT {
   bool matrix_is_diagonal() const { return matrix_diagonal_; }
 
   /// An upper bound of cond₂(A), to rounding, for a matrix that is not diagonal: ‖A‖₁ ‖L⁻¹‖_F²
-  /// (‖A‖₂ ≤ ‖A‖₁ for a symmetric A, and ‖A⁻¹‖₂ = ‖L⁻¹‖₂² ≤ ‖L⁻¹‖_F²). At most n times too large:
-  /// a well-conditioned mass matrix of 30 dofs (cond 3.5) reads about 120. ∞ for a diagonal
+  /// (‖A‖₂ ≤ ‖A‖₁ for a symmetric A, and ‖A⁻¹‖₂ = ‖L⁻¹‖₂² ≤ ‖L⁻¹‖_F²). At most n^1.5 times too
+  /// large: a well-conditioned mass matrix of 30 dofs (cond 3.5) reads about 120. ∞ for a diagonal
   /// matrix (it needs no bound: its solves are divisions) and where the factorisation failed.
-  double condition_bound() const { return condition_bound_; }
+  /// Computed on first use (n³/6 products), since most factors (of G, in validation) never ask.
+  double condition_bound() const {
+    if (condition_bound_ < 0.0) condition_bound_ = bound_condition();
+    return condition_bound_;
+  }
 
   Eigen::ComputationInfo info() const {
     if constexpr (kHandLoops)
@@ -187,13 +198,9 @@ class CholeskyT {
 
   // condition_bound(): ‖L⁻¹‖_F² column by column (L⁻¹e_j is zero above row j), n³/6 products,
   // against the n²·rows twice-precise products of one step of refinement it can spare.
-  void bound_condition(const Mat& A) {
-    condition_bound_ = std::numeric_limits<double>::infinity();
-    if (matrix_diagonal_ || info() != Eigen::Success) return;
-    const Eigen::Index n = A.rows();
+  double bound_condition() const {
     const Mat& L = matrixLLT();
-    double norm1 = 0.0;
-    for (Eigen::Index j = 0; j < n; ++j) norm1 = std::max(norm1, A.col(j).cwiseAbs().sum());
+    const Eigen::Index n = L.rows();
     VecT<MaxN> y(n);
     double inverse = 0.0;
     for (Eigen::Index j = 0; j < n; ++j) {
@@ -206,8 +213,8 @@ class CholeskyT {
         inverse += y(i) * y(i);
       }
     }
-    const double bound = norm1 * inverse;
-    if (std::isfinite(bound)) condition_bound_ = bound;
+    const double bound = norm1_ * inverse;
+    return std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity();
   }
 
   template <class Y>
@@ -220,7 +227,8 @@ class CholeskyT {
   struct Empty {};
   bool diagonal_ = false;         // the lower triangle: the factor is diagonal
   bool matrix_diagonal_ = false;  // the whole matrix
-  double condition_bound_ = std::numeric_limits<double>::infinity();
+  double norm1_ = 0.0;            // ‖A‖₁, for condition_bound()
+  mutable double condition_bound_ = std::numeric_limits<double>::infinity();  // < 0: not yet
   std::conditional_t<kHandLoops, Mat, Empty> L_{};
   Eigen::ComputationInfo info_ = Eigen::InvalidInput;
   std::conditional_t<kHandLoops, Empty, Eigen::LLT<Mat>> llt_{};
