@@ -22,6 +22,7 @@
 
 #include "laws/detail/residuals.hpp"
 #include "solvers/detail/chain.hpp"
+#include "solvers/detail/chain_workspace.hpp"
 #include "solvers/detail/classical_law.hpp"
 #include "solvers/detail/classical_one_contact.hpp"
 #include "solvers/detail/classical_refine.hpp"
@@ -541,22 +542,26 @@ bool stalled_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpac
 }
 
 // Newton's law on the contact space by the sweeps and the mode Newton (solvers/nsgs), on the
-// rows regrouped by contact as they take them: the answer in `s` (cs's rows) where they converge,
-// or whatever their end where `keep` asks; their runs recorded in `log`.
+// rows regrouped by contact as they take them, in the workspace's storage: the answer in `s`
+// (cs's rows) where they converge, or whatever their end where `keep` asks; their runs recorded
+// in `log`.
 template <int N, int C>
 bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& law,
-                         const SolverOptions& options, bool keep, SolverReport& log,
-                         LawSolution<C>& s, int& iterations) {
+                         const SolverOptions& options, bool keep, ChainWorkspace::Sweeps& ws,
+                         SolverReport& log, LawSolution<C>& s, int& iterations) {
   const int a = cs.active, rows = cs.rows();
   const bool t = cs.tangential;
   auto grouped = [&](int j) { return !t ? j : (j < a ? 2 * j : 2 * (j - a) + 1); };
   auto of_grouped = [&](int g) { return !t ? g : (g % 2 == 0 ? g / 2 : a + g / 2); };
-  Eigen::VectorXd D_A(rows);
+  Eigen::VectorXd& D_A = ws.D_A;
+  D_A.resize(rows);
   for (int j = 0; j < rows; ++j) D_A(grouped(j)) = cs.D_A(j);
   // G's non-zeros row by row in the grouped order, each row's columns ascending: the compressed
   // row-major storage the sweeps read, written in place (a triplet list sorted into it cost a
   // tenth of a plate's solve on 8 contacts).
-  RowMajorMatrix G(rows, rows);
+  Layout& L = ws.layout;
+  RowMajorMatrix& G = L.G;
+  G.resize(rows, rows);
   G.reserve(static_cast<Eigen::Index>(rows) * rows);
   for (int gj = 0; gj < rows; ++gj) {
     const int j = of_grouped(gj);
@@ -567,29 +572,34 @@ bool sweep_contact_space(const ContactSpaceT<N, C>& cs, const RestitutionLaw& la
     }
   }
   G.finalize();
-  std::vector<double> e(static_cast<std::size_t>(a)), mu(static_cast<std::size_t>(a));
+  ws.e.resize(static_cast<std::size_t>(a));
+  ws.mu.resize(static_cast<std::size_t>(a));
   for (int k = 0; k < a; ++k) {
-    e[static_cast<std::size_t>(k)] = law.e[cs.index(k)];
-    mu[static_cast<std::size_t>(k)] = law.has_friction() ? law.mu[cs.index(k)] : 0.0;
+    ws.e[static_cast<std::size_t>(k)] = law.e[cs.index(k)];
+    ws.mu[static_cast<std::size_t>(k)] = law.has_friction() ? law.mu[cs.index(k)] : 0.0;
   }
-  Layout L = layout(std::move(G), D_A, t, law.has_friction(), e, mu);
+  lay_out(L, D_A, t, law.has_friction(), ws.e, ws.mu);
   // A body of few degrees of freedom on many rows: the sweeps and the Newton steps work on its
   // velocities (contact_rows.hpp), G = Wᵀ M⁻¹ W being of rank n at most.
-  if (2 * cs.dofs <= rows) {
-    Eigen::MatrixXd W(cs.dofs, rows), X(cs.dofs, rows);
+  if (velocity_factors_pay(cs.dofs, rows)) {
+    L.W.resize(cs.dofs, rows);
+    L.X.resize(cs.dofs, rows);
     for (int g = 0; g < rows; ++g) {
-      W.col(g) = cs.W.col(of_grouped(g));
-      X.col(g) = cs.MinvW.col(of_grouped(g));
+      L.W.col(g) = cs.W.col(of_grouped(g));
+      L.X.col(g) = cs.MinvW.col(of_grouped(g));
     }
-    velocity_factors(L, std::move(W), std::move(X));
+  } else {
+    L.W.resize(0, 0);
+    L.X.resize(0, 0);
   }
-  Eigen::VectorXd P = Eigen::VectorXd::Zero(rows);
+  Eigen::VectorXd& P = ws.P;
+  P.setZero(rows);
   const SweepOutcome o =
       solve_by_sweeps(L, D_A, P,
                       {.tolerance = options.tolerance,
                        .max_sweeps = keep ? SweepOptions{}.max_sweeps : classical::kChainSweeps,
                        .newton_polish = true},
-                      AttemptStart::zero, log);
+                      AttemptStart::zero, log, ws.run);
   if (o.status != SolverStatus::converged && !keep) return false;
   s.P.resize(rows);
   for (int j = 0; j < rows; ++j) s.P(j) = P(grouped(j));
@@ -609,6 +619,7 @@ struct ClassicalChain {
   const RestitutionLaw& law;
   const SolverOptions& opt;
   ImpactResultT<N, C>& out;
+  ChainWorkspace& ws;
   LawOutcome<C> lo;
 
   void run() {
@@ -700,7 +711,8 @@ struct ClassicalChain {
     const bool forced = opt.method == SolverMethod::nsgs;
     LawOutcome<C> ls;
     LawSolution<C>& s = *ls.solutions.emplace();
-    if (!sweep_contact_space(cs, law, opt, forced, out.solver, s, ls.pivots)) return false;
+    ChainWorkspace::Sweeps& room = ws.sweeps ? *ws.sweeps : ws.sweeps.emplace();
+    if (!sweep_contact_space(cs, law, opt, forced, room, out.solver, s, ls.pivots)) return false;
     ls.method = s.method;
     ls.exhaustive = false;
     ls.sweeps = true;
@@ -775,8 +787,8 @@ struct ClassicalChain {
 template <int N, int C>
 void solve_classical(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const RestitutionLaw& law, const SolverOptions& options,
-                     ImpactResultT<N, C>& out) {
-  ClassicalChain<N, C>{pb, cs, law, options, out, {}}.run();
+                     ImpactResultT<N, C>& out, ChainWorkspace& ws) {
+  ClassicalChain<N, C>{pb, cs, law, options, out, ws, {}}.run();
 }
 
 template <int N, int C>
@@ -849,15 +861,15 @@ std::vector<ImpactResultT<N, C>> solve_classical_all(const ImpactProblemT<N, C>&
   return all;
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                           \
-  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,    \
-                                const RestitutionLaw&, const SolverOptions&,                \
-                                ImpactResultT<N, C>&);                                      \
-  template void write_classical_answer(                                                     \
-      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const RestitutionLaw&,       \
-      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&, \
-      ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                \
-  template std::vector<ImpactResultT<N, C>> solve_classical_all(                            \
+#define FREMOND_INSTANTIATE(N, C)                                                                  \
+  template void solve_classical(const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&,           \
+                                const RestitutionLaw&, const SolverOptions&, ImpactResultT<N, C>&, \
+                                ChainWorkspace&);                                                  \
+  template void write_classical_answer(                                                            \
+      const ImpactProblemT<N, C>&, const ContactSpaceT<N, C>&, const RestitutionLaw&,              \
+      const typename ContactSpaceT<N, C>::Rows&, const typename ContactSpaceT<N, C>::Rows&,        \
+      ImpactResultT<N, C>&, const VecT<N>*, const VecT<N>*);                                       \
+  template std::vector<ImpactResultT<N, C>> solve_classical_all(                                   \
       const ImpactProblemT<N, C>&, const RestitutionLaw&, const SolverOptions&, HeldContacts);
 FREMOND_INSTANTIATE(Dynamic, Dynamic)
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)

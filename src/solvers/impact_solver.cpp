@@ -8,6 +8,7 @@
 #include "contact_space/contact_space.hpp"
 #include "core/detail/impact_problem.hpp"
 #include "fremond/core/error.hpp"
+#include "solvers/detail/chain_workspace.hpp"
 #include "solvers/detail/independent_groups.hpp"
 #include "solvers/detail/result_copy.hpp"
 #include "solvers/detail/solve_stages.hpp"
@@ -37,11 +38,12 @@ void set_validated_velocity(const Eigen::Ref<const Eigen::VectorXd>& v, ImpactPr
   }
 }
 
-/// One problem, its contact space and its answer, in one storage.
+/// One problem, its contact space, its chain's storage and its answer, in one storage.
 template <int N, int C>
 struct PreparedStage {
   ImpactProblemT<N, C> pb;
   ContactSpaceT<N, C> cs;
+  ChainWorkspace ws;
   ImpactResultT<N, C> out;
 
   /// validate(pb) and its contact space on every contact: a Delassus entry that overflows is
@@ -61,7 +63,7 @@ struct PreparedStage {
   void solve(const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& into) {
     if (!update_velocities(pb, cs)) build_contact_space(pb, tangential_rows(law), cs);
     clear_result(into);
-    solve_on_contact_space(pb, law, options, cs, into);
+    solve_on_contact_space(pb, law, options, cs, into, ws);
   }
 };
 

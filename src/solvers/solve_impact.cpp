@@ -12,6 +12,7 @@
 #include "fremond/admissibility/admissibility.hpp"
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
+#include "solvers/detail/chain_workspace.hpp"
 #include "solvers/detail/independent_groups.hpp"
 #include "solvers/detail/result_copy.hpp"
 #include "solvers/detail/solve_stages.hpp"
@@ -66,12 +67,12 @@ void refuse_inadmissible(const ImpactLaw& law, ImpactResultT<N, C>& out) {
 template <int N, int C>
 void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                     const SolverOptions& options, ContactSpaceT<N, C>& cs,
-                                    ImpactResultT<N, C>& out) {
+                                    ImpactResultT<N, C>& out, ChainWorkspace& ws) {
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
   // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
   // and one contact does not even make the call (its frame holds three problems' storage).
-  if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out))
-    detail::solve_law_stage(pb, cs, law, options, out);
+  if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out, ws))
+    detail::solve_law_stage(pb, cs, law, options, out, ws);
   // Every contact takes part (separating_contacts.hpp): where the answer without the separating
   // ones drives one of them into its obstacle, or where the approaching contacts alone have no
   // answer, the impact is solved again on every contact.
@@ -80,7 +81,7 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
     const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
     build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
     clear_result(out);
-    detail::solve_law_stage(pb, cs, every, options, out);
+    detail::solve_law_stage(pb, cs, every, options, out, ws);
   }
   log_answer_if_unlogged(out);
   // The percussions' rounding floors and G's largest entry serve only a law's own certificate
@@ -116,7 +117,8 @@ void detail::solve_impact_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& 
                                const SolverOptions& options, ImpactResultT<N, C>& out) {
   ContactSpaceT<N, C> cs = validated_contact_space(pb, law, options);
   clear_result(out);
-  solve_on_contact_space(pb, law, options, cs, out);
+  ChainWorkspace ws;
+  solve_on_contact_space(pb, law, options, cs, out, ws);
 }
 
 template <int N, int C>
@@ -125,7 +127,8 @@ ImpactResultT<N, C> detail::solve_impact_in_own_storage(const ImpactProblemT<N, 
                                                         const SolverOptions& options) {
   ContactSpaceT<N, C> cs = validated_contact_space(pb, law, options);
   ImpactResultT<N, C> out;  // as default-constructed, as the stages want it
-  solve_on_contact_space(pb, law, options, cs, out);
+  ChainWorkspace ws;
+  solve_on_contact_space(pb, law, options, cs, out, ws);
   return out;
 }
 
@@ -147,11 +150,12 @@ ImpactResultT<N, C> solve_impact(const ImpactProblemT<N, C>& pb, const ImpactLaw
 template void detail::solve_on_contact_space(const ImpactProblemT<Dynamic, Dynamic>&,
                                              const ImpactLaw&, const SolverOptions&,
                                              ContactSpaceT<Dynamic, Dynamic>&,
-                                             ImpactResultT<Dynamic, Dynamic>&);
+                                             ImpactResultT<Dynamic, Dynamic>&, ChainWorkspace&);
 template void detail::solve_on_contact_space(const ImpactProblemT<kSmallDofs, kSmallContacts>&,
                                              const ImpactLaw&, const SolverOptions&,
                                              ContactSpaceT<kSmallDofs, kSmallContacts>&,
-                                             ImpactResultT<kSmallDofs, kSmallContacts>&);
+                                             ImpactResultT<kSmallDofs, kSmallContacts>&,
+                                             ChainWorkspace&);
 template void detail::solve_impact_into(const ImpactProblemT<Dynamic, Dynamic>&, const ImpactLaw&,
                                         const SolverOptions&, ImpactResultT<Dynamic, Dynamic>&);
 template void detail::solve_impact_into(const ImpactProblemT<kSmallDofs, kSmallContacts>&,

@@ -145,13 +145,14 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
   }
   Eigen::VectorXd P = rows_of(pb, start, true);
   const Layout L = layout_of(pb, *classical);
+  detail::SweepWorkspace ws;
   const detail::SweepOutcome o =
       detail::solve_by_sweeps(L, pb.D_A, P,
                               {.tolerance = options.tolerance,
                                .max_sweeps = options.max_sweeps,
                                .newton_polish = options.newton_polish},
-                              start ? AttemptStart::none : AttemptStart::zero, r.solver);
-  const Measure& m = o.measure;
+                              start ? AttemptStart::none : AttemptStart::zero, r.solver, ws);
+  const Measure& m = ws.measure;
   r.solver.status = o.status;
   r.solver.criterion = o.criterion;
   r.solver.message = o.message;

@@ -17,6 +17,8 @@
 
 namespace fremond::detail {
 
+struct ChainWorkspace;  // solvers/detail/chain_workspace.hpp
+
 /// The law from the problem file's `law` object (docs/problem-file.md), `name` one of its names;
 /// InvalidArgument naming the file's key (under `where`) for a bad one (laws/fremond/schema.cpp).
 ImpactLaw read_law(std::type_identity<FremondLaw>, std::string_view name, const nlohmann::json& j,
@@ -30,7 +32,8 @@ double residual_of(const ImpactProblemT<N, C>& pb, const FremondLaw& law,
 
 template <int N, int C>
 void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                 const FremondLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+                 const FremondLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
+                 ChainWorkspace& /*ws*/) {
   solve_fremond(pb, cs, law, options, out);
 }
 

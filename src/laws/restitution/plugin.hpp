@@ -31,9 +31,9 @@ double residual_of(const ImpactProblemT<N, C>& pb, const RestitutionLaw& law,
 
 template <int N, int C>
 void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                 const RestitutionLaw& law, const SolverOptions& options,
-                 ImpactResultT<N, C>& out) {
-  solve_classical(pb, cs, law, options, out);
+                 const RestitutionLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
+                 ChainWorkspace& ws) {
+  solve_classical(pb, cs, law, options, out, ws);
 }
 
 template <int N, int C>

@@ -24,6 +24,8 @@
 
 namespace fremond::detail {
 
+struct ChainWorkspace;  // solvers/detail/chain_workspace.hpp
+
 /// The law from the problem file's `law` object (laws/stronge/schema.cpp).
 ImpactLaw read_law(std::type_identity<StrongeLaw>, std::string_view name, const nlohmann::json& j,
                    int contacts, const PotentialRegistry& registry, const std::string& where);
@@ -219,8 +221,8 @@ void solve_distributed(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>
 /// One closed form per contact (docs/stronge.md), or, where contacts are coupled (simultaneous
 /// impacts) or the method is impulse_integration, the distributing law on all of them.
 template <int N, int C>
-void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                 const StrongeLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+void solve_stronge(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                   const StrongeLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
   const SolverMethod m = options.method;
   if (m != SolverMethod::automatic && m != SolverMethod::closed_form &&
       m != SolverMethod::impulse_integration && !(m == SolverMethod::trivial && cs.active == 0)) {
@@ -279,6 +281,14 @@ void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                                       : "Stronge's law in closed form (docs/stronge.md)";
 }
 
+/// Its chain keeps no storage between solves.
+template <int N, int C>
+void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                 const StrongeLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
+                 ChainWorkspace& /*ws*/) {
+  solve_stronge(pb, cs, law, options, out);
+}
+
 template <int N, int C>
 std::vector<ImpactResultT<N, C>> solve_every_answer(const ImpactProblemT<N, C>& pb,
                                                     const StrongeLaw& law,
@@ -287,7 +297,7 @@ std::vector<ImpactResultT<N, C>> solve_every_answer(const ImpactProblemT<N, C>& 
   ContactSpaceT<N, C> cs;
   build_contact_space(pb, law.has_friction(), cs, held);
   std::vector<ImpactResultT<N, C>> all(1);
-  solve_chain(pb, cs, law, options, all.front());
+  solve_stronge(pb, cs, law, options, all.front());
   return all;
 }
 

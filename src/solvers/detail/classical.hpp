@@ -9,12 +9,16 @@
 
 namespace fremond::detail {
 
+struct ChainWorkspace;  // chain_workspace.hpp
+
 /// Solves a classical law on the active contacts of `cs`; fills percussions, velocities, phases,
 /// `unique`, `solutions_found` and `out.solver` (not the admissibility, which the driver adds).
+/// The stages' storage is taken from `ws`.
 template <int MaxDofs, int MaxContacts>
 void solve_classical(const ImpactProblemT<MaxDofs, MaxContacts>& problem,
                      const ContactSpaceT<MaxDofs, MaxContacts>& cs, const RestitutionLaw& law,
-                     const SolverOptions& options, ImpactResultT<MaxDofs, MaxContacts>& out);
+                     const SolverOptions& options, ImpactResultT<MaxDofs, MaxContacts>& out,
+                     ChainWorkspace& ws);
 
 /// Writes the percussions P (and Poisson's compression P_C) of the rows that take part (`cs`'s
 /// row order) into `out`: velocities, percussions, contact velocities and, for Poisson, the phases.

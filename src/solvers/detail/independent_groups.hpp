@@ -66,11 +66,13 @@ bool coupled_to_first(const ContactSpaceT<N, C>& cs) {
   return true;
 }
 
-/// The law stage (docs/laws.md) on one contact space: the law's own solver chain.
+/// The law stage (docs/laws.md) on one contact space: the law's own solver chain, its storage
+/// taken from `ws`.
 template <int N, int C>
 void solve_law_stage(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
-  law.visit([&](const auto& l) { solve_chain(pb, cs, l, options, out); });
+                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
+                     ChainWorkspace& ws) {
+  law.visit([&](const auto& l) { solve_chain(pb, cs, l, options, out, ws); });
 }
 
 /// Whether the law has tangential rows in contact space (Frémond's with any tangential law, the
@@ -191,7 +193,7 @@ template <int N, int C>
 [[gnu::noinline]] bool solve_each_group(const ImpactProblemT<N, C>& pb,
                                         const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
                                         const SolverOptions& options, const GroupLabels<C>& group,
-                                        int groups, ImpactResultT<N, C>& out) {
+                                        int groups, ImpactResultT<N, C>& out, ChainWorkspace& ws) {
   ImpactProblemT<N, C> sub = pb;
   ContactSpaceT<N, C> gcs;
   ImpactResultT<N, C> r;
@@ -199,7 +201,7 @@ template <int N, int C>
   for (int g = 0; g < groups; ++g) {
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     clear_result(r);
-    solve_law_stage(sub, gcs, law, options, r);
+    solve_law_stage(sub, gcs, law, options, r, ws);
     const SolverStatus s = r.solver.status;
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
         s == SolverStatus::not_run)
@@ -214,11 +216,12 @@ template <int N, int C>
 /// (no_solution, unsupported: the whole problem is then solved as one, whose report says so).
 template <int N, int C>
 bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out) {
+                     const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
+                     ChainWorkspace& ws) {
   if (cs.active < 2 || coupled_to_first(cs)) return false;
   GroupLabels<C> group;
   const int groups = independent_groups(cs, group);
-  return groups >= 2 && solve_each_group(pb, cs, law, options, group, groups, out);
+  return groups >= 2 && solve_each_group(pb, cs, law, options, group, groups, out, ws);
 }
 
 /// solve_impact_all by groups: every solution is one of each group's, so the list is the product

@@ -9,14 +9,17 @@
 
 namespace fremond::detail {
 
+struct ChainWorkspace;  // chain_workspace.hpp
+
 /// Solves a validated problem whose contact space `cs` was built on the approaching contacts: the
 /// law's chain (by independent groups), again on every contact where the answer drives a
 /// separating one into its obstacle (cs is then rebuilt), and the certificate, into `out`, which
-/// must be a result as default-constructed (the chain reads its attempt log and flags).
+/// must be a result as default-constructed (the chain reads its attempt log and flags). The
+/// chain's storage is taken from `ws` (kept by a caller that solves again).
 template <int N, int C>
 void solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                             const SolverOptions& options, ContactSpaceT<N, C>& cs,
-                            ImpactResultT<N, C>& out);
+                            ImpactResultT<N, C>& out, ChainWorkspace& ws);
 
 /// solve_impact_in_own_storage's work with the answer written into `out`, a result of earlier
 /// solves (cleared first): the batch solves into the results it is given. Throws before

@@ -14,11 +14,18 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 Layout layout(RowMajorMatrix&& G, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
               const std::vector<double>& e, const std::vector<double>& mu) {
   Layout L;
+  L.G.swap(G);
+  L.G.makeCompressed();
+  lay_out(L, D_A, tangential, coulomb, e, mu);
+  return L;
+}
+
+void lay_out(Layout& L, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
+             const std::vector<double>& e, const std::vector<double>& mu) {
   L.step = tangential ? 2 : 1;
   L.contacts = static_cast<int>(D_A.size()) / L.step;
   L.friction = tangential && coulomb;
-  L.G.swap(G);
-  L.G.makeCompressed();
+  L.v_scale = std::numeric_limits<double>::min();
   const auto n = static_cast<std::size_t>(L.contacts);
   L.block.resize(n);
   L.e = e;
@@ -40,7 +47,6 @@ Layout layout(RowMajorMatrix&& G, const Eigen::VectorXd& D_A, bool tangential, b
     if (DNA <= 0.0)
       L.v_scale = std::max({L.v_scale, std::fabs(DNA), tangential ? std::fabs(D_A(r + 1)) : 0.0});
   }
-  return L;
 }
 
 Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P) {
@@ -82,14 +88,6 @@ void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd&
     m.residual = std::max(m.residual, R);
     m.excess = std::max(m.excess, R - floor);
   }
-}
-
-void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X) {
-  // A contact's update reads two rows and moves v twice through the velocities (4n), against two
-  // rows of G (2 rows): the velocities pay from 2n ≤ rows.
-  if (2 * W.rows() > W.cols()) return;
-  L.W = std::move(W);
-  L.X = std::move(X);
 }
 
 namespace {

@@ -36,11 +36,16 @@ struct Layout {
 /// G in row-major storage (the sweeps read it by rows) is taken over; a column-major one converts.
 Layout layout(RowMajorMatrix&& G, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
               const std::vector<double>& e, const std::vector<double>& mu);
+/// The same in L's own storage (kept from one solve to the next), L.G holding G compressed.
+void lay_out(Layout& L, const Eigen::VectorXd& D_A, bool tangential, bool coulomb,
+             const std::vector<double>& e, const std::vector<double>& mu);
 
-/// Gives L the factors G = Wᵀ X (n × rows each, a column per row of L, in L's order) where 2n is
-/// at most L's rows (where they cost less than G's rows); a no-op otherwise, L then working on G
-/// alone.
-void velocity_factors(Layout& L, Eigen::MatrixXd W, Eigen::MatrixXd X);
+/// Whether a body of `dofs` degrees of freedom on `rows` contact rows pays for the velocity
+/// factors (Layout::W, X): a contact's update reads two rows and moves v twice through the
+/// velocities (4n), against two rows of G (2 rows), so from 2n ≤ rows.
+inline bool velocity_factors_pay(Eigen::Index dofs, Eigen::Index rows) {
+  return 2 * dofs <= rows;
+}
 
 /// Row `row` of G times P; *size, when given, gets Σ|G_rk P_k|.
 inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd& P, double* size) {

@@ -176,24 +176,28 @@ void system_of(const Layout& L, const Eigen::VectorXd& D_A, const std::vector<Co
   S.A.setFromTriplets(S.entries.begin(), S.entries.end());
 }
 
-// The storage of one run of mode_newton, kept from step to step: every vector is sized for all
-// the rows (or the body's velocities) once, and a step uses its first `unknowns` entries.
+// The storage of mode_newton's runs: every vector is sized for all the rows (or the body's
+// velocities), and a step uses its first `unknowns` entries.
 struct ModeWork {
   std::vector<ContactMode> modes;
   ModeSystem S;
   Eigen::VectorXd x, r, step, inv, y, t;  // the unknowns' (inv, y, t: Woodbury's)
-  Eigen::VectorXd next, d, trial;         // percussions
+  Eigen::VectorXd next, d, trial, at;     // percussions
   Eigen::VectorXd v, z, w;                // the body's n velocities (z, w: Woodbury's)
   Eigen::MatrixXd H;                      // n × n
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  Measure tried;  // at `trial`
+  Measure tried, here;  // at `trial` and at `at`
 
-  ModeWork(const Layout& L, Eigen::Index rows) {
+  // Sized for L's rows and body; kept where they already are.
+  void size_for(const Layout& L, Eigen::Index rows) {
     const Eigen::Index n = L.X.rows();
-    for (Eigen::VectorXd* u : {&x, &r, &step, &inv, &y, &t, &next, &d, &trial}) u->resize(rows);
+    for (Eigen::VectorXd* u : {&x, &r, &step, &inv, &y, &t, &next, &d, &trial, &at})
+      u->resize(rows);
     for (Eigen::VectorXd* u : {&v, &z, &w}) u->resize(n);
-    H.resize(n, n);
-    lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    if (H.rows() != n) {
+      H.resize(n, n);
+      lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    }
   }
 };
 
@@ -262,15 +266,30 @@ bool solve_mode(ModeWork& W, double target, double delta) {
 
 }  // namespace
 
+struct ModeNewtonWorkspace::Work : ModeWork {};
+
+ModeNewtonWorkspace::ModeNewtonWorkspace() = default;
+ModeNewtonWorkspace::~ModeNewtonWorkspace() = default;
+ModeNewtonWorkspace::ModeNewtonWorkspace(const ModeNewtonWorkspace&) {}
+ModeNewtonWorkspace& ModeNewtonWorkspace::operator=(const ModeNewtonWorkspace&) {
+  return *this;
+}
+ModeNewtonWorkspace::ModeNewtonWorkspace(ModeNewtonWorkspace&&) noexcept = default;
+ModeNewtonWorkspace& ModeNewtonWorkspace::operator=(ModeNewtonWorkspace&&) noexcept = default;
+
 ModeNewtonOutcome mode_newton(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
-                              Measure& m, double target, int max_steps) {
+                              Measure& m, double target, int max_steps, ModeNewtonWorkspace& ws) {
   ModeNewtonOutcome out;
   auto met = [target](const Measure& x) { return x.residual <= target || x.excess <= target; };
   out.converged = met(m);
   if (out.converged || max_steps <= 0) return out;
-  ModeWork W(L, D_A.size());
-  Eigen::VectorXd at = P;
-  Measure here = m;
+  if (!ws.work) ws.work = std::make_unique<ModeNewtonWorkspace::Work>();
+  ModeWork& W = *ws.work;
+  W.size_for(L, D_A.size());
+  Eigen::VectorXd& at = W.at;
+  at = P;
+  Measure& here = W.here;
+  here = m;
   // The proximal weight δ adapts as Levenberg–Marquardt's does: far from the answer the modes
   // read are wrong, their equations inconsistent, and a large δ keeps the step short; a full
   // step accepted shrinks it toward Newton's.

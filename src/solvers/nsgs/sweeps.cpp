@@ -5,8 +5,6 @@
 #include <limits>
 #include <utility>
 
-#include "solvers/nsgs/mode_newton.hpp"
-
 namespace fremond::detail {
 
 namespace {
@@ -24,10 +22,12 @@ constexpr int kEarlyMeasure = 8;
 }  // namespace
 
 SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
-                             const SweepOptions& options, AttemptStart first, SolverReport& log) {
+                             const SweepOptions& options, AttemptStart first, SolverReport& log,
+                             SweepWorkspace& ws) {
   const double target = options.tolerance * L.v_scale;
-  Measure m;
-  Eigen::VectorXd velocities;  // the sweeps' room for the body's velocities
+  Measure& m = ws.measure;  // valid once `measured`
+  bool measured = false;
+  Eigen::VectorXd& velocities = ws.velocities;
   int sweeps = 0, newton_steps = 0, checks = 0, last_newton = 0, best_at = 0;
   double best = std::numeric_limits<double>::infinity();
   // The residual costs a sweep: measured every 64 sweeps, every 16 on a few contacts, where a
@@ -64,6 +64,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
     }
     if (change > target && sweeps % every != 0 && !(early && sweeps == kEarlyMeasure)) continue;
     measure(L, D_A, P, m);
+    measured = true;
     if (m.residual <= target || m.excess <= target) {
       converge(false);
       break;
@@ -77,16 +78,18 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       last_newton = checks;
       log.record(SolverMethod::nsgs, from, SolverStatus::stalled, m.residual / L.v_scale);
       from = AttemptStart::sweeps_end;
-      Eigen::VectorXd trial = P;
-      Measure trial_m = m;
-      const auto o = mode_newton(L, D_A, trial, trial_m, target, kModeNewtonSteps);
+      Eigen::VectorXd& trial = ws.trial;
+      Measure& trial_m = ws.trial_measure;
+      trial = P;
+      trial_m = m;
+      const auto o = mode_newton(L, D_A, trial, trial_m, target, kModeNewtonSteps, ws.newton);
       newton_steps += o.steps;
       log.record(SolverMethod::semismooth_newton, AttemptStart::sweeps_end,
                  o.converged ? SolverStatus::converged : SolverStatus::stalled,
                  trial_m.residual / L.v_scale);
       if (o.converged) {
-        P = std::move(trial);
-        m = std::move(trial_m);
+        P.swap(trial);
+        std::swap(m, trial_m);
         converge(true);
         break;
       }
@@ -101,12 +104,10 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       break;
     }
   }
-  if (m.D_E.size() != D_A.size() || out.status == SolverStatus::max_iterations)
-    measure(L, D_A, P, m);
+  if (!measured || out.status == SolverStatus::max_iterations) measure(L, D_A, P, m);
   out.iterations = sweeps + newton_steps;
   out.method = by_newton ? SolverMethod::semismooth_newton : SolverMethod::nsgs;
   if (!by_newton) log.record(SolverMethod::nsgs, from, out.status, m.residual / L.v_scale);
-  out.measure = std::move(m);
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "fremond/solvers/impact_result.hpp"
 #include "solvers/nsgs/contact_rows.hpp"
+#include "solvers/nsgs/mode_newton.hpp"
 
 namespace fremond::detail {
 
@@ -23,14 +24,24 @@ struct SweepOutcome {
   std::string_view message;
   SolverMethod method = SolverMethod::nsgs;  ///< semismooth_newton where its run converged
   int iterations = 0;                        ///< sweeps and Newton steps
-  Measure measure;                           ///< at the percussions P left
+};
+
+/// The storage of solve_by_sweeps and of its Newton runs, reused by the next solve of the same size
+/// (a caller that solves again keeps it: no allocation then). `measure` holds the law's residual
+/// at the percussions the last solve left.
+struct SweepWorkspace {
+  Measure measure, trial_measure;
+  Eigen::VectorXd velocities;  // the sweeps' room for the body's velocities
+  Eigen::VectorXd trial;       // a Newton run's start
+  ModeNewtonWorkspace newton;
 };
 
 /// Sweeps from P (in place) until the residual meets the tolerance, stalls (8,192 sweeps without a
 /// 1 % gain) or the budget ends; the mode Newton tries to finish at the 2nd, 4th, 8th, ...
 /// measure. Each stretch of sweeps and each Newton run is recorded in `log`, the first stretch
-/// as starting from `first`.
+/// as starting from `first`. The residual at the P left is in ws.measure.
 SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
-                             const SweepOptions& options, AttemptStart first, SolverReport& log);
+                             const SweepOptions& options, AttemptStart first, SolverReport& log,
+                             SweepWorkspace& ws);
 
 }  // namespace fremond::detail
