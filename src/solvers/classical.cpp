@@ -712,7 +712,9 @@ struct ClassicalChain {
     LawOutcome<C> ls;
     LawSolution<C>& s = *ls.solutions.emplace();
     ChainWorkspace::Sweeps& room = ws.sweeps ? *ws.sweeps : ws.sweeps.emplace();
-    if (!sweep_contact_space(cs, law, opt, forced, room, out.solver, s, ls.pivots)) return false;
+    const bool swept = sweep_contact_space(cs, law, opt, forced, room, out.solver, s, ls.pivots);
+    if (!ws.keep) ws.sweeps.reset();
+    if (!swept) return false;
     ls.method = s.method;
     ls.exhaustive = false;
     ls.sweeps = true;

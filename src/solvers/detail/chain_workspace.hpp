@@ -14,6 +14,9 @@ namespace fremond::detail {
 /// next solve of the same shape then reuses instead of allocating it again. Its parts are by the
 /// stage that uses them.
 struct ChainWorkspace {
+  /// Whether the storage outlives the stage that made it (a caller that solves again); else the
+  /// stage frees it when done, where a one-shot solve's heap blocks are best freed.
+  bool keep = false;
   /// Newton's law on many contacts (the classical chain's sweeps, classical.cpp): the contact
   /// space's rows grouped by contact, and the sweeps' and mode Newton's own storage.
   struct Sweeps {
