@@ -1011,8 +1011,9 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   "Newton + Coulomb (e = 0) on disk piles (square packings, G singular), on disk "
                   "beds (the same packing, four layers deep, growing in width) and on Siconos's own "
                   "granular-flow files (docs/sparse.md), to 1e-8 of the velocity scale (Siconos: "
-                  "its own 1e-8, or 1e-6 on 2,020 contacts; the two largest files keep 6 digits of "
-                  "G and stop near 1e-6). `residual`: every answer measured by our residual "
+                  "its own 1e-8, or 1e-6 on 2,020 contacts, where both solvers' sweeps stall near "
+                  "1e-6; the two largest files keep 6 digits of G). `residual`: every answer "
+                  "measured by our residual "
                   "(contact_residual). Siconos's 2-D driver takes G dense, so its sweep costs "
                   "contacts² where ours costs G's non-zeros.", "",
                   md_table(["problem", "contacts", "solver", "CPU ms", "sweeps / iterations",
