@@ -713,7 +713,7 @@ struct ClassicalChain {
     LawSolution<C>& s = *ls.solutions.emplace();
     ChainWorkspace::Sweeps& room = ws.sweeps ? *ws.sweeps : ws.sweeps.emplace();
     const bool swept = sweep_contact_space(cs, law, opt, forced, room, out.solver, s, ls.pivots);
-    if (!ws.keep) ws.sweeps.reset();
+    if (!ws.persistent) ws.sweeps.reset();
     if (!swept) return false;
     ls.method = s.method;
     ls.exhaustive = false;

@@ -43,7 +43,7 @@ template <int N, int C>
 struct PreparedStage {
   ImpactProblemT<N, C> pb;
   ContactSpaceT<N, C> cs;
-  ChainWorkspace ws{.keep = true, .sweeps = std::nullopt};
+  ChainWorkspace ws{.persistent = true, .sweeps = std::nullopt};
   ImpactResultT<N, C> out;
 
   /// validate(pb) and its contact space on every contact: a Delassus entry that overflows is

@@ -16,7 +16,7 @@ namespace fremond::detail {
 struct ChainWorkspace {
   /// Whether the storage outlives the stage that made it (a caller that solves again); else the
   /// stage frees it when done, where a one-shot solve's heap blocks are best freed.
-  bool keep = false;
+  bool persistent = false;
   /// Newton's law on many contacts (the classical chain's sweeps, classical.cpp): the contact
   /// space's rows grouped by contact, and the sweeps' and mode Newton's own storage.
   struct Sweeps {
