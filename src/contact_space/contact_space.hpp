@@ -195,6 +195,18 @@ bool build_diagonal(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_ta
          fits(std::integral_constant<int, 1>{}) || fits(std::integral_constant<int, 6>{});
 }
 
+/// Each contact's |Y_i|² from Y = L⁻¹[W_N W_T] (c normal columns, then the tangential ones where
+/// `tangential`): its W_iᵀM⁻¹W_i, into N and T.
+template <class Y, class Vec>
+void column_squares(const Y& y, int c, bool tangential, Vec& N, Vec& T) {
+  N.resize(c);
+  T.resize(tangential ? c : 0);
+  for (int i = 0; i < c; ++i) {
+    N(i) = y.col(i).squaredNorm();
+    if (tangential) T(i) = y.col(c + i).squaredNorm();
+  }
+}
+
 }  // namespace contact_space_detail
 
 /// build_contact_space's general path, for every size and mass matrix (build_contact_space takes
@@ -259,12 +271,7 @@ void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
       // Every contact held, with its tangential rows: W is [W_N W_T] and Y holds self_delassus()'s
       // solve, to the last bit.
       if (a == c && cs.tangential == pb.has_tangential()) {
-        cs.self_N.resize(c);
-        cs.self_T.resize(cs.tangential ? c : 0);
-        for (int i = 0; i < c; ++i) {
-          cs.self_N(i) = cs.MinvW.col(i).squaredNorm();
-          if (cs.tangential) cs.self_T(i) = cs.MinvW.col(c + i).squaredNorm();
-        }
+        contact_space_detail::column_squares(cs.MinvW, c, cs.tangential, cs.self_N, cs.self_T);
         cs.self_ready = true;
       }
       if constexpr (small) {
@@ -376,17 +383,13 @@ template <int MaxDofs, int MaxContacts>
 void self_delassus(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const CholeskyT<MaxDofs>& llt,
                    VecT<MaxContacts>& N, VecT<MaxContacts>& T) {
   const int c = pb.contacts(), rows = pb.has_tangential() ? 2 * c : c;
-  N.resize(c);
-  T.resize(pb.has_tangential() ? c : 0);
-  if (c == 0) return;
   MatT<MaxDofs, times2(MaxContacts)> Y(pb.dofs(), rows);
-  Y.leftCols(c) = pb.W_N;
-  if (pb.has_tangential()) Y.rightCols(c) = pb.W_T;
-  llt.solve_lower_in_place(Y);
-  for (int i = 0; i < c; ++i) {
-    N(i) = Y.col(i).squaredNorm();
-    if (pb.has_tangential()) T(i) = Y.col(c + i).squaredNorm();
+  if (c > 0) {
+    Y.leftCols(c) = pb.W_N;
+    if (pb.has_tangential()) Y.rightCols(c) = pb.W_T;
+    llt.solve_lower_in_place(Y);
   }
+  contact_space_detail::column_squares(Y, c, pb.has_tangential(), N, T);
 }
 
 /// self_delassus() of the problem `cs` was built from, through cs's factor of M, computed on first
