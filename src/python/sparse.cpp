@@ -59,12 +59,13 @@ void bind_sparse(py::module_& m) {
   auto options = py::class_<SparseSolverOptions>(
       m, "SparseSolverOptions",
       "Options of the sparse solver: tolerance (1e-10), max_sweeps (100000), "
-      "admissibility_tolerance (1e-9), newton_polish (True).");
+      "admissibility_tolerance (1e-9), newton_polish (True), acceleration (True).");
   def_keyword_init<SparseSolverOptions>(options);
   options.def_readwrite("tolerance", &SparseSolverOptions::tolerance)
       .def_readwrite("max_sweeps", &SparseSolverOptions::max_sweeps)
       .def_readwrite("admissibility_tolerance", &SparseSolverOptions::admissibility_tolerance)
       .def_readwrite("newton_polish", &SparseSolverOptions::newton_polish)
+      .def_readwrite("acceleration", &SparseSolverOptions::acceleration)
       .def("validate", &SparseSolverOptions::validate);
 
   m.def("contact_problem", &contact_problem, py::arg("problem"),

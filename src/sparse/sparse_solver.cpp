@@ -150,7 +150,8 @@ ImpactResult solve(const ContactProblem& pb, const ImpactLaw& law,
       detail::solve_by_sweeps(L, pb.D_A, P,
                               {.tolerance = options.tolerance,
                                .max_sweeps = options.max_sweeps,
-                               .newton_polish = options.newton_polish},
+                               .newton_polish = options.newton_polish,
+                               .acceleration = options.acceleration},
                               start ? AttemptStart::none : AttemptStart::zero, r.solver, ws);
   const Measure& m = ws.measure;
   r.solver.status = o.status;

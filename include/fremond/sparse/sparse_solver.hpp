@@ -26,6 +26,11 @@ struct SparseSolverOptions {
   /// point (docs/sparse.md#mode-newton): exact to rounding in a few factorisations where the modes
   /// read are right; dropped, the sweeps going on, where not.
   bool newton_polish = true;
+  /// On more than 64 contacts, Anderson acceleration of the sweeps (docs/sparse.md#acceleration):
+  /// each forward and backward pair of sweeps starts from the mix of the pairs before that best
+  /// cancels their changes. Dropped, and the sweeps started again without it, where 256 sweeps
+  /// bring no 1 % gain of the residual.
+  bool acceleration = true;
 
   /// True when every option is within its range; otherwise false with the reason in *why.
   bool is_valid(std::string* why = nullptr) const;

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "fremond/solvers/impact_result.hpp"
+#include "solvers/nsgs/anderson.hpp"
 #include "solvers/nsgs/contact_rows.hpp"
 #include "solvers/nsgs/mode_newton.hpp"
 
@@ -15,6 +16,7 @@ struct SweepOptions {
   double tolerance = 1e-10;  ///< relative to the layout's v_scale
   int max_sweeps = 100000;
   bool newton_polish = true;  ///< the mode Newton from the second residual measure on
+  bool acceleration = true;   ///< Anderson mixing of the sweeps on more than 64 contacts
 };
 
 /// How the sweeps ended, and the law's residual at the percussions they leave.
@@ -34,12 +36,17 @@ struct SweepWorkspace {
   Eigen::VectorXd velocities;  // the sweeps' room for the body's velocities
   Eigen::VectorXd trial;       // a Newton run's start
   ModeNewtonWorkspace newton;
+  AndersonMixing mixing;
+  Eigen::VectorXd start, input;  // the sweeps' start; the input of the pair of sweeps under way
 };
 
 /// Sweeps from P (in place) until the residual meets the tolerance, stalls (8,192 sweeps without a
 /// 1 % gain) or the budget ends; the mode Newton tries to finish at the 2nd, 4th, 8th, ...
-/// measure. Each stretch of sweeps and each Newton run is recorded in `log`, the first stretch
-/// as starting from `first`. The residual at the P left is in ws.measure.
+/// measure. With `acceleration`, on more than 64 contacts, each forward and backward pair of sweeps
+/// starts from the Anderson mix of the pairs before; where 128 sweeps so do not halve the residual,
+/// the sweeps start again from P's first value without it. Each stretch of sweeps and each Newton
+/// run is recorded in `log`, the first stretch as starting from `first`. The residual at the P left
+/// is in ws.measure.
 SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& P,
                              const SweepOptions& options, AttemptStart first, SolverReport& log,
                              SweepWorkspace& ws);
