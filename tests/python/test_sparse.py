@@ -81,5 +81,16 @@ def test_newton_polish_is_an_option():
     assert f.AttemptStart.sweeps_end.name == "sweeps_end"
 
 
+def test_acceleration_is_an_option_and_both_meet_the_law():
+    assert f.SparseSolverOptions().acceleration is True
+    p = f.read_siconos_file(str(ROOT / "tests/data/siconos-fc2d/fc2d_granularflowonwall_00667_00000.dat"))
+    for on in (True, False):
+        o = f.SparseSolverOptions(tolerance=1e-10, acceleration=on)
+        assert o.acceleration is on
+        r = f.solve_contact_problem(p.contact, p.law(), o)
+        assert r.ok()
+        assert f.contact_residual(p.contact, p.law(), r) <= 1e-10
+
+
 if __name__ == "__main__":
     run_tests(globals())
