@@ -19,10 +19,10 @@ constexpr int kModeNewtonSteps = 12;
 // fewer instructions than the first measure at 16). Elsewhere that early run fails more often
 // than it ends (random bodies of 12-30 dofs: 10-20 % more).
 constexpr int kEarlyMeasure = 8;
-// Anderson mixing is dropped after this many sweeps without halving the residual: where
-// it helps (beds, piles of a few hundred contacts: 4-10 times fewer sweeps) it gains that much
-// at every measure; where the contacts' modes keep changing (tall piles with friction) it
-// stalls, and the plain sweeps from the start cost at most this much more.
+// Anderson mixing is dropped after this many sweeps without halving the residual: where it
+// helps (beds, piles of a few hundred contacts: 2-10 times fewer sweeps) it gains that much at
+// every measure; where the contacts' modes keep changing (tall piles with friction) it stalls,
+// and the sweeps it made (128 to 400 on the problems of docs/sparse.md) are lost.
 constexpr int kMixingPatience = 128;
 }  // namespace
 
