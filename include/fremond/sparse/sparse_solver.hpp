@@ -28,8 +28,8 @@ struct SparseSolverOptions {
   bool newton_polish = true;
   /// On more than 64 contacts, Anderson acceleration of the sweeps (docs/sparse.md#acceleration):
   /// each forward and backward pair of sweeps starts from the mix of the pairs before that best
-  /// cancels their changes. Dropped, and the sweeps started again without it, where 256 sweeps
-  /// bring no 1 % gain of the residual.
+  /// cancels their changes. Dropped, and the sweeps started again without it, where 128 sweeps
+  /// do not halve the residual.
   bool acceleration = true;
 
   /// True when every option is within its range; otherwise false with the reason in *why.

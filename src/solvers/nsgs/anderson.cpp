@@ -30,7 +30,7 @@ void AndersonMixing::mix(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
     count_ = std::min(count_ + 1, depth_);
     for (int k = 0; k < count_; ++k) gram_(h, k) = gram_(k, h) = dF_.col(h).dot(dF_.col(k));
   }
-  f_last_ = f_;
+  f_last_.swap(f_);  // f_last_ holds this call's residual from here on
   g_last_ = g;
   last_norm_ = norm;
   has_last_ = true;
@@ -39,7 +39,7 @@ void AndersonMixing::mix(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
   const int m = count_;
   system_ = gram_.topLeftCorner(m, m);
   system_.diagonal().array() += 1e-12 * system_.diagonal().maxCoeff() + 1e-300;
-  rhs_.noalias() = dF_.leftCols(m).transpose() * f_;
+  rhs_.noalias() = dF_.leftCols(m).transpose() * f_last_;
   ldlt_.compute(system_);
   gamma_ = ldlt_.solve(rhs_);
   if (!gamma_.allFinite()) {
