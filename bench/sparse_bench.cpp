@@ -108,6 +108,28 @@ void BM_Sparse_Pile(benchmark::State& state) {
   state.SetLabel(std::string(to_string(r.solver.status)));
 }
 
+// The same pile handed over dense (solve_impact's dense path, its contact space and chain): what
+// a user of dense M and W pays beside the sparse form. Its contacts in separate groups approach
+// alone first; the answer drives separating ones, and the pile is solved again on every contact.
+void BM_Dense_Pile(benchmark::State& state) {
+  const SparseImpactProblem sparse = pile_of(state);
+  ImpactProblem pb;
+  pb.M = Eigen::MatrixXd(sparse.M);
+  pb.W_N = Eigen::MatrixXd(sparse.W_N);
+  pb.W_T = Eigen::MatrixXd(sparse.W_T);
+  pb.qdot_A = sparse.qdot_A;
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
+  ImpactResult r;
+  for (auto _ : state) {
+    r = solve_impact(pb, law);  // the dense default: to 1e-9
+    benchmark::DoNotOptimize(r.P_N.data());
+  }
+  state.counters["contacts"] = pb.contacts();
+  state.counters["iterations"] = r.solver.iterations;
+  state.counters["residual"] = r.solver.residual;
+  state.SetLabel(std::string(to_string(r.solver.status)));
+}
+
 #ifdef FREMOND_HAVE_SICONOS
 // Siconos's 2-D NSGS on the same pile, from the dense contact form its 2-D driver takes (q = D_A:
 // e = 0); `our_residual` measures its answer as ours is measured.
@@ -175,6 +197,11 @@ const bool registered = [] {
     benchmark::RegisterBenchmark("BM_Sparse_Bed", BM_Sparse_Pile)
         ->Args({columns, kBedLayers})
         ->Unit(benchmark::kMillisecond);
+  for (const int side : pile_sides())
+    if (side <= 6)
+      benchmark::RegisterBenchmark("BM_Dense_Pile", BM_Dense_Pile)
+          ->Args({side, side})
+          ->Unit(benchmark::kMillisecond);
 #ifdef FREMOND_HAVE_SICONOS
   // The dense form beyond 703 contacts costs Siconos seconds a solve (a bed of 1,020: one run).
   for (const int side : pile_sides())

@@ -40,9 +40,9 @@ export FREMOND_STRESS_HANG=${FREMOND_STRESS_HANG:-120}
 exclude='^(packaging\.|format$)'
 if [ "$mode" != --full ]; then
   # CI's share leaves out the tests of the test suite's own reference (ReferenceSelfTest: no
-  # library code), the simulation's long runs, Siconos's large problems, the prepared solver's
-  # dense pile and the many random problems of Stronge's integrator (its paths are the one-contact
-  # tests'); each of those takes one to two minutes here. check-long.sh runs them too.
-  exclude='^(packaging\.|format$|ReferenceSelfTest\.|SimulationSweep\.|SiconosLarge\.|ImpactSolverLarge\.|cli\.simulate_long_runs$|StrongeLzb\.RandomCoupledProblemsDissipate$)'
+  # library code), the simulation's long runs, Siconos's large problems and the many random
+  # problems of Stronge's integrator (its paths are the one-contact tests'); each of those takes
+  # one to two minutes here. check-long.sh runs them too.
+  exclude='^(packaging\.|format$|ReferenceSelfTest\.|SimulationSweep\.|SiconosLarge\.|cli\.simulate_long_runs$|StrongeLzb\.RandomCoupledProblemsDissipate$)'
 fi
 stage sanitize-ctest ctest --test-dir "$build" --output-on-failure -j"$jobs" -E "$exclude"

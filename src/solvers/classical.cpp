@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "laws/detail/residuals.hpp"
+#include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/chain.hpp"
 #include "solvers/detail/chain_workspace.hpp"
 #include "solvers/detail/classical_law.hpp"
@@ -297,6 +298,20 @@ void report_solution(const SolverOptions& options, const LawOutcome<C>& lo, cons
 // repaired in its mode, then in velocities. `velocities` (and Poisson's `compression_velocities`),
 // where given, are the solution's q̇_E (q̇_C) solved with its percussions
 // (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
+// True when `r` drives a contact that cs does not hold (a separating one) into its obstacle
+// beyond the rounding that G = WᵀM⁻¹W carries (16ε cond(M), as velocity_rounding allows): the
+// repairs and the later stages of the chain, which solve cs's rows again more accurately, leave
+// it there wherever cs's answer is unique, and the impact is solved again on every contact
+// (solve_impact.cpp).
+template <int N, int C>
+bool drives_unheld_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                           const ImpactResultT<N, C>& r, const SolverOptions& options) {
+  if (cs.active == cs.contacts) return false;
+  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
+  const double rounding = 16 * std::numeric_limits<double>::epsilon() * cs.kappa;
+  return drives_a_separating_contact(pb, r, options, rounding);
+}
+
 template <int N, int C>
 void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const RestitutionLaw& law, const SolverOptions& options,
@@ -315,7 +330,8 @@ void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
   st.P_C = s.P_C;
   if (!(st.residual <= options.tolerance))  // the floors, on this failure path only
     classical_residual(pb, cs, law, out, &st.beyond_rounding, velocities != nullptr);
-  if (!velocities) {
+  if (!velocities && !(st.residual <= options.tolerance) &&
+      !drives_unheld_contact(pb, cs, out, options)) {
     if (!(st.beyond_rounding <= options.tolerance)) refine_in_mode(pb, cs, law, options, st, out);
     if (!(st.residual <= options.tolerance)) mode_in_velocities(pb, cs, law, options, st, out);
   }
@@ -634,6 +650,7 @@ struct ClassicalChain {
         Stage<&F::always, &F::contact_modes>,  // per phase: closed form, Lemke, enumeration
         Stage<&F::no_mode_found, &F::modes_in_velocities_or_none>,
         Stage<&F::stalled_after_lemke, &F::enumeration_again>,  // Lemke's pivots' rounding
+        Stage<&F::drives_unheld_contact, &F::as_it_is>,         // solved again on every contact
         Stage<&F::stalled, &F::modes_in_velocities_after_stall>>(*this);
   }
 
@@ -663,6 +680,10 @@ struct ClassicalChain {
                                              : classical::kSweepsRegularFromContacts);
   }
   bool one_contact() const { return classical::one_approaching_contact(cs, opt); }
+  bool drives_unheld_contact() const { return drives_unheld(out); }
+  bool drives_unheld(const ImpactResultT<N, C>& r) const {
+    return detail::drives_unheld_contact(pb, cs, r, opt);
+  }
   bool no_mode_found() const { return lo.solutions.size == 0; }
   bool stalled() const { return out.solver.status == SolverStatus::stalled; }
   // Lemke's pivots accumulate rounding: where the enumeration applies, the same contact mode solved
@@ -679,6 +700,7 @@ struct ClassicalChain {
     fill_unsupported(pb, cs, law, opt, out);
     return logged();
   }
+  bool as_it_is() { return true; }
   bool trivial() {
     fill_trivial(pb, cs, law, out);
     return logged();
@@ -720,7 +742,7 @@ struct ClassicalChain {
     ls.sweeps = true;
     ImpactResultT<N, C> alt;
     fill_best(pb, cs, law, opt, ls, alt);
-    if (alt.solver.status != SolverStatus::converged && !forced) {
+    if (alt.solver.status != SolverStatus::converged && !forced && !drives_unheld(alt)) {
       out.solver.record(alt.solver.method, AttemptStart::none, alt.solver.status,
                         alt.solver.residual);
       return false;

@@ -138,8 +138,8 @@ TEST(ImpactSolver, EveryAnswerIsSolveImpactsToTheLastBit) {
 // The pile of 6 × 6 disks in dense form (66 contacts on 108 dofs, G singular): the classical chain
 // sweeps it with Anderson mixing (beyond 64 contacts), whose history the prepared solver keeps
 // room for from one solve to the next. Each answer is still solve_impact's, bit for bit, and
-// meets the law. (About 0.25 s a solve: the classical chain's velocity-mode stage on 108 dofs.)
-TEST(ImpactSolverLarge, MixedSweepsKeptFromSolveToSolveChangeNoBit) {
+// meets the law.
+TEST(ImpactSolver, MixedSweepsKeptFromSolveToSolveChangeNoBit) {
   const SparseImpactProblem sparse = fixtures::disk_pile(6);
   ImpactProblem pb;
   pb.M = Eigen::MatrixXd(sparse.M);

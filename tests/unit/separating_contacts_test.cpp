@@ -8,6 +8,7 @@
 
 #include "classical_support.hpp"
 #include "fremond/fremond.hpp"
+#include "support/disk_pile.hpp"
 
 namespace fremond {
 namespace {
@@ -194,6 +195,40 @@ TEST(SeparatingContacts, EveryCertificateHoldsTheSameContacts) {
   EXPECT_EQ(again.complementarity, r.admissibility.complementarity);
   for (const ImpactResult& s : solve_impact_all(pb, law))
     EXPECT_TRUE(s.admissibility.admissible) << to_string(s.admissibility.failed);
+}
+
+// Piles of disks handed over dense: groups of contacts approach, and their answer drives touching
+// contacts that separate, so the pile is solved on every contact (docs/solvers.md). The sparse
+// solve of the same pile, on every contact at once and by its own path, is the second method: the
+// velocities agree, each contact meets the law by law_residual, and separating contacts are
+// stopped (P_N > 0), not driven through.
+TEST(SeparatingContacts, DensePilesAgreeWithTheirSparseSolve) {
+  for (const int side : {3, 6}) {
+    const SparseImpactProblem sparse = fixtures::disk_pile(side);
+    for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.0, 0.5), ImpactLaw::newton(0.3),
+                                 ImpactLaw::newton_coulomb(0.5, 0.2)}) {
+      SparseImpactProblem sp = sparse;
+      if (!law.has_friction()) sp.W_T.resize(sp.dofs(), 0);
+      ImpactProblem pb;
+      pb.M = Eigen::MatrixXd(sp.M);
+      pb.W_N = Eigen::MatrixXd(sp.W_N);
+      pb.W_T = Eigen::MatrixXd(sp.W_T);
+      pb.qdot_A = sp.qdot_A;
+      const ImpactResult dense = solve_impact(pb, law);
+      const ImpactResult other = solve_impact(sp, law, {.tolerance = 1e-11});
+      SCOPED_TRACE(std::to_string(side) + " " + std::string(law.name()));
+      ASSERT_TRUE(dense.ok()) << dense.solver.message;
+      ASSERT_TRUE(other.ok()) << other.solver.message;
+      EXPECT_LE(law_residual(pb, law, dense), 1e-12);
+      EXPECT_LE((dense.qdot_E - other.qdot_E).norm(), 1e-9 * dense.qdot_E.norm());
+      int stopped = 0;
+      for (int i = 0; i < pb.contacts(); ++i) {
+        EXPECT_GE(dense.D_NE(i), -1e-12) << i;
+        stopped += dense.D_NA(i) > 0.0 && dense.P_N(i) > 0.0;
+      }
+      EXPECT_GE(stopped, 5);
+    }
+  }
 }
 
 }  // namespace

@@ -234,4 +234,15 @@ class CholeskyT {
   std::conditional_t<kHandLoops, Empty, Eigen::LLT<Mat>> llt_{};
 };
 
+/// κ(M) estimated from M's Cholesky factor L: (max L_ii / min L_ii)², a lower bound (at least 1)
+/// that has the order of κ in practice, for the price of a look at the diagonal. 0 where the
+/// factor has no positive diagonal.
+template <class Factor>
+double condition_estimate(const Factor& llt) {
+  const auto L = llt.matrixLLT().diagonal().cwiseAbs();
+  if (L.size() == 0 || !(L.minCoeff() > 0.0)) return 0.0;
+  const double ratio = L.maxCoeff() / L.minCoeff();
+  return ratio * ratio;
+}
+
 }  // namespace fremond::detail

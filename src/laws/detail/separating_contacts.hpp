@@ -6,6 +6,7 @@
 /// potential), with Coulomb's cone under its usual bound. Undriven, it leaves with D_NE = D_NA and
 /// P = 0, which is why a solve first leaves the separating contacts out and holds them only where
 /// the others' percussions would drive one into its obstacle.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,12 +42,13 @@ ImpactLaw law_of_every_contact(const ImpactLaw& law, const Vec& D_N) {
 /// obstacle (D_NE < 0, or Poisson's D_NC < 0) beyond what its velocity is known to: the solver's
 /// tolerance on the size of the terms that velocity is summed from, |W_N,i|ᵀ(|q̇_A| + |q̇|) +
 /// |w_N,i|. Each contact is held to its own terms, so that a body moving a billion times slower
-/// than another in the same problem is judged on its own scale (independent groups).
+/// than another in the same problem is judged on its own scale (independent groups). `rounding`,
+/// where given, is a relative allowance of its own on the same terms.
 template <int N, int C>
 bool drives_a_separating_contact(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r,
-                                 const SolverOptions& options) {
+                                 const SolverOptions& options, double rounding = 0.0) {
   const double eps = std::numeric_limits<double>::epsilon();
-  const double tol = 2.0 * std::max(8.0 * eps, options.tolerance);
+  const double tol = 2.0 * std::max({8.0 * eps, options.tolerance, rounding});
   auto driven = [&](int i, const VecT<N>& q, double d) {
     if (!(d < 0.0)) return false;
     double terms = pb.w_N.size() ? std::fabs(pb.w_N(i)) : 0.0;
