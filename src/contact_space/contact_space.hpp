@@ -215,17 +215,21 @@ void column_squares(const Y& y, int c, bool tangential, Vec& N, Vec& T) {
 /// With M = L Lᵀ and Y = L⁻¹ W: G = WᵀM⁻¹W = YᵀY (a Gram matrix: symmetric and positive
 /// semidefinite by construction, also in floating point up to rounding of each entry) and
 /// M⁻¹W = L⁻ᵀ Y. Where M is not diagonal and that solve is off by more than rounding (cond(M)·ε),
-/// M⁻¹W is refined and G recomputed from it.
+/// M⁻¹W is refined and G recomputed from it. `factor`, where given, is pb.M's already.
 template <int MaxDofs, int MaxContacts>
 void build_contact_space_general(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
                                  bool with_tangential, ContactSpaceT<MaxDofs, MaxContacts>& cs,
-                                 HeldContacts held = HeldContacts::approaching) {
+                                 HeldContacts held = HeldContacts::approaching,
+                                 const CholeskyT<MaxDofs>* factor = nullptr) {
   constexpr bool small = MaxDofs != Dynamic;
   const int n = pb.dofs(), c = pb.contacts();
   cs.dofs = n;
   cs.contacts = c;
   cs.tangential = with_tangential && pb.has_tangential();
-  cs.llt.compute(pb.M);
+  if (factor)
+    cs.llt = *factor;
+  else
+    cs.llt.compute(pb.M);
   cs.index.resize(c);
   cs.D_N.resize(c);
   cs.D_T.resize(pb.has_tangential() ? c : 0);
@@ -335,6 +339,26 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   if constexpr (MaxDofs != Dynamic)
     if (contact_space_detail::build_diagonal(pb, with_tangential, cs, held)) return;
   build_contact_space_general(pb, with_tangential, cs, held);
+}
+
+/// build_contact_space for a problem with the configuration (M, W_N, W_T) of the one `of` was
+/// built from, w_N or q̇_A aside: M's factor is taken from `of`, and every contact's own Delassus
+/// entries where `of` has them (the same numbers, to the last bit).
+template <int MaxDofs, int MaxContacts>
+void build_contact_space_like(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
+                              const ContactSpaceT<MaxDofs, MaxContacts>& of,
+                              ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+  cs.self_ready = false;
+  cs.kappa = of.kappa;
+  if constexpr (MaxDofs != Dynamic)
+    if (contact_space_detail::build_diagonal(pb, with_tangential, cs, HeldContacts::approaching))
+      return;
+  build_contact_space_general(pb, with_tangential, cs, HeldContacts::approaching, &of.llt);
+  if (of.self_ready && !cs.self_ready) {
+    cs.self_N = of.self_N;
+    cs.self_T = of.self_T;
+    cs.self_ready = true;
+  }
 }
 
 /// A new q̇_A on the configuration `cs` was built from (M, W and w unchanged since): every

@@ -328,10 +328,14 @@ void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& 
     st.residual = classical_residual(pb, cs, law, out);
   st.P = s.P;
   st.P_C = s.P_C;
-  if (!(st.residual <= options.tolerance))  // the floors, on this failure path only
+  // An answer that drives a contact cs does not hold is beyond rounding and beyond repair.
+  const bool driven = !velocities && !(st.residual <= options.tolerance) &&
+                      drives_unheld_contact(pb, cs, out, options);
+  if (driven)
+    st.beyond_rounding = st.residual;
+  else if (!(st.residual <= options.tolerance))  // the floors, on this failure path only
     classical_residual(pb, cs, law, out, &st.beyond_rounding, velocities != nullptr);
-  if (!velocities && !(st.residual <= options.tolerance) &&
-      !drives_unheld_contact(pb, cs, out, options)) {
+  if (!velocities && !driven && !(st.residual <= options.tolerance)) {
     if (!(st.beyond_rounding <= options.tolerance)) refine_in_mode(pb, cs, law, options, st, out);
     if (!(st.residual <= options.tolerance)) mode_in_velocities(pb, cs, law, options, st, out);
   }
@@ -491,12 +495,14 @@ void fill_best(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                ImpactResultT<N, C>& out) {
   bool tried[classical::kMaxSolutions] = {};
   const int first = most_dissipative(lo, tried);
+  int settled = -1;
   for (int k = first; k >= 0; k = most_dissipative(lo, tried)) {
     tried[k] = true;
     settle_solution(pb, cs, law, options, lo, k, out);
+    settled = k;
     if (out.solver.status == SolverStatus::converged && all_finite(out)) return;
   }
-  settle_solution(pb, cs, law, options, lo, first, out);
+  if (settled != first) settle_solution(pb, cs, law, options, lo, first, out);
   if (!all_finite(out)) fill_failure(pb, cs, law, lo, out, true);
 }
 

@@ -2,13 +2,13 @@
 # and, past its limit, stops with exit status 6 and nothing on stdout. A bad limit is refused.
 source "$(dirname "$0")/check_common.bash" "$1"
 
-# 400 contacts on 800 dofs, dense random directions, Newton + Coulomb: Lemke (forced: automatic
-# would take the sparse path from 64 contacts on) runs about 6 s on this
-# machine (and fails, which does not matter here).
+# 600 contacts on 1,200 dofs, dense random directions, Newton + Coulomb: Lemke (forced: automatic
+# would take the sparse path from 64 contacts on) runs about 5 s on this machine (and fails,
+# which does not matter here).
 "$PY" - "$TMP/big.json" <<'PYEOF'
 import json, random, sys
 random.seed(1)
-c, n = 400, 800
+c, n = 600, 1200
 W_N = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
 W_T = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
 M = [[1.0 if i == j else 0.0 for j in range(n)] for i in range(n)]
@@ -21,7 +21,7 @@ PYEOF
 rc=$?
 [ "$rc" -eq 6 ] && pass || fail "exit status $rc, expected 6: $(cat "$TMP/err")"
 [ ! -s "$TMP/out" ] && pass || fail "printed on stdout: $(head -c 200 "$TMP/out")"
-grep -qF "still solving after 1 s (400 contacts, 800 dofs, newton_coulomb" "$TMP/err" && pass ||
+grep -qF "still solving after 1 s (600 contacts, 1200 dofs, newton_coulomb" "$TMP/err" && pass ||
   fail "no note after 1 s: $(cat "$TMP/err")"
 grep -qF "error: no answer within --time-limit 1.5 s" "$TMP/err" && pass ||
   fail "no message at the limit: $(cat "$TMP/err")"

@@ -98,7 +98,7 @@ bool group_problem(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs
     sub.w_N(i) = group(k) == g ? w : w - 2.0 * cs.D_N(i) + cs.v_scale;
     if (!std::isfinite(sub.w_N(i))) return false;
   }
-  build_contact_space(sub, tangential_rows(law), gcs);
+  build_contact_space_like(sub, tangential_rows(law), cs, gcs);
   return gcs.active == members;
 }
 
@@ -202,6 +202,12 @@ template <int N, int C>
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     clear_result(r);
     solve_law_stage(sub, gcs, law, options, r, ws);
+    // The contacts' own Delassus entries, once a group's residual has them, serve the next groups.
+    if (gcs.self_ready && !cs.self_ready) {
+      cs.self_N = gcs.self_N;
+      cs.self_T = gcs.self_T;
+      cs.self_ready = true;
+    }
     const SolverStatus s = r.solver.status;
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
         s == SolverStatus::not_run)
