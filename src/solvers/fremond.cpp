@@ -372,6 +372,13 @@ enum class Parallel { no, to_rounding, exactly };
 /// and q + f = x_j y_i).
 template <class X, class Y>
 Parallel parallelism(const X& x, const Y& y, double relative) {
+  // Lagrange's identity: the minors' squares sum to |x|²|y|² − (x·y)². Where that exceeds, beyond
+  // its rounding (1e-12 of |x|²|y|²), what minors each within `relative` of |x||y| can sum to,
+  // one minor is not: an O(n) answer for the pairs of a pile's contacts, most of them far from
+  // parallel. Overflow or underflow (NaN, 0) leave the answer to the minors.
+  const double xx = x.squaredNorm(), yy = y.squaredNorm(), xy = x.dot(y);
+  const double pairs = 0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size() - 1);
+  if (xx * yy - xy * xy > (pairs * relative * relative + 1e-12) * (xx * yy)) return Parallel::no;
   const double size = x.norm() * y.norm();
   bool exactly = true;
   for (Eigen::Index i = 0; i < x.size(); ++i)
