@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fremond/fremond.hpp"
@@ -111,14 +112,13 @@ void BM_Sparse_Pile(benchmark::State& state) {
 // The same pile handed over dense (solve_impact's dense path, its contact space and chain): what
 // a user of dense M and W pays beside the sparse form. Its contacts in separate groups approach
 // alone first; the answer drives separating ones, and the pile is solved again on every contact.
-void BM_Dense_Pile(benchmark::State& state) {
+void BM_Dense_Pile(benchmark::State& state, const ImpactLaw& law) {
   const SparseImpactProblem sparse = pile_of(state);
   ImpactProblem pb;
   pb.M = Eigen::MatrixXd(sparse.M);
   pb.W_N = Eigen::MatrixXd(sparse.W_N);
   pb.W_T = Eigen::MatrixXd(sparse.W_T);
   pb.qdot_A = sparse.qdot_A;
-  const ImpactLaw law = ImpactLaw::newton_coulomb(0.0, 0.5);
   ImpactResult r;
   for (auto _ : state) {
     r = solve_impact(pb, law);  // the dense default: to 1e-9
@@ -197,11 +197,16 @@ const bool registered = [] {
     benchmark::RegisterBenchmark("BM_Sparse_Bed", BM_Sparse_Pile)
         ->Args({columns, kBedLayers})
         ->Unit(benchmark::kMillisecond);
-  for (const int side : pile_sides())
-    if (side <= 6)
-      benchmark::RegisterBenchmark("BM_Dense_Pile", BM_Dense_Pile)
-          ->Args({side, side})
-          ->Unit(benchmark::kMillisecond);
+  const std::pair<const char*, ImpactLaw> dense_laws[] = {
+      {"newton_coulomb", ImpactLaw::newton_coulomb(0.0, 0.5)},
+      {"fremond_coulomb", ImpactLaw::fremond_coulomb(PowerPotential(1.0, 2.0), 0.5)}};
+  for (const auto& [name, law] : dense_laws)
+    for (const int side : pile_sides())
+      if (side <= 6)
+        benchmark::RegisterBenchmark(("BM_Dense_Pile/" + std::string(name)).c_str(), BM_Dense_Pile,
+                                     law)
+            ->Args({side, side})
+            ->Unit(benchmark::kMillisecond);
 #ifdef FREMOND_HAVE_SICONOS
   // The dense form beyond 703 contacts costs Siconos seconds a solve (a bed of 1,020: one run).
   for (const int side : pile_sides())
