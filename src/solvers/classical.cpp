@@ -292,12 +292,6 @@ void report_solution(const SolverOptions& options, const LawOutcome<C>& lo, cons
   }
 }
 
-// One solution of the law written into `out` and settled: within the tolerance, or within the
-// rounding of the contact velocities' own terms (criterion `rounding`: a grazing contact of a
-// spinning body cannot be resolved below the rounding of the terms its D_NA is summed from); else
-// repaired in its mode, then in velocities. `velocities` (and Poisson's `compression_velocities`),
-// where given, are the solution's q̇_E (q̇_C) solved with its percussions
-// (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
 // True when `r` drives a contact that cs does not hold (a separating one) into its obstacle
 // beyond the rounding that G = WᵀM⁻¹W carries (16ε cond(M), as velocity_rounding allows): the
 // repairs and the later stages of the chain, which solve cs's rows again more accurately, leave
@@ -312,6 +306,12 @@ bool drives_unheld_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N
   return drives_a_separating_contact(pb, r, options, rounding);
 }
 
+// One solution of the law written into `out` and settled: within the tolerance, or within the
+// rounding of the contact velocities' own terms (criterion `rounding`: a grazing contact of a
+// spinning body cannot be resolved below the rounding of the terms its D_NA is summed from); else
+// repaired in its mode, then in velocities. `velocities` (and Poisson's `compression_velocities`),
+// where given, are the solution's q̇_E (q̇_C) solved with its percussions
+// (classical_velocity_mode.hpp): kept as they are, the percussions allowed their rounding.
 template <int N, int C>
 void settle_solution(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const RestitutionLaw& law, const SolverOptions& options,
