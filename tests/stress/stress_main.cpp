@@ -582,8 +582,11 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
                   perturbed = true;
                 }
             }
-          const auto sz =
-              perturbed ? ref::fremond_coulomb_near(qz, normal, mu, PN, PT) : ref::Solution{};
+          // Unperturbed data have no other solution to offer (a default Solution is `ok`, with
+          // no velocities to compare).
+          ref::Solution sz;
+          sz.ok = false;
+          if (perturbed) sz = ref::fremond_coulomb_near(qz, normal, mu, PN, PT);
           if (!sz.ok) {
             out.line(
                 "R mismatch 0\tno exact solution of Frémond + Coulomb near the library's answer "
