@@ -9,10 +9,11 @@ source "$(dirname "$0")/check_common.bash" "$1"
 import json, random, sys
 random.seed(1)
 c, n = 600, 1200
-W_N = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
-W_T = [[random.gauss(0, 1) for _ in range(c)] for _ in range(n)]
-M = [[1.0 if i == j else 0.0 for j in range(n)] for i in range(n)]
-q = [random.gauss(0, 1) for _ in range(n)]
+# Four decimals: a file of 16 MB rather than 37, to write and to read.
+W_N = [[round(random.gauss(0, 1), 4) for _ in range(c)] for _ in range(n)]
+W_T = [[round(random.gauss(0, 1), 4) for _ in range(c)] for _ in range(n)]
+M = [[1 if i == j else 0 for j in range(n)] for i in range(n)]
+q = [round(random.gauss(0, 1), 4) for _ in range(n)]
 json.dump({"M": M, "W_N": W_N, "W_T": W_T, "qdot_A": q,
            "law": {"type": "newton_coulomb", "e": 0.5, "mu": 0.5}}, open(sys.argv[1], "w"))
 PYEOF
