@@ -341,6 +341,17 @@ void build_contact_space(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool wi
   build_contact_space_general(pb, with_tangential, cs, held);
 }
 
+/// Every contact's own Delassus entries (self_delassus()) of `from` given to `to`, where `from`
+/// has them and `to` not: two contact spaces of one configuration (M, W_N, W_T).
+template <int MaxDofs, int MaxContacts>
+void share_self_delassus(const ContactSpaceT<MaxDofs, MaxContacts>& from,
+                         const ContactSpaceT<MaxDofs, MaxContacts>& to) {
+  if (!from.self_ready || to.self_ready) return;
+  to.self_N = from.self_N;
+  to.self_T = from.self_T;
+  to.self_ready = true;
+}
+
 /// build_contact_space for a problem with the configuration (M, W_N, W_T) of the one `of` was
 /// built from, w_N or q̇_A aside: M's factor is taken from `of`, and every contact's own Delassus
 /// entries where `of` has them (the same numbers, to the last bit).
@@ -354,11 +365,7 @@ void build_contact_space_like(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bo
     if (contact_space_detail::build_diagonal(pb, with_tangential, cs, HeldContacts::approaching))
       return;
   build_contact_space_general(pb, with_tangential, cs, HeldContacts::approaching, &of.llt);
-  if (of.self_ready && !cs.self_ready) {
-    cs.self_N = of.self_N;
-    cs.self_T = of.self_T;
-    cs.self_ready = true;
-  }
+  share_self_delassus(of, cs);
 }
 
 /// A new q̇_A on the configuration `cs` was built from (M, W and w unchanged since): every

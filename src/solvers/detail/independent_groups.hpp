@@ -202,12 +202,7 @@ template <int N, int C>
     if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
     clear_result(r);
     solve_law_stage(sub, gcs, law, options, r, ws);
-    // The contacts' own Delassus entries, once a group's residual has them, serve the next groups.
-    if (gcs.self_ready && !cs.self_ready) {
-      cs.self_N = gcs.self_N;
-      cs.self_T = gcs.self_T;
-      cs.self_ready = true;
-    }
+    share_self_delassus(gcs, cs);  // once a group's residual has them, for the next groups
     const SolverStatus s = r.solver.status;
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
         s == SolverStatus::not_run)
