@@ -207,7 +207,6 @@ inline SolverOptions options_for(SolverMethod m, double tol) {
   SolverOptions s;
   s.method = m;
   s.tolerance = tol;
-  s.nlopt_tolerance = std::max(tol, s.nlopt_tolerance);
   return s;
 }
 

@@ -207,7 +207,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   for (int i = 0; i < c; ++i)
     if (r.takes_part(i)) v_scale = std::max({v_scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
   const double solved_to =
-      r.solver.method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
+      r.solver.method == SolverMethod::nlopt ? options.nlopt_accepts() : options.tolerance;
   // Nor below how well the energies P·z themselves are known: z carries the rounding of forming
   // it (`rounding`, 16ε Σ|G_jk P_k| when G is ill-conditioned), which at velocities near 1e-10 is
   // above the relative tolerance times T_A, and the solver's stopping tolerance (NLopt's 1e-9 of

@@ -1001,7 +1001,7 @@ void write_outcome(const MethodOutcome& o, double residual, SolverMethod m, doub
   // A method that stopped on FremondRows::converged's rounding floors has a residual above the
   // tolerance: say so by the criterion (SolverStatus::converged's second clause), so "converged"
   // never hides a residual above tolerance.
-  const double promised = m == SolverMethod::nlopt ? opt.nlopt_tolerance : opt.tolerance;
+  const double promised = m == SolverMethod::nlopt ? opt.nlopt_accepts() : opt.tolerance;
   if (o.status == SolverStatus::converged && !(out.solver.residual <= promised))
     out.solver.criterion = StopCriterion::rounding;
 }

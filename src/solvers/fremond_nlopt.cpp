@@ -271,7 +271,7 @@ MethodOutcome nlopt_velocity_space(const ImpactProblemT<N, C>& pb, const Fremond
     if (!y0.allFinite()) y0.setZero();  // u = 0 (no percussion) is finite, if not feasible
     for (int i = 0; i < n; ++i) x[i] = y0(i);
   }
-  const double target = opt.nlopt_tolerance * cs.v_scale;
+  const double target = opt.nlopt_accepts() * cs.v_scale;
   // The percussion from the velocities, and the law's residual there.
   auto recover = [&](const VectorX& u, VectorX& Pout) {
     const VectorX z = DA + W.transpose() * u;

@@ -15,8 +15,8 @@ bool SolverOptions::is_valid(std::string* why) const {
   using detail::format_number;
   if (!(tolerance >= 1e-16 && tolerance <= 1e-2))
     return fail("tolerance: must lie in [1e-16, 1e-2], got " + format_number(tolerance));
-  if (!(nlopt_tolerance >= tolerance && nlopt_tolerance <= 1e-2))
-    return fail("nlopt_tolerance: must lie in [tolerance, 1e-2], got " +
+  if (!(nlopt_tolerance >= 1e-16 && nlopt_tolerance <= 1e-2))
+    return fail("nlopt_tolerance: must lie in [1e-16, 1e-2], got " +
                 format_number(nlopt_tolerance));
   if (max_iterations < 1)
     return fail("max_iterations: must be >= 1, got " + std::to_string(max_iterations));

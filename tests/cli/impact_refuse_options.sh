@@ -8,6 +8,15 @@ expect_refusal "--tolerance too large" "--tolerance" "must lie in [1e-16, 1e-2],
   --tolerance 1 "$DATA/fremond_point.json"
 expect_refusal "--tolerance zero" "--tolerance" "must lie in [1e-16, 1e-2], got 0" \
   --tolerance 0 "$DATA/fremond_point.json"
+# Every tolerance of the range is taken, the loose ones too (NLopt's own threshold follows it).
+for tol in 1e-2 1e-8; do
+  run_impact --tolerance "$tol" --method nlopt "$DATA/fremond_point.json"
+  expect_status "--tolerance $tol accepted" 0
+  check_json "--tolerance $tol: NLopt's answer within it" "
+assert d['solver']['status'] == 'converged', d['solver']
+assert d['solver']['residual'] <= $tol, d['solver']
+"
+done
 # A bad option is refused even when the input would be refused too: the options come first.
 expect_refusal "--method before bad input" "--method" "unknown value" --method x - <<<'[1]'
 

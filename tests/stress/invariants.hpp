@@ -69,7 +69,7 @@ double kinetic_distance(const ImpactProblemT<N, C>& pb, const Vec& qdot, const R
 
 /// The tolerance a converged result promises for its method.
 inline double promised_tolerance(const SolverOptions& options, SolverMethod method) {
-  return method == SolverMethod::nlopt ? options.nlopt_tolerance : options.tolerance;
+  return method == SolverMethod::nlopt ? options.nlopt_accepts() : options.tolerance;
 }
 
 template <int N, int C>

@@ -150,7 +150,7 @@ void run_case(const SmallImpactProblem& p, const FremondLawSpec& spec, bool nlop
     // `tolerance`: where the law is flat near the answer (p = 10 and a small z_N) the distance to
     // the answer is up to ~1/(1 − rate) times that residual, so its bound is 100 × tolerance.
     double bound = allowed;
-    if (r.solver.method == SolverMethod::nlopt) bound = std::max(allowed, 4 * opt.nlopt_tolerance);
+    if (r.solver.method == SolverMethod::nlopt) bound = std::max(allowed, 4 * opt.nlopt_accepts());
     if (r.solver.method == SolverMethod::proximal) bound = std::max(allowed, 100 * opt.tolerance);
     const std::string why = check_result(p, ref, r, bound);
     if (!why.empty()) {

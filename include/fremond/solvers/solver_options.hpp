@@ -21,7 +21,9 @@ struct SolverOptions {
   /// Range [1e-16, 1e-2].
   double tolerance = 1e-13;
   /// Relative residual accepted from the NLopt fallback (SLSQP on the velocity-space problem),
-  /// which cannot reach Newton's tolerance on non-smooth potentials. Range [tolerance, 1e-2].
+  /// which cannot reach Newton's tolerance on non-smooth potentials: NLopt's answer is accepted
+  /// at nlopt_accepts() = max(nlopt_tolerance, tolerance), so that a looser `tolerance` alone
+  /// loosens it too. Range [1e-16, 1e-2].
   double nlopt_tolerance = 1e-9;
   /// Newton iterations (semismooth, scalar). Range ≥ 1.
   int max_iterations = 100;
@@ -40,6 +42,9 @@ struct SolverOptions {
   /// contacts; solve_impact_all goes to 4) and set `unique` from it. Costs a few more solves; off
   /// leaves `unique` as the solver's cheap sufficient test.
   bool check_uniqueness = true;
+
+  /// The relative residual at which an NLopt answer is accepted: max(nlopt_tolerance, tolerance).
+  double nlopt_accepts() const { return nlopt_tolerance > tolerance ? nlopt_tolerance : tolerance; }
 
   /// True when every option is within its range; otherwise false with the reason in *why.
   bool is_valid(std::string* why = nullptr) const;
