@@ -38,13 +38,14 @@ constexpr EnumNames<SolverMethod, 11> kMethods{
      {SolverMethod::nlopt, "nlopt"},
      {SolverMethod::impulse_integration, "impulse_integration"},
      {SolverMethod::nsgs, "nsgs"}}};
-constexpr EnumNames<StopCriterion, 7> kCriteria{{{StopCriterion::none, "none"},
+constexpr EnumNames<StopCriterion, 8> kCriteria{{{StopCriterion::none, "none"},
                                                  {StopCriterion::exact, "exact"},
                                                  {StopCriterion::residual, "residual"},
                                                  {StopCriterion::step, "step"},
                                                  {StopCriterion::iterations, "iterations"},
                                                  {StopCriterion::nlopt, "nlopt"},
-                                                 {StopCriterion::rounding, "rounding"}}};
+                                                 {StopCriterion::rounding, "rounding"},
+                                                 {StopCriterion::data, "data"}}};
 constexpr EnumNames<Inequality, 8> kInequalities{
     {{Inequality::none, "none"},
      {Inequality::total_15, "total_15"},

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/detail/validate.hpp"
@@ -59,8 +60,9 @@ class Lines {
     fail(text);
   }
 
-  // The whitespace-separated numbers of a line.
-  std::vector<double> numbers(std::string_view line) const {
+  // The whitespace-separated numbers of a line; `values`: the data's numbers, whose significant
+  // digits are counted (take_digits).
+  std::vector<double> numbers(std::string_view line, bool values = false) {
     std::vector<double> out;
     std::size_t i = 0;
     while (true) {
@@ -69,6 +71,7 @@ class Lines {
       auto j = line.find_first_of(" \t\r", i);
       if (j == std::string_view::npos) j = line.size();
       out.push_back(number(line.substr(i, j - i)));
+      if (values) digits_ = std::max(digits_, significant_digits(line.substr(i, j - i)));
       i = j;
     }
     return out;
@@ -93,6 +96,8 @@ class Lines {
            "], got '" + std::string(token) + "'");
     return static_cast<int>(v);
   }
+  // The most significant digits of a value read since the last call (0: none read).
+  int take_digits() { return std::exchange(digits_, 0); }
   // A line holding one integer.
   int integer_line(long long lo, long long hi, const std::string& what) {
     const std::string_view line = next(what);
@@ -105,7 +110,7 @@ class Lines {
     std::vector<double> out;
     out.reserve(static_cast<std::size_t>(std::min(count, 1 << 16)));
     while (static_cast<int>(out.size()) < count) {
-      const auto v = numbers(next(what));
+      const auto v = numbers(next(what), true);
       if (out.size() + v.size() > static_cast<std::size_t>(count))
         fail(what + " must have " + std::to_string(count) + " numbers, got more");
       out.insert(out.end(), v.begin(), v.end());
@@ -114,10 +119,35 @@ class Lines {
   }
 
  private:
+  // The digits of a number's mantissa from its first non-zero one: "-0.000113414" 6, "2.0" 2.
+  static int significant_digits(std::string_view token) {
+    int count = 0;
+    bool started = false;
+    for (const char ch : token) {
+      if (ch == 'e' || ch == 'E') break;
+      if (ch < '0' || ch > '9') continue;
+      started = started || ch != '0';
+      if (started) ++count;
+    }
+    return count;
+  }
+
   std::string_view text_;
   std::size_t pos_ = 0;
   int number_ = 0;
+  int digits_ = 0;
 };
+
+// How well numbers printed with at most `digits` significant digits are known, relative to each:
+// half a unit of the last digit, at most 5·10^-digits. Fewer than 6 (printf's %g) are taken as
+// written by hand, exact.
+double printed_rounding(int digits) {
+  if (digits < 6) return 0.0;
+  const std::string text = "5e-" + std::to_string(digits);  // the decimal, correctly rounded
+  double v = 0.0;
+  std::from_chars(text.data(), text.data() + text.size(), v);
+  return v;
+}
 
 // Rows, columns, non-zeros: far beyond any planar problem file (Siconos's largest: 14,004 rows).
 constexpr long long kLargest = 10000000;
@@ -178,7 +208,7 @@ SparseMatrix matrix(Lines& in, const std::string& what) {
         continue;
       }
       const auto idx = in.numbers(left);
-      const auto val = in.numbers(line.substr(colon + 1));
+      const auto val = in.numbers(line.substr(colon + 1), true);
       if (val.size() != 1 || idx.size() != (triplet ? 2u : 1u) || (!triplet && column < 0))
         in.fail(what + ": expected an entry '" + std::string(triplet ? "i j" : "i") + " : value'");
       const double i = idx[0], j = triplet ? idx[1] : column;
@@ -251,7 +281,11 @@ SiconosProblem parse_siconos_file(std::string_view text) {
   const int c = in.integer_line(1, kLargest / 2, "the number of contacts");
   const int rows = 2 * c;
   SiconosProblem out;
+  in.take_digits();
   const SparseMatrix first = matrix(in, "the first matrix");
+  // The digits each number of the local form's G and q is printed with (Siconos's own files:
+  // G's sparse print 6 significant digits, q 25).
+  const int first_digits = in.take_digits();
   if (next_is_matrix(in)) {
     out.form = SiconosProblem::Form::global;
     const int n = static_cast<int>(first.rows());
@@ -278,7 +312,9 @@ SiconosProblem parse_siconos_file(std::string_view text) {
               " (two rows a contact), got " + std::to_string(first.rows()) + "x" +
               std::to_string(first.cols()));
     out.contact.G = first;
+    out.contact.G_rounding = printed_rounding(first_digits);
     out.contact.D_A = in.vector(rows, "q");
+    out.contact.D_A_rounding = printed_rounding(in.take_digits());
     out.contact.tangential = true;
   }
   const Eigen::VectorXd mu = in.vector(c, "mu");

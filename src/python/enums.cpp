@@ -32,9 +32,10 @@ void bind_enums(py::module_& m) {
                 A::velocity_newton_end, A::normal_rows, A::sweeps_end},
                &attempt_start_from_string);
   using C = StopCriterion;
-  bind_enum<C>(m, "StopCriterion", doc::kStopCriterion,
-               {C::none, C::exact, C::residual, C::step, C::iterations, C::nlopt, C::rounding},
-               &stop_criterion_from_string);
+  bind_enum<C>(
+      m, "StopCriterion", doc::kStopCriterion,
+      {C::none, C::exact, C::residual, C::step, C::iterations, C::nlopt, C::rounding, C::data},
+      &stop_criterion_from_string);
   using I = Inequality;
   bind_enum<I>(m, "Inequality", doc::kInequality,
                {I::none, I::total_15, I::per_contact_15, I::reaction_17, I::dissipation_19,

@@ -45,15 +45,22 @@ void bind_sparse(py::module_& m) {
       m, "ContactProblem",
       "An impact in contact coordinates: D_E = D_A + G P, rows grouped by contact (normal, "
       "tangent) (docs/sparse.md).")
-      .def(py::init([](const SparseMatrix& G, const Eigen::VectorXd& D_A, bool tangential) {
-             ContactProblem p{G, D_A, tangential};
+      .def(py::init([](const SparseMatrix& G, const Eigen::VectorXd& D_A, bool tangential,
+                       double G_rounding, double D_A_rounding) {
+             ContactProblem p{G, D_A, tangential, G_rounding, D_A_rounding};
              validate(p);
              return p;
            }),
-           py::arg("G"), py::arg("D_A"), py::arg("tangential") = true)
+           py::arg("G"), py::arg("D_A"), py::arg("tangential") = true, py::arg("G_rounding") = 0.0,
+           py::arg("D_A_rounding") = 0.0)
       .def_readonly("G", &ContactProblem::G)
       .def_readonly("D_A", &ContactProblem::D_A)
       .def_readonly("tangential", &ContactProblem::tangential)
+      .def_readonly("G_rounding", &ContactProblem::G_rounding,
+                    "How well G's numbers are known, relative to each (5e-6 for 6 printed "
+                    "significant digits; 0: exact in double precision)")
+      .def_readonly("D_A_rounding", &ContactProblem::D_A_rounding,
+                    "How well D_A's numbers are known, relative to each")
       .def("contacts", &ContactProblem::contacts);
 
   auto options = py::class_<SparseSolverOptions>(

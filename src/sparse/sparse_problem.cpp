@@ -147,6 +147,13 @@ void validate(const ContactProblem& problem) {
   require_finite("G", problem.G);
   require_finite("D_A", problem.D_A);
   require_symmetric("G", problem.G, 1e-6);
+  for (const auto& [name, value] : {std::pair{"G_rounding", problem.G_rounding},
+                                    std::pair{"D_A_rounding", problem.D_A_rounding}})
+    if (!(value >= 0.0 && value <= 1e-2))
+      throw InvalidArgument(name,
+                            "must lie in [0, 1e-2] (the relative rounding of the numbers "
+                            "as given), got " +
+                                detail::format_number(value));
   const int step = problem.tangential ? 2 : 1;
   for (int i = 0; i < problem.contacts(); ++i) {
     const double a = problem.G.coeff(step * i, step * i);

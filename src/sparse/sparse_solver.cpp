@@ -30,11 +30,15 @@ Layout layout_of(const ContactProblem& pb, const RestitutionLaw& law) {
     e.push_back(law.e[i]);
     mu.push_back(law.coulomb ? law.mu[i] : 0.0);
   }
-  return detail::layout(pb.G, pb.D_A, pb.tangential, law.coulomb, e, mu);
+  Layout L = detail::layout(pb.G, pb.D_A, pb.tangential, law.coulomb, e, mu);
+  L.G_rounding = pb.G_rounding;
+  L.D_A_rounding = pb.D_A_rounding;
+  return L;
 }
 
 // The certificate of a classical law in contact coordinates (docs/concepts.md): (15) in sum and
-// per contact, and non-penetration, each to how well the energies and velocities are known.
+// per contact, and non-penetration, each to how well the energies and velocities are known (their
+// rounding, and the data's where the problem's numbers were given with fewer digits).
 void certify(const Layout& L, const Measure& m, ImpactResult& r, double kinetic_A,
              const SparseSolverOptions& options) {
   auto& rep = r.admissibility;
@@ -55,7 +59,8 @@ void certify(const Layout& L, const Measure& m, ImpactResult& r, double kinetic_
       worst_value = pc;
       worst = i;
     }
-    const double rounding = std::max(m.rounding(row), L.step == 2 ? m.rounding(row + 1) : 0.0);
+    auto known = [&m](int j) { return m.rounding(j) + (m.data.size() ? m.data(j) : 0.0); };
+    const double rounding = std::max(known(row), L.step == 2 ? known(row + 1) : 0.0);
     const double dz = std::max(rounding, std::max(8 * kEps, 2 * options.tolerance) * L.v_scale);
     energy_rounding += (std::fabs(r.P_N(i)) + std::fabs(r.P_T(i))) * dz;
     const double dv = std::max(rounding, std::max(8 * kEps, options.tolerance) * L.v_scale);

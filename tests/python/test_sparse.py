@@ -59,6 +59,15 @@ def test_siconos_file():
     assert r.ok() and r.solver.residual <= 1e-10
     assert f.contact_residual(p.contact, p.law(), r) <= 1e-10
     assert min(r.P_N) >= 0
+    # G printed with 6 significant digits, q with 25: each known to half a unit of its last digit.
+    assert p.contact.G_rounding == 5e-6 and p.contact.D_A_rounding == 5e-25
+    exact = f.ContactProblem(p.contact.G, p.contact.D_A)
+    assert exact.G_rounding == 0.0 and exact.D_A_rounding == 0.0
+    try:
+        f.ContactProblem(p.contact.G, p.contact.D_A, G_rounding=0.5)
+        raise AssertionError("accepted")
+    except ValueError as e:
+        assert "G_rounding" in str(e)
 
 
 def test_refusals_name_the_value():

@@ -507,9 +507,9 @@ namespace {
 // Every stopping criterion has a name the CLI and the bindings print and read back; an unknown
 // name is refused naming the accepted ones.
 TEST(ApiValidation, StopCriterionNamesRoundTrip) {
-  for (StopCriterion c :
-       {StopCriterion::none, StopCriterion::exact, StopCriterion::residual, StopCriterion::step,
-        StopCriterion::iterations, StopCriterion::nlopt, StopCriterion::rounding})
+  for (StopCriterion c : {StopCriterion::none, StopCriterion::exact, StopCriterion::residual,
+                          StopCriterion::step, StopCriterion::iterations, StopCriterion::nlopt,
+                          StopCriterion::rounding, StopCriterion::data})
     EXPECT_EQ(stop_criterion_from_string(to_string(c)), c) << to_string(c);
   EXPECT_EQ(to_string(StopCriterion::rounding), "rounding");
   EXPECT_THROW((void)stop_criterion_from_string("roundoff"), InvalidArgument);

@@ -41,6 +41,26 @@ TEST(SiconosFile, ReadsTheLocalFormDense) {
   EXPECT_EQ(p.law().name(), "newton_coulomb");
 }
 
+// Numbers as Siconos prints them: G sparse with 6 significant digits (CSparse's %g), q and μ with
+// 25: each known to half a unit of its last digit, 5e-6 and 5e-25 of itself at most. Numbers of
+// fewer than 6 digits are taken as written by hand, exact.
+TEST(SiconosFile, TakesTheNumbersAsKnownToTheirPrintedDigits) {
+  const char* printed =
+      "2\n1\n2\n2\n2\n2\nCSparse Version 3.1.9\n2-by-2, nzmax: 3 nnz: 3, 1-norm: 1\n"
+      "    col 0 : locations 0 to 1\n      0 : 814.288\n      1 : -1.60499e-06\n"
+      "    col 1 : locations 2 to 2\n      1 : 2476.5\n"
+      "-1.000000000000000000000000e+00 2.500000000000000000000000e-01\n"
+      "5.000000000000000000000000e-01\n";
+  const SiconosProblem p = parse_siconos_file(printed);
+  EXPECT_EQ(p.contact.G.coeff(1, 0), -1.60499e-06);
+  EXPECT_EQ(p.contact.G_rounding, 5e-6);
+  EXPECT_EQ(p.contact.D_A_rounding, 5e-25);
+  const SiconosProblem by_hand = parse_siconos_file(kDenseLocal);
+  EXPECT_EQ(by_hand.contact.G_rounding, 0.0);
+  EXPECT_EQ(by_hand.contact.D_A_rounding, 0.0);
+  EXPECT_EQ(parse_siconos_file(kSparseLocal).contact.G_rounding, 0.0);
+}
+
 TEST(SiconosFile, ReadsTheLocalFormSparse) {
   const SiconosProblem p = parse_siconos_file(kSparseLocal);
   ASSERT_EQ(p.contacts(), 2);

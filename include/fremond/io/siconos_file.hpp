@@ -18,7 +18,11 @@ struct SiconosProblem {
     global,  ///< impact: M, W = H (columns per contact), w = b, q̇_A = M⁻¹ q.
   };
   Form form = Form::local;
-  ContactProblem contact;      ///< the local form, validated.
+  /// The local form, validated. Its G_rounding and D_A_rounding follow the digits the file prints
+  /// G's and q's numbers with: p, the most significant digits of any of them, gives 5·10⁻ᵖ
+  /// (Siconos's own files print G sparse with 6, q with 25); numbers of fewer than 6 digits are
+  /// taken as written by hand, exact (0).
+  ContactProblem contact;
   SparseImpactProblem impact;  ///< the global form, validated.
   std::vector<double> mu;      ///< Coulomb's coefficient of each contact.
 

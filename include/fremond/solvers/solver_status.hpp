@@ -53,6 +53,9 @@ enum class StopCriterion {
              ///< the rounding of forming it, and within 1e-6 of the velocity scale (the
              ///< classical laws: each contact's terms within 16ε (|w| + |W_i|ᵀ(|q̇_A| +
              ///< |q̇_E|)), classical_residual); the reported residual is then above tolerance.
+  data,  ///< converged as far as the problem's numbers are known (sparse problems read from
+         ///< files, ContactProblem::G_rounding): the sweeps stalled with each contact's
+         ///< residual within what the data's digits leave undetermined of its velocities.
 };
 
 std::string_view to_string(SolverStatus s);

@@ -56,14 +56,17 @@ Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::Vector
 }
 
 void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P, Measure& m) {
-  m.residual = m.excess = m.squares = 0.0;
+  m.residual = m.excess = m.data_excess = m.squares = 0.0;
   const int rows = static_cast<int>(D_A.size());
+  const bool data = L.has_data_rounding();
   m.D_E.resize(rows);
   m.rounding.resize(rows);
+  m.data.resize(data ? rows : 0);
   for (int j = 0; j < rows; ++j) {
     double size = 0.0;
     m.D_E(j) = D_A(j) + row_times(L.G, j, P, &size);
     m.rounding(j) = 16 * kEps * (std::fabs(D_A(j)) + size);
+    if (data) m.data(j) = L.G_rounding * size + L.D_A_rounding * std::fabs(D_A(j));
   }
   for (int i = 0; i < L.contacts; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -74,6 +77,7 @@ void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd&
     const double RN = std::min(wN, PN == 0.0 ? 0.0 : A.a * PN);
     double R = std::fabs(RN);
     double floor = m.rounding(r);
+    double data_floor = data ? m.data(r) : 0.0;
     m.squares += 0.5 * RN * RN;
     if (L.step == 2) {
       const double PT = P(r + 1), vT = m.D_E(r + 1);
@@ -84,9 +88,11 @@ void measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd&
       R = std::max(R, std::fabs(RT));
       m.squares += 0.5 * RT * RT;
       floor = std::max(floor, m.rounding(r + 1));
+      if (data) data_floor = std::max(data_floor, m.data(r + 1));
     }
     m.residual = std::max(m.residual, R);
     m.excess = std::max(m.excess, R - floor);
+    m.data_excess = std::max(m.data_excess, R - floor - data_floor);
   }
 }
 

@@ -27,8 +27,12 @@ struct Layout {
   /// entries, a Newton step an n × n factorisation instead of one of its unknowns
   /// (velocity_factors).
   Eigen::MatrixXd W, X;
+  /// How well G's and D_A's numbers are known (ContactProblem::G_rounding, D_A_rounding); 0 for
+  /// numbers formed in double precision. Set by the caller; lay_out leaves them.
+  double G_rounding = 0.0, D_A_rounding = 0.0;
 
   bool has_velocity_factors() const { return X.size() != 0; }
+  bool has_data_rounding() const { return G_rounding > 0.0 || D_A_rounding > 0.0; }
 };
 
 /// The layout of G (rows grouped by contact: with `tangential`, row 2i contact i's normal and
@@ -61,12 +65,16 @@ inline double row_times(const RowMajorMatrix& G, int row, const Eigen::VectorXd&
   return sum;
 }
 
-/// The law's residual at P: D_E = D_A + G P, each row's rounding 16ε (|D_A| + Σ|G P|).
+/// The law's residual at P: D_E = D_A + G P, each row's rounding 16ε (|D_A| + Σ|G P|), and,
+/// where the layout has data rounding, what the data leave undetermined of it,
+/// G_rounding Σ|G P| + D_A_rounding |D_A|.
 struct Measure {
   double residual = 0.0;          ///< max |R|, velocity units
   double excess = 0.0;            ///< max (|R| − rounding of its rows)
+  double data_excess = 0.0;       ///< max (|R| − rounding − data rounding of its rows)
   double squares = 0.0;           ///< ½ Σ R² over the rows: the mode Newton's merit
   Eigen::VectorXd D_E, rounding;  ///< rows
+  Eigen::VectorXd data;           ///< rows: the data rounding; empty without it
 };
 
 Measure measure(const Layout& L, const Eigen::VectorXd& D_A, const Eigen::VectorXd& P);

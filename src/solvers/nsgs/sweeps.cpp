@@ -144,6 +144,15 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       best = m.residual;
       best_at = sweeps;
     } else if (sweeps - best_at >= kStallSweeps) {
+      // Stalled within what the data's own digits leave undetermined: as exact as the data.
+      if (L.has_data_rounding() && m.data_excess <= target) {
+        out.status = SolverStatus::converged;
+        out.criterion = StopCriterion::data;
+        out.message =
+            "each contact's residual is within the rounding of the problem's numbers as given "
+            "(G_rounding, D_A_rounding); the sweeps no longer reduce it";
+        break;
+      }
       out.status = SolverStatus::stalled;
       out.criterion = StopCriterion::step;
       out.message = "the sweeps no longer reduce the residual";
