@@ -127,6 +127,21 @@ ContactProblem detail::contact_form(const SparseImpactProblem& problem, const Sp
       throw InvalidArgument("qdot_A",
                             "the contact velocity of row " + std::to_string(j) +
                                 " overflows double precision; express the problem in other units");
+  // The sweeps divide by each contact's own W_Nᵀ M⁻¹ W_N, and read every entry of G.
+  for (int k = 0; k < out.G.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(out.G, k); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw InvalidArgument(it.col() % step == 0 ? "W_N" : "W_T",
+                              "contact " + std::to_string(it.col() / step) +
+                                  ": Wᵀ M⁻¹ W overflows double precision; express the problem in "
+                                  "other units");
+  for (int i = 0; i < c; ++i)
+    if (!(out.G.coeff(step * i, step * i) > 0.0))
+      throw InvalidArgument("W_N", "contact " + std::to_string(i) +
+                                       ": its column gives W_Nᵀ M⁻¹ W_N = " +
+                                       detail::format_number(out.G.coeff(step * i, step * i)) +
+                                       " (a zero column, or one below double precision): no "
+                                       "percussion moves the contact");
   return out;
 }
 

@@ -164,6 +164,17 @@ TEST(SparseSolver, RefusesBadInputNamingIt) {
   bad.W_T.resize(9, 2);
   EXPECT_EQ(name([&] { solve_impact(bad, law); }), "W_T");
   EXPECT_EQ(name([&] { solve_impact(pb, ImpactLaw::newton(PerContact({0.1, 0.2}))); }), "law.e");
+  // A contact that no percussion moves (a zero normal column), and Delassus entries that overflow.
+  Eigen::MatrixXd columns = Eigen::MatrixXd(pb.W_N);
+  columns.col(1).setZero();
+  bad = pb;
+  bad.W_N = sparse(columns);
+  EXPECT_EQ(name([&] { solve_impact(bad, law); }), "W_N");
+  columns = Eigen::MatrixXd(pb.W_T) * 1e160;
+  bad = pb;
+  bad.W_T = sparse(columns);
+  bad.qdot_A.setZero();
+  EXPECT_EQ(name([&] { solve_impact(bad, ImpactLaw::newton_coulomb(0.0, 0.5)); }), "W_T");
   ContactProblem cp = contact_problem(pb);
   cp.D_A.conservativeResize(5);
   EXPECT_EQ(name([&] { solve_contact_problem(cp, law); }), "D_A");

@@ -115,6 +115,7 @@ double sweep_with(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& 
       change = std::max(change, A.a * std::fabs(PN - old_N));
       rows.moved(r, PN - old_N);
       P(r) = PN;
+      if (!std::isfinite(PN)) return std::numeric_limits<double>::quiet_NaN();
       continue;
     }
     const ContactPercussion old{P(r), P(r + 1)};
@@ -128,6 +129,9 @@ double sweep_with(const Layout& L, const Eigen::VectorXd& D_A, Eigen::VectorXd& 
     rows.moved(r + 1, now.T - old.T);
     P(r) = now.N;
     P(r + 1) = now.T;
+    // A non-finite percussion ends the sweep as NaN, which std::max above would drop.
+    if (!std::isfinite(now.N) || !std::isfinite(now.T))
+      return std::numeric_limits<double>::quiet_NaN();
   }
   return change;
 }
