@@ -188,6 +188,22 @@ TEST(SparseSolver, RefusesBadInputNamingIt) {
   EXPECT_EQ(name([&] { solve_contact_problem(cp, law); }), "D_A_rounding");
 }
 
+// A Painlevé-like contact from fuzzing Siconos's reader (global form): W_N and W_T both along the
+// first degree of freedom, μ = 5.1, and an obstacle's tangential velocity 3e11 times the normal
+// one. The mode Newton once ended there with P_N = −0.64, "converged" at 1e-10 of that scale;
+// every answer keeps P_N ≥ 0, and a converged one meets the law to its tolerance.
+TEST(SparseSolver, NormalPercussionsStayNonNegative) {
+  const io::SiconosProblem file = io::parse_siconos_file(
+      "2\n1\n0\n2\n2\n2.7 0.5 0.5 1.0\n0\n2\n2\n4.0 0.0 0.8 0.0\n-2.\n30\n-5 333333333333\n5.1\n");
+  ASSERT_EQ(file.form, io::SiconosProblem::Form::global);
+  const ImpactResult r =
+      solve_impact(file.impact, file.law(), {.tolerance = 1e-10, .max_sweeps = 2000});
+  EXPECT_GE(r.P_N.minCoeff(), 0.0) << r.solver.message;
+  if (r.ok()) {
+    EXPECT_LE(contact_residual(contact_problem(file.impact), file.law(), r), 1e-10);
+  }
+}
+
 // --- Siconos's granular problems -------------------------------------------------------------
 // SiconosLarge: seconds in a Release build, minutes under the sanitizers (CI's sanitized share
 // leaves them to scripts/check-long.sh).

@@ -120,10 +120,25 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
       trial_m = m;
       const auto o = mode_newton(L, D_A, trial, trial_m, target, kModeNewtonSteps, ws.newton);
       newton_steps += o.steps;
+      // Normal percussions stay ≥ 0, as the sweeps keep them: a run's negative one (a wrong mode
+      // within the tolerance) is set to 0 and the residual measured again.
+      bool converged = o.converged;
+      if (converged) {
+        bool clipped = false;
+        for (int i = 0; i < L.contacts; ++i)
+          if (trial(L.step * i) < 0.0) {
+            trial(L.step * i) = 0.0;
+            clipped = true;
+          }
+        if (clipped) {
+          measure(L, D_A, trial, trial_m);
+          converged = trial_m.residual <= target || trial_m.excess <= target;
+        }
+      }
       log.record(SolverMethod::semismooth_newton, AttemptStart::sweeps_end,
-                 o.converged ? SolverStatus::converged : SolverStatus::stalled,
+                 converged ? SolverStatus::converged : SolverStatus::stalled,
                  trial_m.residual / L.v_scale);
-      if (o.converged) {
+      if (converged) {
         P.swap(trial);
         std::swap(m, trial_m);
         converge(true);
