@@ -281,7 +281,6 @@ SiconosProblem parse_siconos_file(std::string_view text) {
   const int c = in.integer_line(1, kLargest / 2, "the number of contacts");
   const int rows = 2 * c;
   SiconosProblem out;
-  in.take_digits();
   const SparseMatrix first = matrix(in, "the first matrix");
   // The digits each number of the local form's G and q is printed with (Siconos's own files:
   // G's sparse print 6 significant digits, q 25).
