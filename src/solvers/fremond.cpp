@@ -379,7 +379,7 @@ Parallel parallelism(const X& x, const Y& y, double relative) {
   const double xx = x.squaredNorm(), yy = y.squaredNorm(), xy = x.dot(y);
   const double pairs = 0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size() - 1);
   if (xx * yy - xy * xy > (pairs * relative * relative + 1e-12) * (xx * yy)) return Parallel::no;
-  const double size = x.norm() * y.norm();
+  const double size = std::sqrt(xx) * std::sqrt(yy);  // x.norm() y.norm()
   bool exactly = true;
   for (Eigen::Index i = 0; i < x.size(); ++i)
     for (Eigen::Index j = i + 1; j < x.size(); ++j) {

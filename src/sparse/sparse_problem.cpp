@@ -136,12 +136,12 @@ ContactProblem detail::contact_form(const SparseImpactProblem& problem, const Sp
                                   ": Wᵀ M⁻¹ W overflows double precision; express the problem in "
                                   "other units");
   for (int i = 0; i < c; ++i)
-    if (!(out.G.coeff(step * i, step * i) > 0.0))
-      throw InvalidArgument("W_N", "contact " + std::to_string(i) +
-                                       ": its column gives W_Nᵀ M⁻¹ W_N = " +
-                                       detail::format_number(out.G.coeff(step * i, step * i)) +
-                                       " (a zero column, or one below double precision): no "
-                                       "percussion moves the contact");
+    if (const double a = out.G.coeff(step * i, step * i); !(a > 0.0))
+      throw InvalidArgument("W_N",
+                            "contact " + std::to_string(i) +
+                                ": its column gives W_Nᵀ M⁻¹ W_N = " + detail::format_number(a) +
+                                " (a zero column, or one below double precision): no "
+                                "percussion moves the contact");
   return out;
 }
 

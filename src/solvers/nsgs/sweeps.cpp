@@ -30,6 +30,8 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
                              const SweepOptions& options, AttemptStart first, SolverReport& log,
                              SweepWorkspace& ws) {
   const double target = options.tolerance * L.v_scale;
+  // Within tolerance, or each contact within the rounding of its rows.
+  auto meets = [target](const Measure& x) { return x.residual <= target || x.excess <= target; };
   Measure& m = ws.measure;  // valid once `measured`
   bool measured = false;
   Eigen::VectorXd& velocities = ws.velocities;
@@ -101,7 +103,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
     }
     measure(L, D_A, P, m);
     measured = true;
-    if (m.residual <= target || m.excess <= target) {
+    if (meets(m)) {
       converge(false);
       break;
     }
@@ -132,7 +134,7 @@ SweepOutcome solve_by_sweeps(const Layout& L, const Eigen::VectorXd& D_A, Eigen:
           }
         if (clipped) {
           measure(L, D_A, trial, trial_m);
-          converged = trial_m.residual <= target || trial_m.excess <= target;
+          converged = meets(trial_m);
         }
       }
       log.record(SolverMethod::semismooth_newton, AttemptStart::sweeps_end,
