@@ -179,6 +179,21 @@ template void validate(const ImpactProblemT<Dynamic, Dynamic>&);
 template void validate(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::validate_shapes(const ImpactProblemT<Dynamic, Dynamic>&);
 template void detail::validate_shapes(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
+template <int N, int C>
+detail::VelocityBounds::VelocityBounds(const ImpactProblemT<N, C>& pb) {
+  m_abs_sum = pb.M.cwiseAbs().sum();
+  w_col_sum = 0.0;
+  w_abs_max = 0.0;
+  for (Eigen::Index j = 0; j < pb.W_N.cols(); ++j) {
+    w_col_sum = std::max(w_col_sum, pb.W_N.col(j).cwiseAbs().sum());
+    if (pb.W_T.cols() != 0) w_col_sum = std::max(w_col_sum, pb.W_T.col(j).cwiseAbs().sum());
+  }
+  if (pb.w_N.size() != 0) w_abs_max = std::max(w_abs_max, pb.w_N.cwiseAbs().maxCoeff());
+  if (pb.w_T.size() != 0) w_abs_max = std::max(w_abs_max, pb.w_T.cwiseAbs().maxCoeff());
+}
+
+template detail::VelocityBounds::VelocityBounds(const ImpactProblemT<Dynamic, Dynamic>&);
+template detail::VelocityBounds::VelocityBounds(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::validate_velocity(const ImpactProblemT<Dynamic, Dynamic>&);
 template void detail::validate_velocity(const ImpactProblemT<kSmallDofs, kSmallContacts>&);
 template void detail::require_positive_definite(const MatT<Dynamic, Dynamic>&,

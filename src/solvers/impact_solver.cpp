@@ -23,11 +23,15 @@ namespace detail {
 /// meanwhile (its storage reused from one call to the next).
 template <int N, int C>
 void set_validated_velocity(const Eigen::Ref<const Eigen::VectorXd>& v, ImpactProblemT<N, C>& pb,
-                            VecT<N>& previous) {
+                            const VelocityBounds& bounds, VecT<N>& previous) {
   if (v.size() != pb.dofs())
     throw InvalidArgument("qdot_A", "must have " + std::to_string(pb.dofs()) +
                                         " entries (one per degree of freedom), got " +
                                         std::to_string(v.size()));
+  if (bounds.admit(v)) {
+    pb.qdot_A = v;
+    return;
+  }
   previous = pb.qdot_A;
   pb.qdot_A = v;
   try {
@@ -45,6 +49,7 @@ struct PreparedStage {
   ContactSpaceT<N, C> cs;
   ChainWorkspace ws{.persistent = true, .sweeps = std::nullopt};
   ImpactResultT<N, C> out;
+  VelocityBounds bounds;  // of the configuration: most q̇_A need no further test
 
   /// validate(pb) and its contact space on every contact: a Delassus entry that overflows is
   /// refused now, for every q̇_A to come, rather than at the solve where its contact approaches.
@@ -54,6 +59,7 @@ struct PreparedStage {
     options.validate();
     build_contact_space(pb, tangential_rows(law), cs, HeldContacts::every);
     require_positive_definite(pb.M, cs.llt);
+    bounds = VelocityBounds(pb);
     clear_result(out);
   }
 
@@ -78,7 +84,7 @@ struct PreparedWorkspace {
   ImpactProblemT<N, C>& editable() { return stage.pb; }
   void prepare(const ImpactLaw& law, const SolverOptions& options) { stage.prepare(law, options); }
   void set_velocity(const Eigen::Ref<const Eigen::VectorXd>& v) {
-    set_validated_velocity(v, stage.pb, previous);
+    set_validated_velocity(v, stage.pb, stage.bounds, previous);
   }
   void solve(const ImpactLaw& law, const SolverOptions& options) {
     stage.solve(law, options, stage.out);
@@ -118,9 +124,9 @@ struct PreparedWorkspace<Dynamic, Dynamic> {
   // Eigen's temporaries).
   void set_velocity(const Eigen::Ref<const Eigen::VectorXd>& v) {
     if (small)
-      set_validated_velocity(v, small_stage.pb, small_previous);
+      set_validated_velocity(v, small_stage.pb, small_stage.bounds, small_previous);
     else
-      set_validated_velocity(v, stage.pb, previous);
+      set_validated_velocity(v, stage.pb, stage.bounds, previous);
     pb.qdot_A = v;
   }
   void solve(const ImpactLaw& law, const SolverOptions& options) { solve_into(law, options, out); }

@@ -235,6 +235,46 @@ TEST(ImpactSolver, BadVelocityIsRefusedAndThePreviousOneKept) {
   EXPECT_EQ(first_difference(small.solve(), to_small(expected)), "");
 }
 
+// The solver admits most velocities by bounds of its configuration and tests the rest as
+// solve_impact does: near where the kinetic energy overflows (|q̇| about 1e154 on the bar), both
+// accept and refuse the same velocities, with the same answers.
+TEST(ImpactSolver, VelocitiesNearOverflowAreJudgedAsSolveImpactJudgesThem) {
+  const ImpactProblem pb = to_dynamic(bar_first_impact(true));
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 1.0);
+  ImpactSolver solver(pb, law);
+  SmallImpactSolver small(to_small(pb), law);
+  int accepted = 0, refused = 0;
+  for (double s : {1.0, 1e100, 1e149, 1e150, 1e151, 1e152, 1e153, 1e154, 1e155, 1e160, 1e200}) {
+    ImpactProblem p = pb;
+    p.qdot_A = Eigen::Vector3d(0.3 * s, -s, 0.1 * s);
+    bool one_shot_refuses = false;
+    ImpactResult expected;
+    try {
+      expected = solve_impact(p, law);
+    } catch (const InvalidArgument&) {
+      one_shot_refuses = true;
+    }
+    for (bool use_small : {false, true}) {
+      bool prepared_refuses = false;
+      try {
+        if (use_small) {
+          EXPECT_EQ(first_difference(to_dynamic(small.solve(p.qdot_A)), expected), "") << s;
+        } else {
+          EXPECT_EQ(first_difference(solver.solve(p.qdot_A), expected), "") << s;
+        }
+      } catch (const InvalidArgument& e) {
+        prepared_refuses = true;
+        EXPECT_EQ(e.name(), "qdot_A") << e.what();
+      }
+      EXPECT_EQ(prepared_refuses, one_shot_refuses) << "|qdot_A| = " << s;
+    }
+    (one_shot_refuses ? refused : accepted) += 1;
+  }
+  // Both sides of the boundary were tried, the bounds' own limit (1e150) among the accepted.
+  EXPECT_GE(accepted, 6);
+  EXPECT_GE(refused, 3);
+}
+
 TEST(ImpactSolver, BadConfigurationIsRefusedAndThePreviousOneKept) {
   const ImpactProblem pb = to_dynamic(bar_first_impact(true));
   const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 1.0);
