@@ -1,6 +1,7 @@
-// The accurate sums of accurate_residual (core/detail/accurate_dot.hpp), with a second build of
-// the loop for processors with AVX2 and FMA, chosen at run time. This file is compiled without
-// floating-point contraction: a contracted s + a·x would no longer be TwoSum's rounded sum.
+// The accurate sums of accurate_residual and accurate_dot (core/detail/accurate_dot.hpp), with a
+// second build of each loop for processors with FMA (and AVX2), chosen at run time. This file is
+// compiled without floating-point contraction: a contracted s + a·x would no longer be TwoSum's
+// rounded sum.
 #include <cmath>
 #include <cstddef>
 
@@ -33,11 +34,35 @@ template <bool Fma>
   }
 }
 
+// Dot2 (Ogita, Rump and Oishi), accurate_dot's loop; the fma is an instruction in the build for
+// FMA processors and where the compiler targets them, else a library call.
+[[gnu::always_inline]] inline double dot2(const double* x, std::ptrdiff_t incx, const double* y,
+                                          std::ptrdiff_t incy, Eigen::Index n, double extra) {
+  double s = extra, c = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double a = x[i * incx], b = y[i * incy];
+    const double p = a * b;
+    const double ep = std::fma(a, b, -p);  // p + ep = a b exactly
+    const double t = s + p;
+    const double z = t - s;
+    const double es = (s - (t - z)) + (p - z);  // t + es = s + p exactly (TwoSum)
+    s = t;
+    c += ep + es;
+  }
+  // Overflow (|W| near 1e308): the error terms are ∞ − ∞; the plain sum says what overflowed.
+  const double r = s + c;
+  return std::isfinite(r) ? r : s;
+}
+
 #if defined(__x86_64__) && !defined(__FMA__)
 #define FREMOND_FMA_AT_RUN_TIME 1
 [[gnu::target("avx2,fma")]] void multiply_add_fma(const double* M, std::ptrdiff_t ld, int n, int m,
                                                   const double* x, double* s, double* e) {
   multiply_add<true>(M, ld, n, m, x, s, e);
+}
+[[gnu::target("fma")]] double dot2_fma(const double* x, std::ptrdiff_t incx, const double* y,
+                                       std::ptrdiff_t incy, Eigen::Index n, double extra) {
+  return dot2(x, incx, y, incy, n, extra);
 }
 #endif
 
@@ -54,6 +79,14 @@ void accurate_multiply_add(const double* M, std::ptrdiff_t ld, int n, int m, con
 #endif
   accurate_multiply_add_portable(M, ld, n, m, x, s, e);
 #endif
+}
+
+double accurate_dot_strided(const double* x, std::ptrdiff_t incx, const double* y,
+                            std::ptrdiff_t incy, Eigen::Index n, double extra) {
+#ifdef FREMOND_FMA_AT_RUN_TIME
+  if (__builtin_cpu_supports("fma")) return dot2_fma(x, incx, y, incy, n, extra);
+#endif
+  return dot2(x, incx, y, incy, n, extra);
 }
 
 void accurate_multiply_add_portable(const double* M, std::ptrdiff_t ld, int n, int m,

@@ -111,4 +111,42 @@ TEST(AccurateResidual, HugeEntriesTakeTheSafePath) {
   check(M, X, B, "huge", 0);
 }
 
+// Dot2 written out with std::fma, one term after the other (Ogita, Rump and Oishi, algorithm Dot2):
+// the reference accurate_dot's loop, chosen at run time (FMA instructions where the processor has
+// them), must match bit for bit on rows with their stride and on columns, cancelling sums and
+// overflowing ones included.
+double dot2_reference(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double extra) {
+  double s = extra, c = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    const double p = x(i) * y(i), ep = std::fma(x(i), y(i), -p);
+    const double t = s + p, z = t - s, es = (s - (t - z)) + (p - z);
+    s = t;
+    c += ep + es;
+  }
+  const double r = s + c;
+  return std::isfinite(r) ? r : s;
+}
+
+TEST(AccurateDot, MatchesDot2WrittenOutBitForBit) {
+  std::mt19937 gen(31);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 12;
+    Eigen::MatrixXd M(n + 2, n);
+    Eigen::VectorXd x(n);
+    fill(M, gen, trial % 2 ? 8.0 : 1.0);
+    fill(x, gen, trial % 2 ? 8.0 : 1.0);
+    double extra = -(M.row(1) * x)(0);                   // the sum cancels to its rounding
+    if (trial % 50 == 49) M(1, 0) = 1e300, x(0) = 1e10;  // the product overflows
+    const double got = accurate_dot(M.row(1), x, extra);
+    const double want = dot2_reference(M.row(1).transpose(), x, extra);
+    if (std::isnan(want)) {
+      EXPECT_TRUE(std::isnan(got)) << trial;
+      continue;
+    }
+    ASSERT_EQ(got, want) << trial;
+    ASSERT_EQ(accurate_dot(M.col(0), M.col(n - 1)), dot2_reference(M.col(0), M.col(n - 1), 0.0))
+        << trial;
+  }
+}
+
 }  // namespace

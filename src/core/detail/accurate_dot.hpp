@@ -14,26 +14,28 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 namespace fremond::detail {
 
-/// x·y + extra, with the products and the sum error-free transformed (TwoProduct by fma, TwoSum).
-/// Both vectors are Eigen expressions of the same size.
+/// accurate_dot on n doubles x[i·incx], y[i·incy] (accurate_multiply_add.cpp): on a processor
+/// with FMA instructions their loop, chosen at run time, else std::fma (a library call each in
+/// the portable build); the same bits either way, since fma is exactly rounded in both.
+double accurate_dot_strided(const double* x, std::ptrdiff_t incx, const double* y,
+                            std::ptrdiff_t incy, Eigen::Index n, double extra);
+
+/// x·y + extra, with the products and the sum error-free transformed (TwoProduct by fma, TwoSum):
+/// accurate_dot_strided on two Eigen vectors of the same size whose doubles lie in memory
+/// (columns, rows, vectors, maps).
 template <class X, class Y>
 double accurate_dot(const X& x, const Y& y, double extra = 0.0) {
-  double s = extra, c = 0.0;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    const double p = x(i) * y(i);
-    const double ep = std::fma(x(i), y(i), -p);  // p + ep = x_i y_i exactly
-    const double t = s + p;
-    const double z = t - s;
-    const double es = (s - (t - z)) + (p - z);  // t + es = s + p exactly (TwoSum)
-    s = t;
-    c += ep + es;
-  }
-  // Overflow (|W| near 1e308): the error terms are ∞ − ∞; the plain sum says what overflowed.
-  const double r = s + c;
-  return std::isfinite(r) ? r : s;
+  static_assert((Eigen::internal::traits<X>::Flags & Eigen::DirectAccessBit) &&
+                    (Eigen::internal::traits<Y>::Flags & Eigen::DirectAccessBit) &&
+                    std::is_same_v<typename X::Scalar, double> &&
+                    std::is_same_v<typename Y::Scalar, double>,
+                "accurate_dot reads doubles in memory: evaluate an expression first");
+  return accurate_dot_strided(x.data(), x.innerStride(), y.data(), y.innerStride(), x.size(),
+                              extra);
 }
 
 /// The rounding error of the product p = a·b (p + e = a·b exactly, barring underflow). With an
