@@ -19,8 +19,9 @@ namespace detail {
 
 /// pb.q̇_A = v where v is valid for pb's configuration (validate_velocity); else pb is left as it
 /// was and InvalidArgument names `qdot_A`. The size is tested before any copy, so that a
-/// stack-stored problem never holds more than it has room for; `previous` keeps the old q̇_A
-/// meanwhile (its storage reused from one call to the next).
+/// stack-stored problem never holds more than it has room for; a v within the configuration's
+/// `bounds` needs no further test; otherwise `previous` keeps the old q̇_A while validate_velocity
+/// runs (its storage reused from one call to the next).
 template <int N, int C>
 void set_validated_velocity(const Eigen::Ref<const Eigen::VectorXd>& v, ImpactProblemT<N, C>& pb,
                             const VelocityBounds& bounds, VecT<N>& previous) {
