@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "classical_support.hpp"
 #include "fremond/fremond.hpp"
@@ -229,6 +230,41 @@ TEST(SeparatingContacts, DensePilesAgreeWithTheirSparseSolve) {
       EXPECT_GE(stopped, 5);
     }
   }
+}
+
+// A leaving contact whose W_N is so large that its Delassus entry overflows (|W|²/|M| = 1e320):
+// M = I, W_N = [(0, 1), (1e160, −10)], q̇_A = (3e−160, −2), so D_NA = (−2, 23). With φ_N = 0
+// (the reaction alone) the arriving contact's answer is P = 2, q̇_E = (3e−160, 0), and the
+// leaving one stays at D_NE = 3. A given P = 3 instead drives it to 23 − 30 = −7: its row's
+// residual is 7/2 against 1/2 of the arriving row's, scaled by the largest |D_A|, 23. The same
+// problem with the leaving column 1e150 (its entries finite) is the second method.
+TEST(SeparatingContacts, ALeavingContactWhoseDelassusEntryOverflowsIsJudgedByItsVelocity) {
+  ImpactProblem pb;
+  pb.M = Eigen::Matrix2d::Identity();
+  pb.W_N.resize(2, 2);
+  pb.W_N << 0.0, 1e160, 1.0, -10.0;
+  pb.qdot_A = Eigen::Vector2d(3e-160, -2.0);
+  ImpactProblem twin = pb;
+  twin.W_N(0, 1) = 1e150;
+  twin.qdot_A(0) = 3e-150;
+  const ImpactLaw law = ImpactLaw::fremond(PowerPotential(0.0, 2.0));
+
+  const ImpactResult r = solve_impact(pb, law);
+  ASSERT_TRUE(r.ok()) << r.solver.message;
+  EXPECT_EQ(r.P_N(0), 2.0);
+  EXPECT_EQ(r.P_N(1), 0.0);
+  EXPECT_EQ(r.D_NE(1), 3.0);
+  EXPECT_EQ(law_residual(pb, law, r), 0.0);
+
+  ImpactResult driven = r;
+  driven.P_N(0) = 3.0;
+  const double expected = 3.5 / 23.0;
+  EXPECT_DOUBLE_EQ(law_residual(pb, law, driven), expected);
+  EXPECT_DOUBLE_EQ(law_residual(twin, law, driven), expected);
+
+  ImpactResult loaded = r;  // a percussion on the leaving contact moves q̇ beyond double precision
+  loaded.P_N(1) = 1.0;
+  EXPECT_EQ(law_residual(pb, law, loaded), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
