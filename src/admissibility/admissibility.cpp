@@ -3,6 +3,7 @@
 #include "fremond/admissibility/admissibility.hpp"
 
 #include "admissibility/detail/admissibility.hpp"
+#include "admissibility/detail/certificate_steps.hpp"
 #include "core/detail/cholesky.hpp"
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
@@ -196,99 +197,26 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.per_contact.setZero(c);
     return rep;
   }
-  rep.kinetic_energy_A = kinetic_energy(pb.M, pb.qdot_A);
-  rep.energy_change = r.energy_change;
-  // An energy X is "negative" when X < −tol with tol relative to T_A (never below the rounding of
-  // T_A itself, so that a velocity-level answer exact to rounding always passes).
-  const double eps = std::numeric_limits<double>::epsilon();
-  rep.tolerance = std::max(options.admissibility_tolerance, 64 * eps) *
-                  std::max(rep.kinetic_energy_A, std::numeric_limits<double>::min());
-  double v_scale = std::numeric_limits<double>::min();
+  CertificateFrame f(law, options, r.solver.method, kinetic_energy(pb.M, pb.qdot_A));
   for (int i = 0; i < c; ++i)
-    if (r.takes_part(i)) v_scale = std::max({v_scale, std::fabs(r.D_NA(i)), std::fabs(r.D_TA(i))});
-  const double solved_to =
-      r.solver.method == SolverMethod::nlopt ? options.nlopt_accepts() : options.tolerance;
-  // Nor below how well the energies P·z themselves are known: z carries the rounding of forming
-  // it (`rounding`, 16ε Σ|G_jk P_k| when G is ill-conditioned), which at velocities near 1e-10 is
-  // above the relative tolerance times T_A, and the solver's stopping tolerance (NLopt's 1e-9 of
-  // the velocities moves P·z by 1e-9 of itself, above 1e-9·T_A when P·z is about T_A).
-  double energy_rounding = 0.0;
-  for (int i = 0; i < c; ++i) {
-    const double dz = std::max(rounding.size() == c ? rounding(i) : 0.0,
-                               std::max(8 * eps, 2 * solved_to) * v_scale);
-    energy_rounding += (std::fabs(r.P_N(i)) + std::fabs(r.P_T(i))) * dz;
-  }
-  rep.tolerance = std::max(rep.tolerance, energy_rounding);
-
+    f.add_scales(r.takes_part(i), r.D_NA(i), r.D_TA(i), r.P_N(i), r.P_T(i));
   rep.per_contact.setZero(c);
-  double p_scale = 0.0;
-  for (int i = 0; i < c; ++i)
-    p_scale = std::max({p_scale, std::fabs(r.P_N(i)), std::fabs(r.P_T(i))});
-  const double energy = p_scale * v_scale;  // the impact's energy scale
-  // A law with terms of its own (Frémond's: the reaction apart, (16), (17), (19), Fenchel-Young).
-  const bool own_terms = law.visit([](const auto& l) { return has_certificate_terms(l); });
-  // A law whose contacts pass energy to one another (Stronge's on coupled contacts: a blow runs
-  // along a chain) is held to (15) in total, not contact by contact.
-  const bool each_contact = law.visit([](const auto& l) {
-    if constexpr (requires { l.shares_energy_between_contacts; })
-      return !l.shares_energy_between_contacts;
-    else
-      return true;
-  });
-  double reaction = 0.0, dissipation = 0.0, compl_viol = 0.0, pen = 0.0, fy = 0.0;
-  int worst_contact = -1;
-  double worst_contact_value = 0.0;
+  CertificateTally t;
   for (int i = 0; i < c; ++i) {
-    // Halved before the sum: velocities near the largest double (an obstacle's 1e308) have a
-    // finite mean whose sum overflows, and 0·∞ would make a separating contact's energy NaN.
-    const double zN = 0.5 * r.D_NA(i) + 0.5 * r.D_NE(i);
-    const double zT = 0.5 * r.D_TA(i) + 0.5 * r.D_TE(i);
-    // A work beyond the largest double is ±∞; where its two terms are infinite with opposite signs
-    // it is unknown, and counts as −∞: energy created, the answer not certified.
-    double pc = -(r.P_N(i) * zN + r.P_T(i) * zT);
-    if (std::isnan(pc)) pc = -std::numeric_limits<double>::infinity();
-    rep.per_contact(i) = pc;
-    // A separating contact's reaction does positive work on its own true mean velocity by the
-    // convention that holds it (docs/concepts.md): reported, and left to the total's check.
-    if (pc < worst_contact_value && r.takes_part(i)) {
-      worst_contact_value = pc;
-      worst_contact = i;
-    }
-    // Every contact takes part (docs/concepts.md): D_NE ≥ 0 for each, to how well D_NE is known
-    // (rounding, velocity_rounding, or the solver's tolerance).
-    const double dv =
-        std::max(rounding.size() == c ? rounding(i) : 0.0, std::max(8 * eps, solved_to) * v_scale);
-    pen = std::max(pen, std::max(0.0, -r.D_NE(i) - 2 * dv) / v_scale);
-    // A separating contact (D_NA > 0) carries the reaction alone, its law read with the velocity
-    // before the impact at min(D_NA, 0) = 0: the reaction's (17) is then −P_N D_NE/2, and no
-    // potential applies to it. Its (15) above keeps the true mean velocity (eq. 9).
-    const bool separating = !r.takes_part(i);
-    if (separating && r.P_N(i) == 0.0 && r.P_T(i) == 0.0) continue;  // undriven: nothing to add
-    // The law's own terms (its certificate_terms): Frémond's reaction, (16) and Fenchel-Young.
-    CertificateTerms t;
-    if (own_terms) {
-      const CertificateContact contact{
-          .separating = separating,
-          .zN = zN,
-          .zT = zT,
-          .P_N = r.P_N(i),
-          .P_T = r.P_T(i),
-          .D_NE = r.D_NE(i),
-          .D_TE = r.D_TE(i),
-          .P_N_reaction = r.P_N_reaction.size() == c ? r.P_N_reaction(i) : 0.0,
-          .rounding = rounding.size() == c ? rounding(i) : 0.0,
-          .percussion_floor = percussion && percussion->size() == c ? (*percussion)(i) : 0.0,
-          .solved_to = solved_to,
-          .v_scale = v_scale,
-          .p_scale = p_scale,
-          .g_max = g_max,
-          .energy = energy};
-      law.visit([&](const auto& l) { certificate_terms(l, i, contact, t); });
-    }
-    reaction += -t.reaction * (separating ? 0.5 * r.D_NE(i) : zN);
-    dissipation += -(r.P_N(i) - t.reaction) * zN - r.P_T(i) * zT;
-    compl_viol = std::max(compl_viol, t.complementarity);
-    fy = std::max(fy, t.fenchel_young);
+    const CertificateInput a{
+        .takes_part = r.takes_part(i) != 0,
+        .P_N = r.P_N(i),
+        .P_T = r.P_T(i),
+        .D_NA = r.D_NA(i),
+        .D_TA = r.D_TA(i),
+        .D_NE = r.D_NE(i),
+        .D_TE = r.D_TE(i),
+        .P_N_reaction = r.P_N_reaction.size() == c ? r.P_N_reaction(i) : 0.0,
+        .rounding = rounding.size() == c ? rounding(i) : 0.0,
+        .percussion_floor = percussion && percussion->size() == c ? (*percussion)(i) : 0.0,
+        .w_N = pb.w_N.size() ? pb.w_N(i) : 0.0,
+        .w_T = pb.w_T.size() ? pb.w_T(i) : 0.0};
+    rep.per_contact(i) = add_contact(f, law, i, a, g_max, t);
   }
   rep.total = rep.per_contact.sum();
   // Partial sums that overflow both ways (∞ − ∞): finite works are summed again scaled by 2⁻⁶⁰,
@@ -298,37 +226,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.total = rep.per_contact.allFinite()
                     ? std::ldexp((std::ldexp(1.0, -60) * rep.per_contact).sum(), 60)
                     : -std::numeric_limits<double>::infinity();
-  rep.reaction = reaction;
-  rep.dissipation = own_terms ? dissipation : rep.total;
-  rep.complementarity = compl_viol;
-  rep.penetration = pen;
-  rep.fenchel_young_gap = fy;
-
-  const double tol = rep.tolerance;
-  const double rel = std::max(options.admissibility_tolerance, 1e-12);
-  // (15) in sum once more, from the velocities: for fixed obstacles T_E − T_A = P·z (eq. 9), but
-  // P·z is known only to the percussions times the rounding of z, which can dwarf the energies
-  // (a stick held by percussions 1e19 times the velocities on cond(M) = 1e10: an allowance of
-  // 3e26 beside T_A = 1.5e6), while T_E − T_A = ½(q̇_E − q̇_A)ᵀM(q̇_E + q̇_A) is known to ε cond(M)
-  // times its terms (velocities made through M⁻¹ carry that). Where that is the sharper test, an
-  // energy gain beyond it fails (15) whatever P·z reads. Only on that path is cond(M) estimated
-  // (from M's Cholesky factor, as velocity_rounding does), so a certificate pays nothing for it
-  // otherwise. The allowance also holds the relative tolerance on T_A and the solver's tolerance
-  // on the impact's energy scale.
-  bool gains_energy = false;
-  const double base_allowed =
-      std::max(std::max(options.admissibility_tolerance, 64 * eps) *
-                   std::max(rep.kinetic_energy_A, std::numeric_limits<double>::min()),
-               2 * solved_to * energy);
-  // Eq. (9) needs fixed obstacles only where a percussion acts: a contact without one adds
-  // nothing to T_E − T_A, however its obstacle moves.
-  bool fixed_obstacles = true;
-  for (int i = 0; i < pb.w_N.size(); ++i)
-    fixed_obstacles = fixed_obstacles && (pb.w_N(i) == 0.0 || (r.P_N(i) == 0.0 && r.P_T(i) == 0.0));
-  for (int i = 0; i < pb.w_T.size(); ++i)
-    fixed_obstacles = fixed_obstacles && (pb.w_T(i) == 0.0 || (r.P_N(i) == 0.0 && r.P_T(i) == 0.0));
-  if (fixed_obstacles && base_allowed < tol && r.energy_change > base_allowed &&
-      std::isfinite(r.energy_change) && pb.M.rows() == pb.dofs() && pb.qdot_A.size() == pb.dofs()) {
+  // How far T_E − T_A is known from the velocities: ε cond(M) times its terms, cond(M) estimated
+  // from M's Cholesky factor, as velocity_rounding does.
+  auto energy_allowance = [&](double base_allowed) {
+    if (pb.M.rows() != pb.dofs() || pb.qdot_A.size() != pb.dofs()) return -1.0;
     double terms = 0.0;
     for (int i = 0; i < pb.dofs(); ++i) {
       double row = 0.0;
@@ -338,33 +239,10 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     }
     const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
     const double kappa = llt.info() == Eigen::Success ? condition_estimate(llt) : 0.0;
-    if (kappa > 0.0) {
-      const double allowed = std::max(base_allowed, 16 * eps * kappa * terms);
-      gains_energy = allowed < tol && r.energy_change > allowed;
-    }
-  }
-  auto fail = [&](Inequality what, double by, int contact = -1) {
-    rep.failed = what;
-    rep.violation = by;
-    rep.failed_contact = contact;
+    if (!(kappa > 0.0)) return -1.0;
+    return std::max(base_allowed, 16 * std::numeric_limits<double>::epsilon() * kappa * terms);
   };
-  if (!std::isfinite(rep.total) || rep.total < -tol)
-    fail(Inequality::total_15, rep.total);
-  else if (gains_energy)
-    fail(Inequality::total_15, -r.energy_change);
-  else if (each_contact && worst_contact >= 0 && worst_contact_value < -tol)
-    fail(Inequality::per_contact_15, worst_contact_value, worst_contact);
-  else if (own_terms && rep.reaction < -tol)
-    fail(Inequality::reaction_17, rep.reaction);
-  else if (own_terms && rep.dissipation < -tol)
-    fail(Inequality::dissipation_19, rep.dissipation);
-  else if (own_terms && compl_viol > rel)
-    fail(Inequality::complementarity_16, compl_viol);
-  else if (pen > rel)
-    fail(Inequality::non_penetration, pen);
-  else if (own_terms && fy > rel)
-    fail(Inequality::fenchel_young, fy);
-  rep.admissible = rep.failed == Inequality::none;
+  finish_certificate(f, t, r.energy_change, energy_allowance, rep);
   return rep;
 }
 
