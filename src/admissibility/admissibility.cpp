@@ -5,6 +5,7 @@
 #include "admissibility/detail/admissibility.hpp"
 #include "admissibility/detail/certificate_steps.hpp"
 #include "core/detail/cholesky.hpp"
+#include "fremond/core/error.hpp"
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "laws/fremond/rows.hpp"
@@ -259,7 +260,8 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
       return to_dynamic(check_admissibility(to_small(pb), law, to_small(r), options));
   }
   // The user's own result: form G as solve_impact does, for the velocities' rounding; data that
-  // cannot be factorised (M not positive definite) gets no rounding allowance.
+  // cannot be factorised (M not positive definite), or whose Delassus entries overflow (a
+  // separating contact given a percussion), gets no rounding allowance.
   VecT<C> rounding = VecT<C>::Zero(pb.contacts()), percussion = VecT<C>::Zero(pb.contacts());
   double g_max = 0.0;
   const bool shapes =
@@ -270,10 +272,15 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     // The contacts solve_impact held: every one where a separating contact carries a percussion.
     const bool every = detail::stops_a_separating_contact(r);
     detail::ContactSpaceT<N, C> cs;
-    detail::build_contact_space(
-        pb, law.has_friction(), cs,
-        every ? detail::HeldContacts::every : detail::HeldContacts::approaching);
-    if (cs.llt.info() == Eigen::Success) {
+    bool formed = true;
+    try {
+      detail::build_contact_space(
+          pb, law.has_friction(), cs,
+          every ? detail::HeldContacts::every : detail::HeldContacts::approaching);
+    } catch (const InvalidArgument&) {
+      formed = false;
+    }
+    if (formed && cs.llt.info() == Eigen::Success) {
       rounding = detail::velocity_rounding(cs, r, &percussion);
       g_max = detail::delassus_max(cs);
     }

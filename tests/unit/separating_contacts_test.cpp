@@ -265,6 +265,11 @@ TEST(SeparatingContacts, ALeavingContactWhoseDelassusEntryOverflowsIsJudgedByIts
   ImpactResult loaded = r;  // a percussion on the leaving contact moves q̇ beyond double precision
   loaded.P_N(1) = 1.0;
   EXPECT_EQ(law_residual(pb, law, loaded), std::numeric_limits<double>::infinity());
+  // Its certificate is still given, without the rounding allowance G would give: the leaving
+  // contact's work −P z = −(23 + 3)/2 is energy created, and (15) fails on it.
+  const auto rep = check_admissibility(pb, law, loaded);
+  EXPECT_FALSE(rep.admissible);
+  EXPECT_EQ(rep.per_contact(1), -13.0);
 }
 
 }  // namespace
