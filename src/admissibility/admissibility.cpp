@@ -5,6 +5,7 @@
 #include "admissibility/detail/admissibility.hpp"
 #include "admissibility/detail/certificate_steps.hpp"
 #include "core/detail/cholesky.hpp"
+#include "core/detail/sized_vector.hpp"
 #include "fremond/core/error.hpp"
 #include "laws/detail/plugins.hpp"
 #include "laws/detail/separating_contacts.hpp"
@@ -165,23 +166,95 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
   // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
-  const auto qE = r.qdot_E.cwiseAbs().eval();
-  const bool stored = qE.size() == cs.dofs;
+  const bool stored = r.qdot_E.size() == cs.dofs;
   const double g_max = percussion ? delassus_max(cs) : 0.0;
-  for (int j = 0; j < rows; ++j) {
-    const double GP = cs.G.row(j).cwiseAbs().dot(P.cwiseAbs());
-    const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * GP +
-                              (stored ? cs.W.col(j).cwiseAbs().dot(qE) : 0.0));
-    const int i = cs.index(j < cs.active ? j : j - cs.active);
-    out(i) = std::max(out(i), d);
-    if (percussion) {
-      // The stopping test's own τ_j and floor (fremond_rows.hpp).
-      const double tau = row_tau(cs.G(j, j), g_max);
-      const double floor = row_rounding_floor(cs.D_A(j), GP, tau, P(j), cs.v_scale);
-      (*percussion)(i) = std::max((*percussion)(i), floor / tau);
+  with_size<N>(cs.dofs, [&](auto size) {
+    constexpr int K = decltype(size)::value;
+    const int n = sized<K>(cs.dofs);
+    for (int j = 0; j < rows; ++j) {
+      double GP = 0.0, WqE = 0.0;
+      for (int k = 0; k < rows; ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P(k));
+      if (stored) {
+        const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(cs.W.rows()) * j;
+        for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
+      }
+      const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * GP + WqE);
+      const int i = cs.index(j < cs.active ? j : j - cs.active);
+      out(i) = std::max(out(i), d);
+      if (percussion) {
+        // The stopping test's own τ_j and floor (fremond_rows.hpp).
+        const double tau = row_tau(cs.G(j, j), g_max);
+        const double floor = row_rounding_floor(cs.D_A(j), GP, tau, P(j), cs.v_scale);
+        (*percussion)(i) = std::max((*percussion)(i), floor / tau);
+      }
     }
-  }
+  });
   return out;
+}
+
+/// How far T_E − T_A is known from the velocities (finish_certificate's energy_allowance):
+/// ε cond(M) times its terms, cond(M) estimated from M's Cholesky factor, as velocity_rounding
+/// does; −1 where M cannot say.
+template <int N, int C>
+double velocity_energy_allowance(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r,
+                                 double base_allowed) {
+  if (pb.M.rows() != pb.dofs() || pb.qdot_A.size() != pb.dofs()) return -1.0;
+  double terms = 0.0;
+  for (int i = 0; i < pb.dofs(); ++i) {
+    double row = 0.0;
+    for (int j = 0; j < pb.dofs(); ++j)
+      row += std::fabs(pb.M(i, j)) * (std::fabs(r.qdot_E(j)) + std::fabs(pb.qdot_A(j)));
+    terms += std::fabs(r.qdot_E(i) - pb.qdot_A(i)) * row;
+  }
+  const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
+  const double kappa = llt.info() == Eigen::Success ? condition_estimate(llt) : 0.0;
+  if (!(kappa > 0.0)) return -1.0;
+  return std::max(base_allowed, 16 * std::numeric_limits<double>::epsilon() * kappa * terms);
+}
+
+template <int N, int C>
+AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                          const ImpactResultT<N, C>& r,
+                                          const SolverOptions& options,
+                                          const ContactSpaceT<N, C>& cs) {
+  // velocity_rounding's sums for the contact's rows, in its order.
+  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
+  const int rows = cs.rows();
+  const double P[2] = {r.P_N(0), cs.tangential ? r.P_T(0) : 0.0};
+  const double rounding = with_size<N>(cs.dofs, [&](auto size) {
+    const int n = sized<decltype(size)::value>(cs.dofs);
+    double worst = 0.0;
+    for (int j = 0; j < rows; ++j) {
+      double GP = 0.0, WqE = 0.0;
+      for (int k = 0; k < rows; ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P[k]);
+      const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(n) * j;
+      for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
+      worst = std::max(worst, 16 * std::numeric_limits<double>::epsilon() *
+                                  (std::fabs(cs.D_A(j)) + cs.kappa * GP + WqE));
+    }
+    return worst;
+  });
+  // check_admissibility's steps on the one contact.
+  AdmissibilityReportT<C> rep;
+  CertificateFrame f(law, options, r.solver.method, kinetic_energy(pb.M, pb.qdot_A));
+  f.add_scales(r.takes_part(0) != 0, r.D_NA(0), r.D_TA(0), r.P_N(0), r.P_T(0));
+  CertificateTally t;
+  const CertificateInput a{.takes_part = r.takes_part(0) != 0,
+                           .P_N = r.P_N(0),
+                           .P_T = r.P_T(0),
+                           .D_NA = r.D_NA(0),
+                           .D_TA = r.D_TA(0),
+                           .D_NE = r.D_NE(0),
+                           .D_TE = r.D_TE(0),
+                           .rounding = rounding,
+                           .w_N = pb.w_N.size() ? pb.w_N(0) : 0.0,
+                           .w_T = pb.w_T.size() ? pb.w_T(0) : 0.0};
+  rep.per_contact.resize(1);
+  rep.per_contact(0) = rep.total = add_contact(f, law, 0, a, 0.0, t);
+  finish_certificate(
+      f, t, r.energy_change, [&](double base) { return velocity_energy_allowance(pb, r, base); },
+      rep);
+  return rep;
 }
 
 template <int N, int C>
@@ -227,22 +300,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.total = rep.per_contact.allFinite()
                     ? std::ldexp((std::ldexp(1.0, -60) * rep.per_contact).sum(), 60)
                     : -std::numeric_limits<double>::infinity();
-  // How far T_E − T_A is known from the velocities: ε cond(M) times its terms, cond(M) estimated
-  // from M's Cholesky factor, as velocity_rounding does.
-  auto energy_allowance = [&](double base_allowed) {
-    if (pb.M.rows() != pb.dofs() || pb.qdot_A.size() != pb.dofs()) return -1.0;
-    double terms = 0.0;
-    for (int i = 0; i < pb.dofs(); ++i) {
-      double row = 0.0;
-      for (int j = 0; j < pb.dofs(); ++j)
-        row += std::fabs(pb.M(i, j)) * (std::fabs(r.qdot_E(j)) + std::fabs(pb.qdot_A(j)));
-      terms += std::fabs(r.qdot_E(i) - pb.qdot_A(i)) * row;
-    }
-    const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
-    const double kappa = llt.info() == Eigen::Success ? condition_estimate(llt) : 0.0;
-    if (!(kappa > 0.0)) return -1.0;
-    return std::max(base_allowed, 16 * std::numeric_limits<double>::epsilon() * kappa * terms);
-  };
+  auto energy_allowance = [&](double base) { return velocity_energy_allowance(pb, r, base); };
   finish_certificate(f, t, r.energy_change, energy_allowance, rep);
   return rep;
 }
@@ -294,6 +352,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   template AdmissibilityReportT<C> detail::check_admissibility(                     \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
       const SolverOptions&, const VecT<C>&, double, const VecT<C>*);                \
+  template AdmissibilityReportT<C> detail::check_one_contact(                       \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
+      const SolverOptions&, const detail::ContactSpaceT<N, C>&);                    \
   template AdmissibilityReportT<C> check_admissibility(                             \
       const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
       const SolverOptions&);

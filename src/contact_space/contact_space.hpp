@@ -15,6 +15,7 @@
 #include "core/detail/cholesky.hpp"
 #include "core/detail/impact_problem.hpp"
 #include "core/detail/refined_solve.hpp"
+#include "core/detail/sized_vector.hpp"
 #include "core/detail/small_dense.hpp"
 #include "fremond/core/error.hpp"
 #include "fremond/core/impact_problem.hpp"
@@ -485,10 +486,11 @@ void velocity_after(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
 /// T_E − T_A = ½(q̇_E − q̇_A)ᵀ M (q̇_E + q̇_A) = P·z (eq. 9), computed from the velocities q̇_E.
 /// No percussion changes nothing: zero exactly, also where M(q̇_E + q̇_A) overflows (0·∞).
 /// `diagonal`: M is known to be diagonal (CholeskyT::matrix_is_diagonal).
-template <int MaxDofs, int MaxContacts>
-double energy_change_at(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const VecT<MaxDofs>& qE,
+/// `qE` is a VecT<MaxDofs> or, for the stack-stored sizes, a vector of the dofs' fixed size.
+template <int MaxDofs, int MaxContacts, class Velocity>
+double energy_change_at(const ImpactProblemT<MaxDofs, MaxContacts>& pb, const Velocity& qE,
                         bool diagonal = false) {
-  const int n = pb.dofs();
+  const int n = sized<Velocity::SizeAtCompileTime>(pb.dofs());
   bool moved = false;
   for (int i = 0; i < n && !moved; ++i) moved = qE(i) != pb.qdot_A(i);
   if (!moved) return 0.0;

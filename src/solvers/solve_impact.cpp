@@ -68,6 +68,18 @@ template <int N, int C>
 void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
                                     const SolverOptions& options, ContactSpaceT<N, C>& cs,
                                     ImpactResultT<N, C>& out, ChainWorkspace& ws) {
+  // One contact, where its law has a lane for it (its plugin's solve_one_contact_lane): the
+  // answer the chain's first stage would give and its certificate, both on scalars, without the
+  // chain and the certificate's loops over contacts (the same numbers, to the last bit).
+  if (cs.contacts == 1 && law.visit([&](const auto& l) {
+        return !detail::has_certificate_terms(l) &&
+               detail::solve_one_contact_lane(pb, cs, l, options, out);
+      })) {
+    log_answer_if_unlogged(out);
+    out.admissibility = detail::check_one_contact(pb, law, out, options, cs);
+    refuse_inadmissible(law, out);
+    return;
+  }
   // Independent groups of contacts (two bodies in one problem) are solved each to its own
   // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
   // and one contact does not even make the call (its frame holds three problems' storage).

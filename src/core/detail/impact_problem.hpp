@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/detail/cholesky.hpp"
+#include "core/detail/sized_vector.hpp"
 #include "core/detail/small_dense.hpp"
 #include "fremond/core/impact_problem.hpp"
 
@@ -17,7 +18,9 @@ namespace detail {
 template <int N>
 double kinetic_energy(const MatT<N, N>& M, const VecT<N>& v) {
   if constexpr (N != Dynamic) {
-    return small_dense::half_quadratic_form(M, v);
+    return with_size<N>(static_cast<int>(v.size()), [&](auto size) {
+      return small_dense::half_quadratic_form<decltype(size)::value>(M, v);
+    });
   } else {
     return 0.5 * v.dot(M * v);
   }

@@ -19,13 +19,15 @@ void add_product(const Mat& A, const VecX& x, VecY& y) {
   }
 }
 
-/// ½ vᵀ A v (A symmetric: a kinetic energy with A = M).
-template <class Mat, class Vec>
+/// ½ vᵀ A v (A symmetric: a kinetic energy with A = M); K, where given, is v's size known to the
+/// compiler (the same operations).
+template <int K = Eigen::Dynamic, class Mat, class Vec>
 double half_quadratic_form(const Mat& A, const Vec& v) {
+  const Eigen::Index n = K == Eigen::Dynamic ? v.size() : K;
   double e = 0.0;
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
+  for (Eigen::Index i = 0; i < n; ++i) {
     double Av = 0.0;
-    for (Eigen::Index j = 0; j < v.size(); ++j) Av += A(i, j) * v(j);
+    for (Eigen::Index j = 0; j < n; ++j) Av += A(i, j) * v(j);
     e += v(i) * Av;
   }
   return 0.5 * e;

@@ -56,6 +56,15 @@ void write_merged_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   out.P_N_reaction = reaction;
 }
 
+/// No lane of one contact (solve_impact.cpp): its chain starts from the closed forms of its
+/// modes, with their own checks.
+template <int N, int C>
+bool solve_one_contact_lane(const ImpactProblemT<N, C>& /*pb*/, const ContactSpaceT<N, C>& /*cs*/,
+                            const FremondLaw& /*law*/, const SolverOptions& /*options*/,
+                            ImpactResultT<N, C>& /*out*/) {
+  return false;
+}
+
 /// An answer its certificate refuses: where a potential of an impacting contact is not a
 /// pseudo-potential at the answer (not convex, negative, or not zero at 0), the law is outside its
 /// domain, which is the finding (status unsupported, the contact named). False otherwise.

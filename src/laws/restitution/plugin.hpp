@@ -13,6 +13,7 @@
 #include "fremond/potentials/registry.hpp"
 #include "laws/detail/residuals.hpp"
 #include "solvers/detail/classical.hpp"
+#include "solvers/detail/classical_one_contact.hpp"
 
 namespace fremond::detail {
 
@@ -34,6 +35,18 @@ void solve_chain(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                  const RestitutionLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
                  ChainWorkspace& ws) {
   solve_classical(pb, cs, law, options, out, ws);
+}
+
+/// The lane of one contact (solve_impact.cpp): one approaching contact on a diagonal M, answered
+/// by the chain's first stage, its closed form on scalars (classical_one_contact.hpp), without
+/// the chain around it. False, `out` untouched, where the chain would start otherwise or the
+/// closed form does not settle.
+template <int N, int C>
+bool solve_one_contact_lane(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                            const RestitutionLaw& law, const SolverOptions& options,
+                            ImpactResultT<N, C>& out) {
+  return classical::one_approaching_contact(cs, options) &&
+         classical::settle_one_contact(pb, cs, law, options, out);
 }
 
 template <int N, int C>

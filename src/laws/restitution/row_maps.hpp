@@ -60,13 +60,15 @@ inline double worst_row_map(bool poisson, bool tangential, double e, double mu, 
 /// u = Σ_j |M⁻¹W_j P_j| over the first `rows` rows of cs with a percussion (p(j) row j's):
 /// what q̇ − q̇_A is summed from, so that W's rows on u bound the rounding of the contact
 /// velocities at q̇ (residual_at_own_velocities). Entry by entry, rows in order.
-template <int N, int C, class Percussion>
-VecT<N> velocity_terms(const ContactSpaceT<N, C>& cs, int rows, const Percussion& p) {
-  VecT<N> u = VecT<N>::Zero(cs.dofs);
+/// K: the dofs where fixed (sized_vector.hpp).
+template <int K = Eigen::Dynamic, int N, int C, class Percussion>
+SizedVecT<K, N> velocity_terms(const ContactSpaceT<N, C>& cs, int rows, const Percussion& p) {
+  const int n = sized<K>(cs.dofs);
+  SizedVecT<K, N> u = SizedVecT<K, N>::Zero(n);
   for (int j = 0; j < rows; ++j) {
     const double pj = p(j);
     if (pj != 0.0)
-      for (int i = 0; i < cs.dofs; ++i) u(i) += std::fabs(cs.MinvW(i, j) * pj);
+      for (int i = 0; i < n; ++i) u(i) += std::fabs(cs.MinvW(i, j) * pj);
   }
   return u;
 }

@@ -311,6 +311,14 @@ void write_merged_answer(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
   scatter_solution(pb, cs, P, out);
 }
 
+/// No lane of one contact (solve_impact.cpp): its chain is the integration of the impact.
+template <int N, int C>
+bool solve_one_contact_lane(const ImpactProblemT<N, C>& /*pb*/, const ContactSpaceT<N, C>& /*cs*/,
+                            const StrongeLaw& /*law*/, const SolverOptions& /*options*/,
+                            ImpactResultT<N, C>& /*out*/) {
+  return false;
+}
+
 /// Dissipative by construction, with no data outside its domain: a refused answer is unresolved.
 template <int N, int C>
 bool refuse_outside_domain(const StrongeLaw& /*law*/, ImpactResultT<N, C>& /*out*/) {

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "contact_space/contact_space.hpp"
+#include "core/detail/sized_vector.hpp"
 #include "fremond/laws/impact_law.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
@@ -30,12 +31,13 @@ bool one_approaching_contact(const ContactSpaceT<N, C>& cs, const SolverOptions&
 
 /// q = q̇_A + M⁻¹W P for the contact's rows P (P[1] the tangential one, 0 without), column by
 /// column, zero percussions skipped, as velocity_after sums it. False where velocity_after would
-/// sum the force again (its terms cancel) or q is not finite.
-template <int N, int C>
+/// sum the force again (its terms cancel) or q is not finite. K: the dofs, where fixed.
+template <int K, int N, int C>
 bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                          const double (&P)[2], VecT<N>& q) {
-  const int n = cs.dofs, rows = cs.tangential ? 2 : 1;
-  q = pb.qdot_A;
+                          const double (&P)[2], SizedVecT<K, N>& q) {
+  const int n = sized<K>(cs.dofs), rows = cs.tangential ? 2 : 1;
+  q.resize(n);
+  for (int i = 0; i < n; ++i) q(i) = pb.qdot_A(i);
   int moving = 0;
   for (int j = 0; j < rows; ++j) {
     if (P[j] == 0.0) continue;
@@ -58,6 +60,14 @@ bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
   return true;
 }
 
+/// Σ_i |W_i| u_i over W's column `col` (n entries), in order.
+template <int K, int N>
+double abs_dot(const double* col, const SizedVecT<K, N>& u) {
+  double s = 0.0;
+  for (int i = 0; i < u.size(); ++i) s += std::fabs(col[i]) * u(i);
+  return s;
+}
+
 /// The answer of one_approaching_contact's problems, written into `out` (a cleared result) when
 /// the contact modes would give it unchanged: one solution of the closed forms (G regular; for
 /// Poisson one compression and one expansion), velocities whose terms do not cancel
@@ -65,10 +75,13 @@ bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N,
 /// (residual_at_own_velocities). False, `out` untouched, otherwise: the contact modes then run as
 /// they always do. Each number is computed as the general path computes it, in the same order, so
 /// that the answers agree bit for bit.
-template <int N, int C>
-bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                        const RestitutionLaw& law, const SolverOptions& options,
-                        ImpactResultT<N, C>& out) {
+///
+/// K is the number of dofs where the stack-stored sizes fix it (with_size), Eigen::Dynamic
+/// otherwise: the same loops, unrolled on the paper's planar bodies.
+template <int K, int N, int C>
+bool settle_one_contact_sized(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                              const RestitutionLaw& law, const SolverOptions& options,
+                              ImpactResultT<N, C>& out) {
   const int rows = cs.tangential ? 2 : 1;
   const bool f = cs.tangential, tangential = pb.has_tangential(), poisson = law.has_phases();
   const double gnn = cs.G(0, 0), gnt = f ? cs.G(0, 1) : 0.0, gtt = f ? cs.G(1, 1) : 0.0;
@@ -99,9 +112,9 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
     return false;
 
   // The velocities, the contact velocities after and T_E − T_A (write_classical_answer).
-  VecT<N> q, qC;
-  if (!plain_velocity_after(pb, cs, P, q)) return false;
-  if (poisson && !plain_velocity_after(pb, cs, P_C, qC)) return false;
+  SizedVecT<K, N> q, qC;
+  if (!plain_velocity_after<K>(pb, cs, P, q)) return false;
+  if (poisson && !plain_velocity_after<K>(pb, cs, P_C, qC)) return false;
   const double wn = pb.w_N.size() ? pb.w_N(0) : 0.0, wt = pb.w_T.size() ? pb.w_T(0) : 0.0;
   const double D_NE = contact_velocity(pb.W_N.col(0), q, wn);
   const double D_TE = tangential ? contact_velocity(pb.W_T.col(0), q, wt) : 0.0;
@@ -111,12 +124,12 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
 
   // The residual at these velocities (residual_at_own_velocities), within its share of the
   // tolerance; else the data's residual decides, on the general path.
-  VecT<N> u = velocity_terms(cs, rows, [&](int j) { return P[j]; });
-  if (poisson) u = u.cwiseMax(velocity_terms(cs, rows, [&](int j) { return P_C[j]; }));
+  SizedVecT<K, N> u = velocity_terms<K>(cs, rows, [&](int j) { return P[j]; });
+  if (poisson) u = u.cwiseMax(velocity_terms<K>(cs, rows, [&](int j) { return P_C[j]; }));
   const double floor = 2.0 * (rows + 2) * std::numeric_limits<double>::epsilon();
   const double dn = cs.D_N(0), dt = tangential ? cs.D_T(0) : 0.0;
-  double terms = std::max(0.0, pb.W_N.col(0).cwiseAbs().dot(u));
-  if (tangential) terms = std::max(terms, pb.W_T.col(0).cwiseAbs().dot(u));
+  double terms = std::max(0.0, abs_dot<K, N>(pb.W_N.data(), u));
+  if (tangential) terms = std::max(terms, abs_dot<K, N>(pb.W_T.data(), u));
   const double v_scale =
       std::max({std::numeric_limits<double>::min(), std::fabs(dn), std::fabs(dt)});
   const double gn = gnn > 0.0 ? gnn : 1.0, gt = f ? (gtt > 0.0 ? gtt : 1.0) : 1.0;
@@ -179,6 +192,16 @@ bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C
   out.solver.message = "the unique solution";
   out.solver.status = SolverStatus::converged;
   return true;
+}
+
+/// settle_one_contact_sized on the problem's own number of dofs.
+template <int N, int C>
+bool settle_one_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                        const RestitutionLaw& law, const SolverOptions& options,
+                        ImpactResultT<N, C>& out) {
+  return with_size<N>(cs.dofs, [&](auto size) {
+    return settle_one_contact_sized<decltype(size)::value>(pb, cs, law, options, out);
+  });
 }
 
 }  // namespace fremond::detail::classical
