@@ -147,6 +147,28 @@ bool not_a_pseudo_potential(const Potential& phi, double z) {
          above_chord(-z, z) || above_chord(z, 2.0 * z);
 }
 
+namespace {
+/// One row's share of velocity_rounding: Σ_k |G_jk||P_k| (GP) and the row's rounding
+/// 16ε (|D_A,j| + κ GP + |W_j|ᵀ|q̇_E|) (d, without the last term where q̇_E is not `stored`),
+/// summed in row order over loops of K = the dofs where fixed. P: the rows' percussions by index.
+struct RowRounding {
+  double GP, d;
+};
+template <int K, int N, int C, class Percussion>
+RowRounding row_rounding(const ContactSpaceT<N, C>& cs, int j, const Percussion& P,
+                         const ImpactResultT<N, C>& r, bool stored) {
+  double GP = 0.0, WqE = 0.0;
+  for (int k = 0; k < cs.rows(); ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P(k));
+  if (stored) {
+    const int n = sized<K>(cs.dofs);
+    const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(cs.W.rows()) * j;
+    for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
+  }
+  return {GP, 16 * std::numeric_limits<double>::epsilon() *
+                  (std::fabs(cs.D_A(j)) + cs.kappa * GP + WqE)};
+}
+}  // namespace
+
 template <int N, int C>
 VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, C>& r,
                           VecT<C>* percussion) {
@@ -161,30 +183,20 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   }
   // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative.
   if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
-  const double kappa = cs.kappa;
-  const double eps16 = 16 * std::numeric_limits<double>::epsilon();
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
   // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
   const bool stored = r.qdot_E.size() == cs.dofs;
   const double g_max = percussion ? delassus_max(cs) : 0.0;
   with_size<N>(cs.dofs, [&](auto size) {
-    constexpr int K = decltype(size)::value;
-    const int n = sized<K>(cs.dofs);
     for (int j = 0; j < rows; ++j) {
-      double GP = 0.0, WqE = 0.0;
-      for (int k = 0; k < rows; ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P(k));
-      if (stored) {
-        const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(cs.W.rows()) * j;
-        for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
-      }
-      const double d = eps16 * (std::fabs(cs.D_A(j)) + kappa * GP + WqE);
+      const RowRounding row = row_rounding<decltype(size)::value>(cs, j, P, r, stored);
       const int i = cs.index(j < cs.active ? j : j - cs.active);
-      out(i) = std::max(out(i), d);
+      out(i) = std::max(out(i), row.d);
       if (percussion) {
         // The stopping test's own τ_j and floor (fremond_rows.hpp).
         const double tau = row_tau(cs.G(j, j), g_max);
-        const double floor = row_rounding_floor(cs.D_A(j), GP, tau, P(j), cs.v_scale);
+        const double floor = row_rounding_floor(cs.D_A(j), row.GP, tau, P(j), cs.v_scale);
         (*percussion)(i) = std::max((*percussion)(i), floor / tau);
       }
     }
@@ -221,17 +233,11 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
   if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
   const int rows = cs.rows();
   const double P[2] = {r.P_N(0), cs.tangential ? r.P_T(0) : 0.0};
+  const auto p = [&](int k) { return P[k]; };
   const double rounding = with_size<N>(cs.dofs, [&](auto size) {
-    const int n = sized<decltype(size)::value>(cs.dofs);
     double worst = 0.0;
-    for (int j = 0; j < rows; ++j) {
-      double GP = 0.0, WqE = 0.0;
-      for (int k = 0; k < rows; ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P[k]);
-      const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(n) * j;
-      for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
-      worst = std::max(worst, 16 * std::numeric_limits<double>::epsilon() *
-                                  (std::fabs(cs.D_A(j)) + cs.kappa * GP + WqE));
-    }
+    for (int j = 0; j < rows; ++j)
+      worst = std::max(worst, row_rounding<decltype(size)::value>(cs, j, p, r, true).d);
     return worst;
   });
   // check_admissibility's steps on the one contact.
