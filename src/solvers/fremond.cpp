@@ -192,6 +192,9 @@ ScalarRoots scalar_normal(const Potential& normal, const PowerPotential* phi, do
 
 struct ContactSolution {
   double PN, PT;
+  /// The shared stopping test's residual at (PN, PT), where keep_resolved found it met as it was
+  /// (check_exact's first branch): the answer's test need not run again. NaN otherwise.
+  double accepted_residual = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// All solutions of Frémond + Coulomb for one active contact (rows N, T).
@@ -937,16 +940,17 @@ bool enumerate_coulomb_modes(const FremondRowsT<N, C>& rows, const Rows<N, C>& s
 /// The outcome `o` is updated in place, here and in the chain's `finish`: a copy of a
 /// MethodOutcome whose fields were just stored one by one is reloaded in 16-byte pieces, a
 /// store-forwarding stall that cost a quarter of this function on the bar.
+/// True when P met the test as it was (`o` then holds its plain residual).
 template <int N, int C>
-void check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOptions& opt,
+bool check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOptions& opt,
                  MethodOutcome& o) {
-  if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return;
+  if (o.status != SolverStatus::converged || rows.cs->rows() == 0) return false;
   Rows<N, C> z, R;
   const double target = opt.tolerance * rows.cs->v_scale;
   if (std::isfinite(rows.residual(P, z, R)) && rows.converged(P, R, target)) {
     o.residual = R.cwiseAbs().maxCoeff();  // what plain_residual(P) would compute again
     o.residual_is_plain = true;
-    return;
+    return true;
   }
   Rows<N, C> Q = P;
   if (rows.all_prox) {
@@ -957,13 +961,14 @@ void check_exact(const FremondRowsT<N, C>& rows, Rows<N, C>& P, const SolverOpti
           "the exact answer missed the tolerance (ill-conditioned data): polished by "
           "semismooth Newton";
       o = n;
-      return;
+      return false;
     }
   }
   o.status = SolverStatus::stalled;
   o.message =
       "the exact answer misses the tolerance (ill-conditioned data) and semismooth Newton "
       "could not polish it";
+  return false;
 }
 
 /// Keeps the candidates of the mode enumeration that satisfy the law to the shared stopping test
@@ -979,8 +984,10 @@ int keep_resolved(const FremondRowsT<N, C>& rows, std::array<ContactSolution, 16
     MethodOutcome o;
     o.status = SolverStatus::converged;
     o.criterion = StopCriterion::exact;
-    check_exact(rows, P, opt, o);
-    if (o.status == SolverStatus::converged) sols[kept++] = ContactSolution{P(0), P(1)};
+    const bool as_it_was = check_exact(rows, P, opt, o);
+    if (o.status == SolverStatus::converged)
+      sols[kept++] = ContactSolution{
+          P(0), P(1), as_it_was ? o.residual : std::numeric_limits<double>::quiet_NaN()};
   }
   if (kept < n) *exhaustive = false;
   return kept;
@@ -1296,14 +1303,19 @@ struct FremondChain {
     }
     P(0) = sols[best].PN;
     P(1) = sols[best].PT;
-    Rows<N, C> zb, R;
-    o.residual = rows.residual(P, zb, R);
     o.status = SolverStatus::converged;
     o.message = n == 1 ? "one contact with Coulomb: every mode tried, one solution"
                        : "one contact with Coulomb: several solutions; the most dissipative one";
     out.solutions_found = n;
     out.unique = (n == 1) && exhaustive;
-    check_exact(rows, P, opt, o);
+    if (!std::isnan(sols[best].accepted_residual)) {
+      o.residual = sols[best].accepted_residual;  // keep_resolved's test, on the same P
+      o.residual_is_plain = true;
+    } else {
+      Rows<N, C> zb, R;
+      o.residual = rows.residual(P, zb, R);
+      check_exact(rows, P, opt, o);
+    }
     record(SolverMethod::mode_enumeration, AttemptStart::none, o);
     finish(o, SolverMethod::mode_enumeration);
     if (n == 1 && exhaustive) out.unique = percussion_unique(rows, P, z, out);
