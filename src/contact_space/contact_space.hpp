@@ -441,6 +441,38 @@ HeldContacts held_by(const ContactSpaceT<MaxDofs, MaxContacts>& cs) {
   return cs.active < cs.contacts ? HeldContacts::approaching : HeldContacts::every;
 }
 
+/// velocity_after's plain sum over the first `rows` rows, percussion(j) each: q = q̇_A + M⁻¹W P
+/// column by column, zero percussions skipped. True where it stands: fewer than two columns, or
+/// terms that do not cancel (in each entry Σ|M⁻¹W_ij P_j| ≤ 8 |q_i − q̇_A,i|, at worst). K: the
+/// dofs where fixed (with_size): the same loops, unrolled, the same bits.
+template <int K, int MaxDofs, int MaxContacts, class Percussion, class Velocity>
+bool plain_velocity_sum(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
+                        const ContactSpaceT<MaxDofs, MaxContacts>& cs, int rows,
+                        const Percussion& percussion, Velocity& q) {
+  const int n = sized<K>(cs.dofs);
+  q.resize(n);
+  for (int i = 0; i < n; ++i) q(i) = pb.qdot_A(i);
+  int moving = 0;  // percussions that are not zero
+  for (int j = 0; j < rows; ++j) {
+    const double p = percussion(j);
+    if (p == 0.0) continue;
+    ++moving;
+    for (int i = 0; i < n; ++i) q(i) += cs.MinvW(i, j) * p;
+  }
+  if (moving < 2) return true;  // one term per entry: nothing cancels
+  double terms = 0.0, change = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double t = 0.0;
+    for (int j = 0; j < rows; ++j) {
+      const double p = percussion(j);
+      if (p != 0.0) t += std::fabs(cs.MinvW(i, j) * p);
+    }
+    terms = std::max(terms, t);
+    change = std::max(change, std::fabs(q(i) - pb.qdot_A(i)));
+  }
+  return !(terms > 8.0 * change);
+}
+
 /// The velocity q = q̇_A + M⁻¹W P after the active-row percussions P (size rows()).
 ///
 /// Column by column from M⁻¹W, skipping zero percussions: with |W| near 1e308 a column of M⁻¹W
@@ -454,27 +486,12 @@ void velocity_after(const ImpactProblemT<MaxDofs, MaxContacts>& pb,
                     const ContactSpaceT<MaxDofs, MaxContacts>& cs,
                     const typename ContactSpaceT<MaxDofs, MaxContacts>::Rows& P, VecT<MaxDofs>& q,
                     bool accurate = false) {
-  const int n = cs.dofs, r = cs.rows();
-  q = pb.qdot_A;
-  int moving = 0;  // percussions that are not zero
-  for (int j = 0; j < r; ++j) {
-    const double p = P(j);
-    if (p == 0.0) continue;
-    ++moving;
-    for (int i = 0; i < n; ++i) q(i) += cs.MinvW(i, j) * p;
-  }
-  if (!accurate) {
-    if (moving < 2) return;  // one term per entry: nothing cancels
-    double terms = 0.0, change = 0.0;
-    for (int i = 0; i < n; ++i) {
-      double t = 0.0;
-      for (int j = 0; j < r; ++j)
-        if (P(j) != 0.0) t += std::fabs(cs.MinvW(i, j) * P(j));
-      terms = std::max(terms, t);
-      change = std::max(change, std::fabs(q(i) - pb.qdot_A(i)));
-    }
-    if (!(terms > 8.0 * change)) return;
-  }
+  const int n = cs.dofs;
+  const bool stands = with_size<MaxDofs>(n, [&](auto size) {
+    return plain_velocity_sum<decltype(size)::value>(
+        pb, cs, cs.rows(), [&](int j) { return P(j); }, q);
+  });
+  if (stands && !accurate) return;
   VecT<MaxDofs> f(n);
   accurate_residual(cs.W, P, VecT<MaxDofs>::Zero(n), f);  // 0 − W P
   f = -f;

@@ -29,33 +29,16 @@ bool one_approaching_contact(const ContactSpaceT<N, C>& cs, const SolverOptions&
          cs.llt.matrix_is_diagonal();
 }
 
-/// q = q̇_A + M⁻¹W P for the contact's rows P (P[1] the tangential one, 0 without), column by
-/// column, zero percussions skipped, as velocity_after sums it. False where velocity_after would
-/// sum the force again (its terms cancel) or q is not finite. K: the dofs, where fixed.
+/// q = q̇_A + M⁻¹W P for the contact's rows P (P[1] the tangential one, 0 without), as
+/// velocity_after sums it. False where velocity_after would sum the force again (its terms
+/// cancel) or q is not finite. K: the dofs, where fixed.
 template <int K, int N, int C>
 bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                           const double (&P)[2], SizedVecT<K, N>& q) {
-  const int n = sized<K>(cs.dofs), rows = cs.tangential ? 2 : 1;
-  q.resize(n);
-  for (int i = 0; i < n; ++i) q(i) = pb.qdot_A(i);
-  int moving = 0;
-  for (int j = 0; j < rows; ++j) {
-    if (P[j] == 0.0) continue;
-    ++moving;
-    for (int i = 0; i < n; ++i) q(i) += cs.MinvW(i, j) * P[j];
-  }
-  if (moving == 2) {
-    double terms = 0.0, change = 0.0;
-    for (int i = 0; i < n; ++i) {
-      double t = 0.0;
-      for (int j = 0; j < rows; ++j)
-        if (P[j] != 0.0) t += std::fabs(cs.MinvW(i, j) * P[j]);
-      terms = std::max(terms, t);
-      change = std::max(change, std::fabs(q(i) - pb.qdot_A(i)));
-    }
-    if (terms > 8.0 * change) return false;
-  }
-  for (int i = 0; i < n; ++i)
+  if (!plain_velocity_sum<K>(
+          pb, cs, cs.tangential ? 2 : 1, [&](int j) { return P[j]; }, q))
+    return false;
+  for (int i = 0; i < q.size(); ++i)
     if (!std::isfinite(q(i))) return false;
   return true;
 }
