@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include "core/detail/impact_problem.hpp"
 
 namespace fremond {
@@ -154,6 +155,16 @@ namespace {
 struct RowRounding {
   double GP, d;
 };
+
+/// Whether the solver filled the result (an unsupported method leaves it empty): an empty one
+/// certifies nothing.
+template <int N, int C>
+bool filled(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r) {
+  const int c = pb.contacts();
+  return r.qdot_E.size() == pb.dofs() && r.P_N.size() == c && r.P_T.size() == c &&
+         r.D_NA.size() == c && r.D_NE.size() == c && r.D_TA.size() == c && r.D_TE.size() == c &&
+         r.takes_part.size() == c;
+}
 template <int K, int N, int C, class Percussion>
 RowRounding row_rounding(const ContactSpaceT<N, C>& cs, int j, const Percussion& P,
                          const ImpactResultT<N, C>& r, bool stored) {
@@ -229,19 +240,40 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
                                           const ImpactResultT<N, C>& r,
                                           const SolverOptions& options,
                                           const ContactSpaceT<N, C>& cs) {
-  // velocity_rounding's sums for the contact's rows, in its order.
+  AdmissibilityReportT<C> rep;
+  if (!filled(pb, r)) {
+    rep.per_contact.setZero(1);
+    return rep;
+  }
+  // velocity_rounding's sums for the contact's rows, in its order, with the percussion's floor
+  // where the law has terms of its own.
   if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
   const int rows = cs.rows();
+  const bool own = law.visit([](const auto& l) { return has_certificate_terms(l); });
+  const double g_max = own ? delassus_max(cs) : 0.0;
   const double P[2] = {r.P_N(0), cs.tangential ? r.P_T(0) : 0.0};
   const auto p = [&](int k) { return P[k]; };
-  const double rounding = with_size<N>(cs.dofs, [&](auto size) {
-    double worst = 0.0;
-    for (int j = 0; j < rows; ++j)
-      worst = std::max(worst, row_rounding<decltype(size)::value>(cs, j, p, r, true).d);
-    return worst;
-  });
+  struct Sums {
+    double rounding = 0.0, percussion_floor = 0.0;
+  };
+  const auto sums = [&](auto own_terms) {
+    return with_size<N>(cs.dofs, [&](auto size) {
+      Sums s;
+      for (int j = 0; j < rows; ++j) {
+        const RowRounding row = row_rounding<decltype(size)::value>(cs, j, p, r, true);
+        s.rounding = std::max(s.rounding, row.d);
+        if constexpr (decltype(own_terms)::value) {
+          const double tau = row_tau(cs.G(j, j), g_max);
+          const double floor = row_rounding_floor(cs.D_A(j), row.GP, tau, P[j], cs.v_scale);
+          s.percussion_floor = std::max(s.percussion_floor, floor / tau);
+        }
+      }
+      return s;
+    });
+  };
+  const Sums rows_sums = own ? sums(std::true_type{}) : sums(std::false_type{});
+  const double rounding = rows_sums.rounding, percussion_floor = rows_sums.percussion_floor;
   // check_admissibility's steps on the one contact.
-  AdmissibilityReportT<C> rep;
   CertificateFrame f(law, options, r.solver.method, kinetic_energy(pb.M, pb.qdot_A));
   f.add_scales(r.takes_part(0) != 0, r.D_NA(0), r.D_TA(0), r.P_N(0), r.P_T(0));
   CertificateTally t;
@@ -252,11 +284,16 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
                            .D_TA = r.D_TA(0),
                            .D_NE = r.D_NE(0),
                            .D_TE = r.D_TE(0),
+                           .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
                            .rounding = rounding,
+                           .percussion_floor = percussion_floor,
                            .w_N = pb.w_N.size() ? pb.w_N(0) : 0.0,
                            .w_T = pb.w_T.size() ? pb.w_T(0) : 0.0};
   rep.per_contact.resize(1);
-  rep.per_contact(0) = rep.total = add_contact(f, law, 0, a, 0.0, t);
+  rep.per_contact(0) = add_contact(f, law, 0, a, g_max, t);
+  // A work that is not a number leaves the total unknown (check_admissibility's sum).
+  rep.total = std::isnan(rep.per_contact(0)) ? -std::numeric_limits<double>::infinity()
+                                             : rep.per_contact(0);
   finish_certificate(
       f, t, r.energy_change, [&](double base) { return velocity_energy_allowance(pb, r, base); },
       rep);
@@ -271,9 +308,7 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   AdmissibilityReportT<C> rep;
   const int c = pb.contacts();
   // A result the solver did not fill (e.g. an unsupported method) certifies nothing.
-  if (r.qdot_E.size() != pb.dofs() || r.P_N.size() != c || r.P_T.size() != c ||
-      r.D_NA.size() != c || r.D_NE.size() != c || r.D_TA.size() != c || r.D_TE.size() != c ||
-      r.takes_part.size() != c) {
+  if (!filled(pb, r)) {
     rep.per_contact.setZero(c);
     return rep;
   }

@@ -69,41 +69,42 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
                                     const SolverOptions& options, ContactSpaceT<N, C>& cs,
                                     ImpactResultT<N, C>& out, ChainWorkspace& ws) {
   // One contact, where its law has a lane for it (its plugin's solve_one_contact_lane): the
-  // answer the chain's first stage would give and its certificate, both on scalars, without the
-  // chain and the certificate's loops over contacts (the same numbers, to the last bit).
-  if (cs.contacts == 1 && law.visit([&](const auto& l) {
-        return !detail::has_certificate_terms(l) &&
-               detail::solve_one_contact_lane(pb, cs, l, options, out);
-      })) {
-    log_answer_if_unlogged(out);
-    out.admissibility = detail::check_one_contact(pb, law, out, options, cs);
-    refuse_inadmissible(law, out);
-    return;
-  }
-  // Independent groups of contacts (two bodies in one problem) are solved each to its own
-  // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
-  // and one contact does not even make the call (its frame holds three problems' storage).
-  if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out, ws))
-    detail::solve_law_stage(pb, cs, law, options, out, ws);
-  // Every contact takes part (separating_contacts.hpp): where the answer without the separating
-  // ones drives one of them into its obstacle, or where the approaching contacts alone have no
-  // answer, the impact is solved again on every contact.
-  if (cs.active < cs.contacts &&
-      (no_answer(out) || detail::drives_a_separating_contact(pb, out, options))) {
-    const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
-    build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
-    clear_result(out);
-    detail::solve_law_stage(pb, cs, every, options, out, ws);
+  // answer the chain's first stage would give, on scalars, without the chain around it.
+  const bool lane = cs.contacts == 1 && law.visit([&](const auto& l) {
+    return detail::solve_one_contact_lane(pb, cs, l, options, out);
+  });
+  if (!lane) {
+    // Independent groups of contacts (two bodies in one problem) are solved each to its own
+    // velocity scale (independent_groups.hpp); the test costs a look at G's off-diagonal entries,
+    // and one contact does not even make the call (its frame holds three problems' storage).
+    if (cs.active < 2 || !detail::solve_by_groups(pb, cs, law, options, out, ws))
+      detail::solve_law_stage(pb, cs, law, options, out, ws);
+    // Every contact takes part (separating_contacts.hpp): where the answer without the separating
+    // ones drives one of them into its obstacle, or where the approaching contacts alone have no
+    // answer, the impact is solved again on every contact.
+    if (cs.active < cs.contacts &&
+        (no_answer(out) || detail::drives_a_separating_contact(pb, out, options))) {
+      const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
+      build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
+      clear_result(out);
+      detail::solve_law_stage(pb, cs, every, options, out, ws);
+    }
   }
   log_answer_if_unlogged(out);
-  // The percussions' rounding floors and G's largest entry serve only a law's own certificate
-  // terms (Frémond's): the other laws' certificates do not read them.
-  const bool own_terms = law.visit([](const auto& l) { return detail::has_certificate_terms(l); });
-  VecT<C> percussion;
-  const VecT<C> rounding = detail::velocity_rounding(cs, out, own_terms ? &percussion : nullptr);
-  out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
-                                                  own_terms ? detail::delassus_max(cs) : 0.0,
-                                                  own_terms ? &percussion : nullptr);
+  if (cs.contacts == 1) {
+    // The certificate's steps on the contact's scalars: the same bits as over the whole result.
+    out.admissibility = detail::check_one_contact(pb, law, out, options, cs);
+  } else {
+    // The percussions' rounding floors and G's largest entry serve only a law's own certificate
+    // terms (Frémond's): the other laws' certificates do not read them.
+    const bool own_terms =
+        law.visit([](const auto& l) { return detail::has_certificate_terms(l); });
+    VecT<C> percussion;
+    const VecT<C> rounding = detail::velocity_rounding(cs, out, own_terms ? &percussion : nullptr);
+    out.admissibility = detail::check_admissibility(pb, law, out, options, rounding,
+                                                    own_terms ? detail::delassus_max(cs) : 0.0,
+                                                    own_terms ? &percussion : nullptr);
+  }
   refuse_inadmissible(law, out);
 }
 

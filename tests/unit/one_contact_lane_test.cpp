@@ -2,25 +2,36 @@
 // Coulomb's friction: the answer and its certificate come from scalars (the lane of one contact,
 // on loops of the body's own size where it is 1, 2, 3 or 6 dofs). The certificate the public
 // check_admissibility computes over the whole result must read the same to the last bit, the
-// answer must meet its law, and the heap-stored and stack-stored forms must agree.
+// answer must meet its law, and the heap-stored and stack-stored forms must agree. Every other
+// answer on one contact (Frémond's and Stronge's laws, a full M, a leaving contact) is certified
+// from the same scalars, with the law's own terms: the same comparison holds for them.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "fremond/fremond.hpp"
 
 namespace fremond {
 namespace {
 
-/// A body of n dofs with a diagonal M (masses over three decades), one contact of unit-scale
-/// directions, approaching; w_N, w_T nonzero where `moving` (a moving obstacle).
-ImpactProblem one_contact(std::mt19937_64& rng, int n, bool tangential, bool moving) {
+/// A body of n dofs with a diagonal M (masses over three decades) or, where `full`, M = AᵀA + I
+/// with A's entries in (−1, 1); one contact of unit-scale directions, approaching; w_N, w_T
+/// nonzero where `moving` (a moving obstacle).
+ImpactProblem one_contact(std::mt19937_64& rng, int n, bool tangential, bool moving,
+                          bool full = false) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   ImpactProblem pb;
   pb.M = MatrixX::Zero(n, n);
   for (int i = 0; i < n; ++i) pb.M(i, i) = std::pow(10.0, 1.5 * (u(rng) + 1.0));
+  if (full) {
+    MatrixX A(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) A(i, j) = u(rng);
+    pb.M = A.transpose() * A + MatrixX::Identity(n, n);
+  }
   pb.W_N.resize(n, 1);
   for (int i = 0; i < n; ++i) pb.W_N(i, 0) = u(rng);
   if (tangential) {
@@ -100,6 +111,60 @@ TEST(OneContactLane, ItsCertificateIsTheWholeResultsToTheLastBit) {
   EXPECT_GE(answered, 250);
   EXPECT_GE(created_energy, 3);
   EXPECT_GE(admissible, 200);
+}
+
+StrongeLaw stronge(double e, double eta) {
+  StrongeLaw s;
+  s.e = e;
+  s.eta = eta;
+  return s;
+}
+
+TEST(OneContactCertificate, EveryLawsIsTheWholeResultsToTheLastBit) {
+  std::mt19937_64 rng(20261208);
+  int reactions = 0, own_terms = 0;
+  const std::vector<ImpactLaw> laws = {
+      ImpactLaw::fremond_coulomb(PowerPotential(85.36, 3.0), 1.0),
+      ImpactLaw::fremond_coulomb(PowerPotential(2.0, 1.5), 0.3),
+      ImpactLaw::fremond(PowerPotential(6.0, 2.0)),
+      ImpactLaw::fremond(PowerPotential(85.36, 3.0), DeadZonePowerPotential(1.5, 2.0, 0.2)),
+      ImpactLaw::newton_coulomb(0.5, 0.4),  // on a full M: the chain, not the lane
+      ImpactLaw(stronge(0.8, 1.5))};
+  for (const ImpactLaw& law : laws) {
+    for (int n : {1, 2, 3, 5, 6}) {
+      for (int k = 0; k < 12; ++k) {
+        const bool tangential = (law.has_friction() || law.has_tangential_potential()) && n > 1,
+                   moving = k % 4 == 1;
+        if (law.has_tangential_potential() && !tangential) continue;
+        ImpactProblem pb = one_contact(rng, n, tangential, moving, k % 2 == 1);
+        if (k % 6 == 5) pb.qdot_A = -pb.qdot_A;  // the contact leaves: no percussion
+        const std::string what =
+            std::string(law.name()) + " n=" + std::to_string(n) + " #" + std::to_string(k);
+        SolverOptions options;
+        if (k % 3 == 2) {
+          options.tolerance = 1e-13;
+          options.admissibility_tolerance = 0.0;
+        }
+        const ImpactResult r = solve_impact(pb, law, options);
+        ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
+        expect_same_bits(r.admissibility, check_admissibility(pb, law, r, options), what);
+        if (law.is<FremondLaw>()) {
+          // Frémond's law dissipates: (15) holds, and its work is −(T_E − T_A) with the obstacle
+          // at rest (eq. 9).
+          EXPECT_TRUE(r.admissibility.admissible) << what;
+          own_terms += r.admissibility.dissipation != 0.0 || r.admissibility.reaction != 0.0;
+          reactions += r.P_N_reaction.size() == 1 && r.P_N_reaction(0) > 0.0;
+        }
+        if (!moving) {
+          EXPECT_NEAR(r.energy_change, -r.admissibility.total,
+                      1e-12 * (r.admissibility.kinetic_energy_A + std::fabs(r.energy_change)))
+              << what;
+        }
+      }
+    }
+  }
+  EXPECT_GE(reactions, 10);  // answers whose reaction acts (eq. 16)
+  EXPECT_GE(own_terms, 10);
 }
 
 }  // namespace

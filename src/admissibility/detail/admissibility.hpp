@@ -75,10 +75,9 @@ AdmissibilityReportT<MaxContacts> check_admissibility(
     const ImpactResultT<MaxDofs, MaxContacts>& result, const SolverOptions& options,
     const VecT<MaxContacts>& rounding, double g_max, const VecT<MaxContacts>* percussion = nullptr);
 
-/// check_admissibility of an answer to a problem of one contact that takes part, computed as
-/// velocity_rounding and check_admissibility compute it, to the same bits, from its scalars: for a
-/// law without certificate terms of its own (has_certificate_terms), with `cs` the contact space
-/// it was solved on.
+/// check_admissibility of an answer to a problem of one contact, computed as velocity_rounding and
+/// check_admissibility compute it, to the same bits, from its scalars (the law's own terms
+/// included), with `cs` the contact space it was solved on.
 template <int MaxDofs, int MaxContacts>
 AdmissibilityReportT<MaxContacts> check_one_contact(
     const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
