@@ -61,6 +61,35 @@ void expect_same_bits(const AdmissibilityReportT<Dynamic>& a,
   EXPECT_EQ(a.failed_contact, b.failed_contact) << what;
 }
 
+/// Options that solve to 1e-14 and certify with no relative allowance where `tight`: the
+/// velocities' rounding (16ε(|D_A| + κ(M) Σ|G||P| + |W|ᵀ|q̇_E|)) rather than the tolerances then
+/// sets the certificate's own tolerance.
+SolverOptions options_for(bool tight) {
+  SolverOptions options;
+  if (tight) {
+    options.tolerance = 1e-14;
+    options.admissibility_tolerance = 0.0;
+  }
+  return options;
+}
+
+/// solve_impact's answer, its certificate compared with check_admissibility's over the whole
+/// result, bit for bit; with the obstacle at rest (not `moving`), T_E − T_A from the velocities
+/// against the work −P·z of eq. (9) from the percussions.
+ImpactResult solved_and_compared(const ImpactProblem& pb, const ImpactLaw& law,
+                                 const SolverOptions& options, bool moving,
+                                 const std::string& what) {
+  const ImpactResult r = solve_impact(pb, law, options);
+  EXPECT_TRUE(r.ok()) << what << ": " << r.solver.message;
+  expect_same_bits(r.admissibility, check_admissibility(pb, law, r, options), what);
+  const double work = -r.admissibility.total;
+  if (!moving) {
+    EXPECT_NEAR(r.energy_change, work, 1e-12 * (r.admissibility.kinetic_energy_A + std::fabs(work)))
+        << what;
+  }
+  return r;
+}
+
 TEST(OneContactLane, ItsCertificateIsTheWholeResultsToTheLastBit) {
   std::mt19937_64 rng(20261207);
   int answered = 0, created_energy = 0, admissible = 0;
@@ -74,26 +103,10 @@ TEST(OneContactLane, ItsCertificateIsTheWholeResultsToTheLastBit) {
         const ImpactProblem pb = one_contact(rng, n, tangential, moving);
         const std::string what =
             std::string(law.name()) + " n=" + std::to_string(n) + " #" + std::to_string(k);
-        // Every other case solved to 1e-14 and certified with no relative allowance, where the
-        // velocities' rounding (16ε(|D_A| + κ(M) Σ|G||P| + |W|ᵀ|q̇_E|), κ up to 1e3 here) rather
-        // than the tolerances sets the certificate's own tolerance.
-        SolverOptions options;
-        if (k % 2 == 0) {
-          options.tolerance = 1e-14;
-          options.admissibility_tolerance = 0.0;
-        }
-        const ImpactResult r = solve_impact(pb, law, options);
-        ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
-        expect_same_bits(r.admissibility, check_admissibility(pb, law, r, options), what);
+        const SolverOptions options = options_for(k % 2 == 0);  // every other case tight
+        const ImpactResult r = solved_and_compared(pb, law, options, moving, what);
+        if (!r.ok()) continue;
         EXPECT_LE(law_residual(pb, law, r), options.tolerance) << what;
-        // With the obstacle at rest, its energy change from the velocities against eq. (9) from
-        // the percussions.
-        const double work = -r.admissibility.total;
-        if (!moving) {
-          EXPECT_NEAR(r.energy_change, work,
-                      1e-12 * (r.admissibility.kinetic_energy_A + std::fabs(work)))
-              << what;
-        }
         if (n <= kSmallDofs) {  // the stack-stored form: the same bits
           const SmallImpactResult s = solve_impact(to_small(pb), law, options);
           EXPECT_EQ(s.qdot_E, r.qdot_E) << what;
@@ -137,28 +150,19 @@ TEST(OneContactCertificate, EveryLawsIsTheWholeResultsToTheLastBit) {
                    moving = k % 4 == 1;
         if (law.has_tangential_potential() && !tangential) continue;
         ImpactProblem pb = one_contact(rng, n, tangential, moving, k % 2 == 1);
+        // A tangential row that barely moves the body (G_TT 1e-8 of G_NN): its percussion is
+        // pinned down only to the stopping test's floor over τ = G_TT/2.
+        if (k % 4 == 3 && tangential) pb.W_T *= 1e-4;
         if (k % 6 == 5) pb.qdot_A = -pb.qdot_A;  // the contact leaves: no percussion
         const std::string what =
             std::string(law.name()) + " n=" + std::to_string(n) + " #" + std::to_string(k);
-        SolverOptions options;
-        if (k % 3 == 2) {
-          options.tolerance = 1e-13;
-          options.admissibility_tolerance = 0.0;
-        }
-        const ImpactResult r = solve_impact(pb, law, options);
-        ASSERT_TRUE(r.ok()) << what << ": " << r.solver.message;
-        expect_same_bits(r.admissibility, check_admissibility(pb, law, r, options), what);
+        const ImpactResult r =
+            solved_and_compared(pb, law, options_for(k % 3 == 2 || k % 4 == 3), moving, what);
         if (law.is<FremondLaw>()) {
-          // Frémond's law dissipates: (15) holds, and its work is −(T_E − T_A) with the obstacle
-          // at rest (eq. 9).
+          // Frémond's law dissipates: the certificate holds.
           EXPECT_TRUE(r.admissibility.admissible) << what;
           own_terms += r.admissibility.dissipation != 0.0 || r.admissibility.reaction != 0.0;
           reactions += r.P_N_reaction.size() == 1 && r.P_N_reaction(0) > 0.0;
-        }
-        if (!moving) {
-          EXPECT_NEAR(r.energy_change, -r.admissibility.total,
-                      1e-12 * (r.admissibility.kinetic_energy_A + std::fabs(r.energy_change)))
-              << what;
         }
       }
     }
