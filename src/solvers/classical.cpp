@@ -515,8 +515,7 @@ template <int N, int C>
 bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                              const RestitutionLaw& law, const SolverOptions& options,
                              const LawOutcome<C>& lo, ImpactResultT<N, C>& out) {
-  if (lo.beyond_precision || (options.method != SolverMethod::automatic &&
-                              options.method != SolverMethod::mode_enumeration))
+  if (options.method != SolverMethod::automatic && options.method != SolverMethod::mode_enumeration)
     return false;
   typename ContactSpaceT<N, C>::Rows P, P_C;
   VecT<N> q, qC;

@@ -1095,12 +1095,12 @@ TEST(RegressionClassical, PoissonPhasesOfAnIllConditionedBodyAreSolvedInVelociti
 }
 
 // Poisson on a 2-dof body with cond(M) = 1.3e10 and three contacts whose normals surround it (W_N
-// y = 0 for some y > 0), two of them leaving: the approaching contact alone drives one of them
-// (its D_NC = -1.9e-9), and on every contact the quad reference finds the compression that stops
-// the body (percussions 87 and 128, 1e10 times its velocities, where G's 2x2 block of the two
-// contacts has determinant 8e-12 against G's rounding 1e-6). The library says no_solution, which
-// is a false claim; "failed" would be honest. Open: tests/stress/known_issues.txt.
-TEST(RegressionClassical, DISABLED_BodyClosedInByFixedObstaclesIsNotCalledUnsolvable) {
+// y = 0 for some y > 0), two of them leaving: the approaching contact alone drives one of them,
+// and on every contact the quad reference finds the compression that stops the body (percussions
+// 87 and 128, 1e10 times its velocities, where G is known to 1e-6). The expansion then starts from
+// velocities known to ε κ(M) Σ|G||P_C| = 2e-4, and its q^T y is 0 exactly: Lemke's ray there is
+// rounding, not a proof. The answer is out of double precision's reach: not no_solution.
+TEST(RegressionClassical, BodyClosedInByFixedObstaclesIsNotCalledUnsolvable) {
   const auto file = io::parse_problem_file(
       R"({"M": [[8726094903.2970886, -1133184706.1198657], [-1133184706.1198657, 147157187.56921858]],
  "W_N": [[-0.064090344495031482, -0.7617186149722126, 0.40069364286230069], [0.63382561070148036, -0.087090555457819518, -0.47703907898603992]],

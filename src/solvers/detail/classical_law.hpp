@@ -312,8 +312,12 @@ struct LawOutcome {
 /// has one. That LCP does not see M. When M is so ill-conditioned that G's small eigenvalues are
 /// lost to rounding, G's LCP ends on a ray where this one is solved: a solution exists, out of
 /// double precision's reach, and "no solution" would be a false claim.
+/// A proof must also hold for every q within q's rounding `raise`: this LCP is solved with each
+/// q_i raised by it (Poisson's expansion starts from the compression's velocities, known only to
+/// about ε κ(M) Σ|G||P_C|: a body closed in on every side by fixed obstacles has qᵀy = 0 exactly,
+/// and that rounding alone would make a ray of it).
 template <int N, int C>
-bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph) {
+bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph, double raise = 0.0) {
   const int a = ph.a;
   Phase<C> wp;
   wp.a = a;
@@ -331,7 +335,7 @@ bool ray_is_proof(const ContactSpaceT<N, C>& cs, const Phase<C>& ph) {
     d(i) = norm > 0.0 ? std::min(1.0 / norm, 0x1p1000) : 1.0;  // a subnormal norm: 1/norm = ∞
   }
   for (int i = 0; i < a; ++i) {
-    wp.q(i) = d(i) * ph.q(i);
+    wp.q(i) = d(i) * (ph.q(i) + raise);
     for (int j = 0; j <= i; ++j)
       wp.G(i, j) = wp.G(j, i) = d(i) * d(j) * cs.W.col(i).dot(cs.W.col(j));
   }
@@ -581,6 +585,18 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.beyond_precision = true;
   }
 
+  // How well the expansion's q = D_C + G e P_C is known from the compression's percussions uc:
+  // G is formed by a solve with M, to ε κ(M) relative (velocity_rounding's term).
+  auto start_rounding = [&](const Rows& uc) {
+    if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
+    double worst = 0.0;
+    for (int i = 0; i < r; ++i) {
+      double GP = 0.0;
+      for (int k = 0; k < r; ++k) GP += std::fabs(ph.G(i, k)) * std::fabs(uc(k));
+      worst = std::max(worst, GP);
+    }
+    return 16 * std::numeric_limits<double>::epsilon() * cs.kappa * worst;
+  };
   for (int k = 0; k < first.u.size; ++k) {
     const SolverMethod mk = k == 0 ? first.primary : first.others;
     if (!poisson) {
@@ -613,7 +629,7 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
     out.fallbacks += second.fallbacks;
     out.extended = out.extended || second.extended;
     out.exhaustive = out.exhaustive && second.exhaustive;
-    if (frictionless(ex) && second.u.size == 0 && !ray_is_proof(cs, ex)) {
+    if (frictionless(ex) && second.u.size == 0 && !ray_is_proof(cs, ex, start_rounding(uc))) {
       out.exhaustive = false;
       out.beyond_precision = true;
     }
