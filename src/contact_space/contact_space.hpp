@@ -354,18 +354,18 @@ void share_self_delassus(const ContactSpaceT<MaxDofs, MaxContacts>& from,
 }
 
 /// build_contact_space for a problem with the configuration (M, W_N, W_T) of the one `of` was
-/// built from, w_N or q̇_A aside: M's factor is taken from `of`, and every contact's own Delassus
+/// built from, w or q̇_A aside: M's factor is taken from `of`, and every contact's own Delassus
 /// entries where `of` has them (the same numbers, to the last bit).
 template <int MaxDofs, int MaxContacts>
 void build_contact_space_like(const ImpactProblemT<MaxDofs, MaxContacts>& pb, bool with_tangential,
                               const ContactSpaceT<MaxDofs, MaxContacts>& of,
-                              ContactSpaceT<MaxDofs, MaxContacts>& cs) {
+                              ContactSpaceT<MaxDofs, MaxContacts>& cs,
+                              HeldContacts held = HeldContacts::approaching) {
   cs.self_ready = false;
   cs.kappa = of.kappa;
   if constexpr (MaxDofs != Dynamic)
-    if (contact_space_detail::build_diagonal(pb, with_tangential, cs, HeldContacts::approaching))
-      return;
-  build_contact_space_general(pb, with_tangential, cs, HeldContacts::approaching, &of.llt);
+    if (contact_space_detail::build_diagonal(pb, with_tangential, cs, held)) return;
+  build_contact_space_general(pb, with_tangential, cs, held, &of.llt);
   share_self_delassus(of, cs);
 }
 

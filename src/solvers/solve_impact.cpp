@@ -81,13 +81,14 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
       detail::solve_law_stage(pb, cs, law, options, out, ws);
     // Every contact takes part (separating_contacts.hpp): where the answer without the separating
     // ones drives one of them into its obstacle, or where the approaching contacts alone have no
-    // answer, the impact is solved again on every contact.
+    // answer, the impact is solved again on every contact, by independent groups there too.
     if (cs.active < cs.contacts &&
         (no_answer(out) || detail::drives_a_separating_contact(pb, out, options))) {
       const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
       build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
       clear_result(out);
-      detail::solve_law_stage(pb, cs, every, options, out, ws);
+      if (!detail::solve_by_groups(pb, cs, law, options, out, ws, detail::HeldContacts::every))
+        detail::solve_law_stage(pb, cs, every, options, out, ws);
     }
   }
   log_answer_if_unlogged(out);

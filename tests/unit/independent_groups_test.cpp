@@ -200,6 +200,55 @@ TEST(IndependentGroups, AGroupsVelocitiesSolvedForFirstAreKept) {
   EXPECT_LE(law_residual(pb, law, r), 1e-14);
 }
 
+/// A point mass in a wedge: the ground y = 0 (contact 0) and a ceiling of normal (0.8, −0.6)
+/// (contact 1), which it leaves at first (D_NA = 0.8 ẋ − 0.6 ẏ > 0); `scale` multiplies the
+/// velocities. Two such bodies side by side where `pair`, q = (x₁, y₁, x₂, y₂), the second at 1e-9
+/// of the first's velocities.
+ImpactProblem wedge(double m, bool pair, double scale = 1.0) {
+  const int n = pair ? 4 : 2, c = pair ? 4 : 2;
+  ImpactProblem p;
+  p.M = Eigen::MatrixXd::Identity(n, n) * m;
+  p.W_N = Eigen::MatrixXd::Zero(n, c);
+  p.W_T = Eigen::MatrixXd::Zero(n, c);
+  p.qdot_A.resize(n);
+  for (int b = 0; b < (pair ? 2 : 1); ++b) {
+    p.W_N(2 * b + 1, 2 * b) = 1.0;
+    p.W_T(2 * b, 2 * b) = 1.0;
+    p.W_N(2 * b, 2 * b + 1) = 0.8;
+    p.W_N(2 * b + 1, 2 * b + 1) = -0.6;
+    p.W_T(2 * b, 2 * b + 1) = 0.6;
+    p.W_T(2 * b + 1, 2 * b + 1) = 0.8;
+    const double s = scale * (b == 0 ? 1.0 : 1e-9);
+    p.qdot_A.segment(2 * b, 2) = s * Eigen::Vector2d(0.1, -1.0);
+  }
+  return p;
+}
+
+TEST(IndependentGroups, SolvedAgainOnEveryContactEachBodyKeepsItsOwnScale) {
+  // Bouncing off the ground, each body is driven into the ceiling it was leaving (ẏ_E > 0 with ẋ
+  // small), so the impact is solved again on every contact; there too the two bodies are
+  // independent, and the slow one must get its own problem's answer to its own scale.
+  for (const auto& [name, law] : laws()) {
+    SCOPED_TRACE(name);
+    const ImpactResult fast = solve_impact(wedge(0.3, false), law);
+    const ImpactResult slow = solve_impact(wedge(0.3, false, 1e-9), law);
+    ASSERT_TRUE(fast.ok() && slow.ok()) << fast.solver.message << " / " << slow.solver.message;
+    // The case is the one it means to be: the ceiling stops each body alone.
+    ASSERT_GT(fast.P_N(1), 0.0);
+    ASSERT_GT(slow.P_N(1), 0.0);
+    const ImpactResult both = solve_impact(wedge(0.3, true), law);
+    ASSERT_TRUE(both.ok()) << both.solver.message;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(both.qdot_E(i), fast.qdot_E(i), 1e-12) << i;
+      EXPECT_NEAR(both.qdot_E(2 + i), slow.qdot_E(i), 1e-12 * 1e-9) << i;
+      EXPECT_NEAR(both.P_N(2 + i), slow.P_N(i), 1e-12 * std::fabs(slow.P_N(0))) << i;
+    }
+    // Neither body ends in its ceiling, each to its own scale.
+    EXPECT_GE(both.D_NE(1), -1e-13);
+    EXPECT_GE(both.D_NE(3), -1e-13 * 1e-9);
+  }
+}
+
 TEST(IndependentGroups, CoupledContactsAreSolvedTogether) {
   // The flat bar on both ends: G couples the ends, one group, Newton's frictionless law on two
   // contacts. With e = 0 both ends come to rest: the bar's ẏ and θ̇ after are 0.

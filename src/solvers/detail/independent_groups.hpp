@@ -19,6 +19,7 @@
 
 #include "contact_space/contact_space.hpp"
 #include "laws/detail/plugins.hpp"
+#include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/result_copy.hpp"
 
 namespace fremond::detail {
@@ -85,11 +86,41 @@ inline bool tangential_rows(const ImpactLaw& law) {
 /// > 0 (it was ≤ 0) through w_N, so that g's contacts alone take part and every contact keeps its
 /// index (and its parameters in the law); `gcs` its contact space. False where the lifted w_N
 /// overflows, or where rounding moved a contact across D_NA = 0 (gcs then lacks or has one more).
+///
+/// With `held` = every (the impact solved again on every contact: separating_contacts.hpp), `cs`
+/// holds every contact, and so does `gcs`: the other groups' contacts, held too, are moved to
+/// D_NA = s and D_TA = 0 (up to their rounding) through w_N and w_T, s the largest |D_A| of g's own
+/// rows. Separating from the group and independent of it, they take no percussion, and the group
+/// keeps its own velocity scale. False also where one of them does not separate, or where its
+/// rounding alone would set the scale (gcs.v_scale beyond 2s).
 template <int N, int C, class Group>
 bool group_problem(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                    const ImpactLaw& law, const Group& group, int g, ImpactProblemT<N, C>& sub,
-                   ContactSpaceT<N, C>& gcs) {
+                   ContactSpaceT<N, C>& gcs, HeldContacts held = HeldContacts::approaching) {
   if (sub.w_N.size() == 0) sub.w_N = VecT<C>::Zero(cs.contacts);
+  if (held == HeldContacts::every) {
+    const bool has_t = pb.has_tangential();
+    if (has_t && sub.w_T.size() == 0) sub.w_T = VecT<C>::Zero(cs.contacts);
+    double s = 0.0;
+    for (int k = 0; k < cs.active; ++k)
+      if (group(k) == g)
+        s = std::max(
+            {s, std::fabs(cs.D_N(cs.index(k))), has_t ? std::fabs(cs.D_T(cs.index(k))) : 0.0});
+    if (!(s > 0.0)) return false;
+    for (int k = 0; k < cs.active; ++k) {
+      const int i = cs.index(k);
+      const double wN = pb.w_N.size() ? pb.w_N(i) : 0.0;
+      const double wT = pb.w_T.size() ? pb.w_T(i) : 0.0;
+      const bool own = group(k) == g;
+      sub.w_N(i) = own ? wN : wN - cs.D_N(i) + s;
+      if (has_t) sub.w_T(i) = own ? wT : wT - cs.D_T(i);
+      if (!std::isfinite(sub.w_N(i)) || (has_t && !std::isfinite(sub.w_T(i)))) return false;
+    }
+    build_contact_space_like(sub, tangential_rows(law), cs, gcs, HeldContacts::every);
+    for (int k = 0; k < cs.active; ++k)
+      if (group(k) != g && !(gcs.D_N(cs.index(k)) > 0.0)) return false;
+    return gcs.active == cs.active && gcs.v_scale <= 2.0 * s;
+  }
   int members = 0;
   for (int k = 0; k < cs.active; ++k) {
     const int i = cs.index(k);
@@ -193,15 +224,31 @@ template <int N, int C>
 [[gnu::noinline]] bool solve_each_group(const ImpactProblemT<N, C>& pb,
                                         const ContactSpaceT<N, C>& cs, const ImpactLaw& law,
                                         const SolverOptions& options, const GroupLabels<C>& group,
-                                        int groups, ImpactResultT<N, C>& out, ChainWorkspace& ws) {
+                                        int groups, HeldContacts held, ImpactResultT<N, C>& out,
+                                        ChainWorkspace& ws) {
+  const bool every = held == HeldContacts::every;
   ImpactProblemT<N, C> sub = pb;
-  ContactSpaceT<N, C> gcs;
+  ContactSpaceT<N, C> gcs, approaching;
   ImpactResultT<N, C> r;
   GroupMerge<N, C> merge(pb, cs);
   for (int g = 0; g < groups; ++g) {
-    if (!group_problem(pb, cs, law, group, g, sub, gcs)) return false;
+    if (!group_problem(pb, cs, law, group, g, sub, gcs, held)) return false;
     clear_result(r);
-    solve_law_stage(sub, gcs, law, options, r, ws);
+    if (!every) {
+      solve_law_stage(sub, gcs, law, options, r, ws);
+    } else {
+      // As the group's own problem is solved (solve_impact.cpp): on its approaching contacts
+      // first, and on every contact where that answer drives one of its separating contacts or
+      // where there is none, under the law its separating contacts and the lifted ones obey.
+      build_contact_space_like(sub, tangential_rows(law), cs, approaching);
+      solve_law_stage(sub, approaching, law, options, r, ws);
+      const SolverStatus first = r.solver.status;
+      if (first == SolverStatus::no_solution || first == SolverStatus::failed ||
+          drives_a_separating_contact(sub, r, options)) {
+        clear_result(r);
+        solve_law_stage(sub, gcs, law_of_every_contact(law, gcs.D_N), options, r, ws);
+      }
+    }
     share_self_delassus(gcs, cs);  // once a group's residual has them, for the next groups
     const SolverStatus s = r.solver.status;
     if (s == SolverStatus::no_solution || s == SolverStatus::unsupported ||
@@ -209,20 +256,24 @@ template <int N, int C>
       return false;
     merge.add(group, g, r);
   }
-  return merge.write(law, out);
+  // Not `every ? law_of_every_contact(...) : law`, whose prvalue would copy `law` (its heap lists).
+  if (!every) return merge.write(law, out);
+  return merge.write(law_of_every_contact(law, cs.D_N), out);
 }
 
 /// Solves the law group by group where cs's contacts fall into two or more independent groups;
 /// false (nothing written) where they do not, or where a group ends without an answer to merge
 /// (no_solution, unsupported: the whole problem is then solved as one, whose report says so).
+/// `held`: the contacts cs holds (with every, `law` is still the problem's: each group is solved
+/// under the law of its every contact, law_of_every_contact).
 template <int N, int C>
 bool solve_by_groups(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                      const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& out,
-                     ChainWorkspace& ws) {
+                     ChainWorkspace& ws, HeldContacts held = HeldContacts::approaching) {
   if (cs.active < 2 || coupled_to_first(cs)) return false;
   GroupLabels<C> group;
   const int groups = independent_groups(cs, group);
-  return groups >= 2 && solve_each_group(pb, cs, law, options, group, groups, out, ws);
+  return groups >= 2 && solve_each_group(pb, cs, law, options, group, groups, held, out, ws);
 }
 
 /// solve_impact_all by groups: every solution is one of each group's, so the list is the product
