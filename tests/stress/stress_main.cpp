@@ -360,6 +360,77 @@ std::string classical_answer_violation(const ImpactProblem& pb, const ImpactLaw&
   return "";
 }
 
+/// Frémond + Coulomb: what the library's answer, its own velocities and percussions read in quad
+/// precision, misses of the law, "" when nothing: the momentum balance M(q̇_E − q̇_A) = W P to 64ε
+/// of each row's terms, and on every contact the normal law with its reaction and Coulomb's, at
+/// z = (D_A + D_E)/2 with D = Wᵀq̇ + w, each measured as fremond_residual measures it (a backward
+/// error), to 1e-12 of the scales beyond the rounding of the velocities: 16ε of their terms, and
+/// 64ε·cond(M) of the change the percussions make (Wᵀ M⁻¹W P, which no double-precision solve
+/// resolves better). `normal`: each contact's law as the reference reads it (φ_N = 0 on those that
+/// separate). For an answer near which no exact solution lies while G = WᵀM⁻¹W is known to
+/// cond(M)·ε only: the law held to that rounding, by a second method (no M⁻¹).
+std::string fremond_coulomb_answer_violation(const ImpactProblem& pb, const ImpactLaw& law,
+                                             const ImpactResult& r,
+                                             const std::vector<ref::PowerLaw>& normal,
+                                             double cond) {
+  using ref::quad;
+  const int n = pb.dofs(), c = pb.contacts();
+  const double eps = std::numeric_limits<double>::epsilon();
+  std::string missed = momentum_violation(pb, pb.qdot_A, r.qdot_E, r.P_N, r.P_T, "the impact's");
+  if (!missed.empty()) return missed;
+  quad vs = 0, Ps = 0;
+  for (int i = 0; i < c; ++i) {
+    if (r.takes_part(i)) vs = fmaxq(vs, fmaxq(fabsq(quad(r.D_NA(i))), fabsq(quad(r.D_TA(i)))));
+    Ps = fmaxq(Ps, fmaxq(fabsq(quad(r.P_N(i))), fabsq(quad(r.P_T(i)))));
+  }
+  if (vs == 0 || Ps == 0) return "";
+  // z = (D_A + D_E)/2 of row i of W, and its rounding: 16ε of the terms it is summed from, and
+  // 64ε·cond(M) of the change the percussions make.
+  auto mean_velocity = [&](const Eigen::MatrixXd& W, const Eigen::VectorXd& w, int i,
+                           quad& rounding) {
+    quad z = w.size() ? quad(w(i)) : quad(0), terms = fabsq(z), change = 0;
+    for (int k = 0; k < n; ++k) {
+      const quad a = quad(W(k, i)) * quad(pb.qdot_A(k)), e = quad(W(k, i)) * quad(r.qdot_E(k));
+      z += (a + e) / 2;
+      terms += fabsq(a) + fabsq(e);
+      change += fabsq(e - a);
+    }
+    rounding = 16 * eps * terms + 64 * eps * quad(cond) * change;
+    return z;
+  };
+  for (int i = 0; i < c; ++i) {
+    quad tn = 0, tt = 0;
+    const quad zN = mean_velocity(pb.W_N, pb.w_N, i, tn);
+    const quad DNE = 2 * zN - quad(r.D_NA(i));
+    const quad tol_N = quad(1e-12) + tn / vs;
+    const ref::PowerLaw& nl = normal[static_cast<std::size_t>(i)];
+    const quad PN = r.P_N(i), R = PN + ref::detail::f_normal(nl, zN);
+    quad Rb = R / Ps;
+    if (nl.k > 0) {
+      const quad z_inv = ref::detail::sgn(-PN) * powq(fabsq(PN) / nl.k, 1 / (nl.p - 1));
+      Rb = ref::detail::sgn(R) * fminq(fabsq(R) / Ps, fabsq(zN - z_inv) / vs);
+    }
+    const quad normal_error = fabsq(fminq(DNE / vs, Rb));
+    if (!(normal_error <= tol_N))
+      return "contact " + std::to_string(i) + ": the normal law with its reaction off by " +
+             fmt(ref::to_double(normal_error));
+    const quad zT = mean_velocity(pb.W_T, pb.w_T, i, tt);
+    const quad coulomb =
+        ref::detail::coulomb_error(r.P_T(i), zT, quad(law.mu(i)) * fabsq(PN), Ps, vs);
+    if (!(coulomb <= quad(1e-12) + tt / vs))
+      return "contact " + std::to_string(i) + ": Coulomb's law off by " +
+             fmt(ref::to_double(coulomb));
+  }
+  return "";
+}
+
+/// cond₂(M) from its eigenvalues (1e16 where M is not positive definite in double precision).
+double mass_condition(const Eigen::MatrixXd& M) {
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M, Eigen::EigenvaluesOnly).eigenvalues();
+  return ev(0) > 0 ? ev(ev.size() - 1) / ev(0) : 1e16;
+}
+
 /// The largest condition (about 1/pivot) of the classical reference's modes over its solutions.
 double max_mode_cond(const std::vector<ref::Solution>& sols) {
   double c = 1.0;
@@ -588,9 +659,39 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           sz.ok = false;
           if (perturbed) sz = ref::fremond_coulomb_near(qz, normal, mu, PN, PT);
           if (!sz.ok) {
+            // G inherits cond(M): beyond 1e8 its double-precision entries are off by 1e-8 of
+            // their size, enough to move a contact across the boundary of its mode (a stick
+            // whose bound μ|P_N| is met to that rounding), where the exact data have no solution
+            // near the answer (fremond_coulomb #6690 of seed 20261207: cond(M) = 3e10, 4
+            // contacts). The answer is then held to the law itself, in quad precision.
+            const double cond = mass_condition(pb.M);
+            const std::string missed =
+                cond > 1e8 ? fremond_coulomb_answer_violation(pb, law, r, normal, cond)
+                           : "(not tried)";
+            if (missed.empty()) {
+              out.line(
+                  "R checked 0\tno exact solution of these data near the library's answer, "
+                  "on a mass matrix of cond(M) = " +
+                  fmt(cond) +
+                  " (G known to cond(M) eps); the answer satisfies the law to that rounding "
+                  "and the momentum balance in quad precision");
+              return;
+            }
+            // A contact whose W_T is parallel to W_N (its z_T and z_N one velocity) is named, so
+            // that a known issue of that degenerate shape does not stand for every other.
+            bool parallel = false;
+            for (int i = 0; i < c && pb.has_tangential(); ++i) {
+              const double a = pb.W_N.col(i).norm(), b = pb.W_T.col(i).norm();
+              parallel =
+                  parallel || (a > 0 && b > 0 &&
+                               std::fabs(pb.W_N.col(i).dot(pb.W_T.col(i))) >= (1 - 1e-12) * a * b);
+            }
             out.line(
                 "R mismatch 0\tno exact solution of Frémond + Coulomb near the library's answer "
-                "(each contact mode it lies near solved in quad precision)");
+                "(each contact mode it lies near solved in quad precision)" +
+                (cond > 1e8 ? std::string(", and the answer misses the law: ") + missed
+                            : std::string()) +
+                (parallel ? ", with W_T parallel to W_N at a contact" : ""));
             return;
           }
           sols.push_back(sz);
@@ -738,6 +839,19 @@ ImpactLaw doubled(const ImpactLaw& law) {
   return out;
 }
 
+/// The largest entry of |q̇_A| + |M⁻¹W_N||P_N| + |M⁻¹W_T||P_T|: the size of the terms the
+/// velocities after the impact are summed from.
+double velocity_terms(const ImpactProblem& pb, const Eigen::VectorXd& PN,
+                      const Eigen::VectorXd& PT) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(pb.M);
+  Eigen::VectorXd t = pb.qdot_A.cwiseAbs();
+  if (PN.size() == pb.contacts() && pb.contacts() > 0)
+    t += Eigen::MatrixXd(llt.solve(Eigen::MatrixXd(pb.W_N))).cwiseAbs() * PN.cwiseAbs();
+  if (pb.has_tangential() && PT.size() == pb.W_T.cols())
+    t += Eigen::MatrixXd(llt.solve(Eigen::MatrixXd(pb.W_T))).cwiseAbs() * PT.cwiseAbs();
+  return t.size() ? t.maxCoeff() : 0.0;
+}
+
 void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactResult& r, Sink& out) {
   constexpr double kScale = 1e-9;
   const int n = pb.dofs(), c = pb.contacts(), ct = static_cast<int>(pb.W_T.cols());
@@ -774,21 +888,19 @@ void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactRes
     return;  // the copy's data out of range (an overflow scaled): nothing to compare
   }
   if (!rb.ok()) return;
-  // A separating contact stopped by its reaction: the problem is solved again on every contact,
-  // as one (not by groups), so the slow copy is held to the fast one's scale.
-  for (int i = 0; i < rb.P_N.size(); ++i)
-    if (!rb.takes_part(i) && (rb.P_N(i) != 0.0 || rb.P_T(i) != 0.0)) return;
-  const Eigen::VectorXd ev =
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(pb.M), Eigen::EigenvaluesOnly)
-          .eigenvalues();
-  const double cond = ev(0) > 0 ? ev(ev.size() - 1) / ev(0) : 1e16;
+  const double cond = mass_condition(pb.M);
   const double allowed = std::max(1e-8, 1e3 * std::numeric_limits<double>::epsilon() * cond);
   for (int b = 0; b < 2; ++b) {
     const ImpactResult& part = b == 0 ? r : rs;
     if (!part.ok() || !part.unique) continue;
     const Eigen::VectorXd mine = rb.qdot_E.segment(b * n, n);
-    const double scale = std::max(part.qdot_E.cwiseAbs().maxCoeff(),
-                                  (b == 0 ? pb : slow).qdot_A.cwiseAbs().maxCoeff());
+    // The scale of q̇_E is that of the terms it is summed from, q̇_A + M⁻¹W P: where the
+    // percussions are many times the velocities (a potential nearly linear, P_N ≈ k whatever z),
+    // q̇_E is their cancellation and known to ε of them only (fremond_coulomb #2913 of seed
+    // 20261207: p − 1 = 1e-5, terms 1.6e8 times q̇_E).
+    const ImpactProblem& own = b == 0 ? pb : slow;
+    const double scale =
+        std::max(part.qdot_E.cwiseAbs().maxCoeff(), velocity_terms(own, part.P_N, part.P_T));
     if (!(scale > 0.0)) continue;
     const double err = (mine - part.qdot_E).cwiseAbs().maxCoeff() / scale;
     if (!(err <= allowed))
