@@ -63,6 +63,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "invariants.hpp"
@@ -284,6 +285,18 @@ std::string momentum_violation(const ImpactProblem& pb, const Eigen::VectorXd& q
   return "";
 }
 
+/// The scales an answer's law is measured on, in quad precision: the largest |D_A| of the contacts
+/// that take part, and the largest percussion.
+std::pair<ref::quad, ref::quad> answer_scales(const ImpactResult& r) {
+  using ref::quad;
+  quad vs = 0, Ps = 0;
+  for (int i = 0; i < r.P_N.size(); ++i) {
+    if (r.takes_part(i)) vs = fmaxq(vs, fmaxq(fabsq(quad(r.D_NA(i))), fabsq(quad(r.D_TA(i)))));
+    Ps = fmaxq(Ps, fmaxq(fabsq(quad(r.P_N(i))), fabsq(quad(r.P_T(i)))));
+  }
+  return {vs, Ps};
+}
+
 /// The classical laws: what the library's answer, its own velocities and percussions read in quad
 /// precision, misses of the law, "" when nothing. Each phase's momentum balance (Newton's one;
 /// Poisson's compression M(q̇_C − q̇_A) = W P_C and the whole impact M(q̇_E − q̇_A) = W P) to 64ε
@@ -306,11 +319,7 @@ std::string classical_answer_violation(const ImpactProblem& pb, const ImpactLaw&
   if (missed.empty() && poisson)
     missed = momentum_violation(pb, pb.qdot_A, r.qdot_C, r.P_NC, r.P_TC, "the compression's");
   if (!missed.empty()) return missed;
-  quad vs = 0, Ps = 0;
-  for (int i = 0; i < c; ++i) {
-    if (r.takes_part(i)) vs = fmaxq(vs, fmaxq(fabsq(quad(r.D_NA(i))), fabsq(quad(r.D_TA(i)))));
-    Ps = fmaxq(Ps, fmaxq(fabsq(quad(r.P_N(i))), fabsq(quad(r.P_T(i)))));
-  }
+  const auto [vs, Ps] = answer_scales(r);
   if (vs == 0 || Ps == 0) return "";
   // D = Wᵀq + w of contact i, and its tolerance: 1e-12 beyond 16ε of its terms.
   auto velocity = [&](const Eigen::MatrixXd& W, const Eigen::VectorXd& w, const Eigen::VectorXd& q,
@@ -378,11 +387,7 @@ std::string fremond_coulomb_answer_violation(const ImpactProblem& pb, const Impa
   const double eps = std::numeric_limits<double>::epsilon();
   std::string missed = momentum_violation(pb, pb.qdot_A, r.qdot_E, r.P_N, r.P_T, "the impact's");
   if (!missed.empty()) return missed;
-  quad vs = 0, Ps = 0;
-  for (int i = 0; i < c; ++i) {
-    if (r.takes_part(i)) vs = fmaxq(vs, fmaxq(fabsq(quad(r.D_NA(i))), fabsq(quad(r.D_TA(i)))));
-    Ps = fmaxq(Ps, fmaxq(fabsq(quad(r.P_N(i))), fabsq(quad(r.P_T(i)))));
-  }
+  const auto [vs, Ps] = answer_scales(r);
   if (vs == 0 || Ps == 0) return "";
   // z = (D_A + D_E)/2 of row i of W, and its rounding: 16ε of the terms it is summed from, and
   // 64ε·cond(M) of the change the percussions make.
