@@ -665,10 +665,10 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           if (perturbed) sz = ref::fremond_coulomb_near(qz, normal, mu, PN, PT);
           if (!sz.ok) {
             // G inherits cond(M): beyond 1e8 its double-precision entries are off by 1e-8 of
-            // their size, enough to move a contact across the boundary of its mode (a stick
-            // whose bound μ|P_N| is met to that rounding), where the exact data have no solution
-            // near the answer (fremond_coulomb #6690 of seed 20261207: cond(M) = 3e10, 4
-            // contacts). The answer is then held to the law itself, in quad precision.
+            // their size, enough to move a contact across the edge of its mode, where the exact
+            // data have no solution near the answer (fremond_coulomb #6690 of seed 20261207:
+            // cond(M) = 1.9e10, 4 contacts, the law met to 9e-7). The answer is then held to the
+            // law itself, in quad precision.
             const double cond = mass_condition(pb.M);
             const std::string missed =
                 cond > 1e8 ? fremond_coulomb_answer_violation(pb, law, r, normal, cond)
