@@ -319,7 +319,9 @@ std::string classical_answer_violation(const ImpactProblem& pb, const ImpactLaw&
   if (missed.empty() && poisson)
     missed = momentum_violation(pb, pb.qdot_A, r.qdot_C, r.P_NC, r.P_TC, "the compression's");
   if (!missed.empty()) return missed;
-  const auto [vs, Ps] = answer_scales(r);
+  // Named copies, not a structured binding: the lambdas below capture them.
+  const std::pair<ref::quad, ref::quad> scales = answer_scales(r);
+  const ref::quad vs = scales.first, Ps = scales.second;
   if (vs == 0 || Ps == 0) return "";
   // D = Wᵀq + w of contact i, and its tolerance: 1e-12 beyond 16ε of its terms.
   auto velocity = [&](const Eigen::MatrixXd& W, const Eigen::VectorXd& w, const Eigen::VectorXd& q,
@@ -387,7 +389,9 @@ std::string fremond_coulomb_answer_violation(const ImpactProblem& pb, const Impa
   const double eps = std::numeric_limits<double>::epsilon();
   std::string missed = momentum_violation(pb, pb.qdot_A, r.qdot_E, r.P_N, r.P_T, "the impact's");
   if (!missed.empty()) return missed;
-  const auto [vs, Ps] = answer_scales(r);
+  // Named copies, not a structured binding: the lambdas below capture them.
+  const std::pair<ref::quad, ref::quad> scales = answer_scales(r);
+  const ref::quad vs = scales.first, Ps = scales.second;
   if (vs == 0 || Ps == 0) return "";
   // z = (D_A + D_E)/2 of row i of W, and its rounding: 16ε of the terms it is summed from, and
   // 64ε·cond(M) of the change the percussions make.
