@@ -176,7 +176,7 @@ RowRounding row_rounding(const ContactSpaceT<N, C>& cs, int j, const Percussion&
     for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
   }
   return {GP, 16 * std::numeric_limits<double>::epsilon() *
-                  (std::fabs(cs.D_A(j)) + cs.kappa * GP + WqE)};
+                  (std::fabs(cs.D_A(j)) + cs.condition() * GP + WqE)};
 }
 }  // namespace
 
@@ -192,8 +192,7 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
     P(cs.normal_row(k)) = r.P_N(cs.index(k));
     if (cs.tangential) P(cs.tangential_row(k)) = r.P_T(cs.index(k));
   }
-  // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative.
-  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
+  // G = Wᵀ M⁻¹ W comes from a Cholesky solve, accurate to ε κ(M) relative (row_rounding).
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
   // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
@@ -247,7 +246,6 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
   }
   // velocity_rounding's sums for the contact's rows, in its order, with the percussion's floor
   // where the law has terms of its own.
-  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
   const int rows = cs.rows();
   const bool own = law.visit([](const auto& l) { return has_certificate_terms(l); });
   const double g_max = own ? delassus_max(cs) : 0.0;

@@ -4,6 +4,7 @@
 ///
 /// Rows are ordered [normal rows of the active contacts, then their tangential rows]. G = Wᵀ M⁻¹ W
 /// is formed from a Cholesky factor of M; it may be singular and is never inverted.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -67,9 +68,20 @@ struct ContactSpaceT {
   /// solving them again.
   mutable VecT<MaxContacts> self_N, self_T;
   mutable bool self_ready = false;
-  /// The certificate's estimate of cond(M) from llt (velocity_rounding), computed once a build on
-  /// first use: a prepared solver's every solve on one configuration reads the same number.
+  /// cond(M) as estimated from llt, at least 1, computed once a build on first use: a prepared
+  /// solver's every solve on one configuration reads the same number. -1 until then.
   mutable double kappa = -1.0;
+
+  /// cond(M) (kappa, computed here on first use).
+  double condition() const {
+    if (kappa < 0.0) kappa = std::max(1.0, condition_estimate(llt));
+    return kappa;
+  }
+  /// The relative rounding of G = WᵀM⁻¹W, formed by a solve with M's factor: 16ε cond(M). Every
+  /// allowance made for G's rounding (the certificate's, the solvers') is this one number.
+  double delassus_rounding() const {
+    return 16 * std::numeric_limits<double>::epsilon() * condition();
+  }
 
   int rows() const { return tangential ? 2 * active : active; }
   int normal_row(int i) const { return i; }

@@ -301,9 +301,7 @@ template <int N, int C>
 bool drives_unheld_contact(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                            const ImpactResultT<N, C>& r, const SolverOptions& options) {
   if (cs.active == cs.contacts) return false;
-  if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
-  const double rounding = 16 * std::numeric_limits<double>::epsilon() * cs.kappa;
-  return drives_a_separating_contact(pb, r, options, rounding);
+  return drives_a_separating_contact(pb, r, options, cs.delassus_rounding());
 }
 
 // One solution of the law written into `out` and settled: within the tolerance, or within the

@@ -588,14 +588,13 @@ void solve_law(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
   // How well the expansion's q = D_C + G e P_C is known from the compression's percussions uc:
   // G is formed by a solve with M, to ε κ(M) relative (velocity_rounding's term).
   auto start_rounding = [&](const Rows& uc) {
-    if (cs.kappa < 0.0) cs.kappa = std::max(1.0, condition_estimate(cs.llt));
     double worst = 0.0;
     for (int i = 0; i < r; ++i) {
       double GP = 0.0;
       for (int k = 0; k < r; ++k) GP += std::fabs(ph.G(i, k)) * std::fabs(uc(k));
       worst = std::max(worst, GP);
     }
-    return 16 * std::numeric_limits<double>::epsilon() * cs.kappa * worst;
+    return cs.delassus_rounding() * worst;
   };
   for (int k = 0; k < first.u.size; ++k) {
     const SolverMethod mk = k == 0 ? first.primary : first.others;
