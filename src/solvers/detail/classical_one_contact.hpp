@@ -30,14 +30,21 @@ bool one_approaching_contact(const ContactSpaceT<N, C>& cs, const SolverOptions&
 }
 
 /// q = q̇_A + M⁻¹W P for the contact's rows P (P[1] the tangential one, 0 without), as
-/// velocity_after sums it. False where velocity_after would sum the force again (its terms
-/// cancel) or q is not finite. K: the dofs, where fixed.
+/// velocity_after makes it, the same bits: the plain sum, or where its terms cancel (a sliding
+/// contact whose normal and tangential torques nearly cancel) the force summed in twice the
+/// precision. False where q is not finite. K: the dofs, where fixed.
 template <int K, int N, int C>
-bool plain_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
-                          const double (&P)[2], SizedVecT<K, N>& q) {
+bool one_contact_velocity_after(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
+                                const double (&P)[2], SizedVecT<K, N>& q) {
+  const int rows = cs.tangential ? 2 : 1;
   if (!plain_velocity_sum<K>(
-          pb, cs, cs.tangential ? 2 : 1, [&](int j) { return P[j]; }, q))
-    return false;
+          pb, cs, rows, [&](int j) { return P[j]; }, q)) {
+    typename ContactSpaceT<N, C>::Rows rows_P(rows);
+    for (int j = 0; j < rows; ++j) rows_P(j) = P[j];
+    VecT<N> refined;
+    velocity_after(pb, cs, rows_P, refined);
+    q = refined;
+  }
   for (int i = 0; i < q.size(); ++i)
     if (!std::isfinite(q(i))) return false;
   return true;
@@ -53,8 +60,7 @@ double abs_dot(const double* col, const SizedVecT<K, N>& u) {
 
 /// The answer of one_approaching_contact's problems, written into `out` (a cleared result) when
 /// the contact modes would give it unchanged: one solution of the closed forms (G regular; for
-/// Poisson one compression and one expansion), velocities whose terms do not cancel
-/// (velocity_after's plain sum), and a residual settled at those velocities
+/// Poisson one compression and one expansion) and a residual settled at its velocities
 /// (residual_at_own_velocities). False, `out` untouched, otherwise: the contact modes then run as
 /// they always do. Each number is computed as the general path computes it, in the same order, so
 /// that the answers agree bit for bit.
@@ -96,8 +102,8 @@ bool settle_one_contact_sized(const ImpactProblemT<N, C>& pb, const ContactSpace
 
   // The velocities, the contact velocities after and T_E − T_A (write_classical_answer).
   SizedVecT<K, N> q, qC;
-  if (!plain_velocity_after<K>(pb, cs, P, q)) return false;
-  if (poisson && !plain_velocity_after<K>(pb, cs, P_C, qC)) return false;
+  if (!one_contact_velocity_after<K>(pb, cs, P, q)) return false;
+  if (poisson && !one_contact_velocity_after<K>(pb, cs, P_C, qC)) return false;
   const double wn = pb.w_N.size() ? pb.w_N(0) : 0.0, wt = pb.w_T.size() ? pb.w_T(0) : 0.0;
   const double D_NE = contact_velocity(pb.W_N.col(0), q, wn);
   const double D_TE = tangential ? contact_velocity(pb.W_T.col(0), q, wt) : 0.0;
