@@ -24,10 +24,16 @@ void BatchOptions::validate() const {
 }
 
 namespace {
+// The machine's cores, asked once: std::thread::hardware_concurrency reads a kernel file on every
+// call, three system calls that cost more than a small batch's solves.
+unsigned machine_cores() {
+  static const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return cores;
+}
+
 // The number of workers for `count` problems: never more than problems, at least one.
 int workers_for(std::size_t count, int threads) {
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t wanted = threads == 0 ? cores : static_cast<std::size_t>(threads);
+  const std::size_t wanted = threads == 0 ? machine_cores() : static_cast<std::size_t>(threads);
   return static_cast<int>(std::max<std::size_t>(1, std::min(wanted, count)));
 }
 
@@ -57,30 +63,30 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
 }
 
 /// solve(state, i) for every i < count on the batch's workers, each with its own state from
-/// make_state(). Contiguous blocks are dealt round-robin: block b to worker b mod n, in order. A
-/// run of hard problems (NLopt) is shared among the workers, and each result is written by the same
-/// worker from one batch to the next, so a reused heap-stored result is freed by the thread that
-/// made it (no allocator lock taken across threads). The first InvalidArgument by index is
-/// handed to refuse(i, e), which throws, once every item before it has been tried. `min_block`:
-/// items a block at least (64 where each writes a byte of a shared array, so that two workers do
-/// not write one cache line).
+/// make_state(). Workers take contiguous blocks in order from a shared counter as they become
+/// free: a worker that starts late (a thread is woken in tens to hundreds of µs) or meets a run of
+/// hard problems (NLopt) leaves its share to the others, where a fixed deal made the batch wait
+/// for it. The first InvalidArgument by index is handed to refuse(i, e), which throws, once every
+/// item before it has been tried. `min_block`: items a block at least (64 where each writes a byte
+/// of a shared array, so that two workers do not write one cache line).
 template <class MakeState, class Solve, class Refuse>
 void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeState& make_state,
                     const Solve& solve, const Refuse& refuse, std::size_t min_block = 1) {
   const std::size_t block = std::clamp<std::size_t>(count / 512, min_block, 64);
   const int n = workers_for(count, batch.threads);
+  std::atomic<std::size_t> next_block{0};
   std::atomic<std::size_t> first_bad{count};
   std::mutex refused_lock;  // the error of the first invalid item, kept as it was thrown
   std::optional<InvalidArgument> refused;
   std::exception_ptr unexpected;
   std::atomic<bool> broken{false};
-  auto work = [&](int worker) {
+  auto work = [&](int /*worker*/) {
     try {
       auto state = make_state();
-      const std::size_t stride = block * static_cast<std::size_t>(n);
-      for (std::size_t begin = block * static_cast<std::size_t>(worker); begin < count;
-           begin += stride) {
-        if (begin > first_bad.load(std::memory_order_relaxed) || broken.load()) return;
+      for (;;) {
+        const std::size_t begin = next_block.fetch_add(block, std::memory_order_relaxed);
+        if (begin >= count || begin > first_bad.load(std::memory_order_relaxed) || broken.load())
+          return;
         const std::size_t end = std::min(begin + block, count);
         for (std::size_t i = begin; i < end; ++i) {
           try {
