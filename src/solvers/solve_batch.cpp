@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -62,13 +63,18 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
   detail::solve_impact_into(pb, law, options, out);
 }
 
+// How long the calling thread solves alone before it starts the other workers: starting a
+// thread and waking an idle core takes 50 µs to a few hundred here, so a shorter batch (a fit's
+// evaluation on a few dozen measured impacts) costs more to share than to solve.
+constexpr std::chrono::microseconds kHelpersAfter{200};
+
 /// solve(state, i) for every i < count on the batch's workers, each with its own state from
-/// make_state(). Workers take contiguous blocks in order from a shared counter as they become
-/// free: a worker that starts late (a thread is woken in tens to hundreds of µs) or meets a run of
-/// hard problems (NLopt) leaves its share to the others, where a fixed deal made the batch wait
-/// for it. The first InvalidArgument by index is handed to refuse(i, e), which throws, once every
-/// item before it has been tried. `min_block`: items a block at least (64 where each writes a byte
-/// of a shared array, so that two workers do not write one cache line).
+/// make_state(). The calling thread solves first; the other workers start once it has solved for
+/// kHelpersAfter with problems left. Workers take contiguous blocks in order from a shared counter
+/// as they become free, so one that starts late or meets a run of hard problems (NLopt) leaves its
+/// share to the others. The first InvalidArgument by index is handed to refuse(i, e), which
+/// throws, once every item before it has been tried. `min_block`: items a block at least (64
+/// where each writes a byte of a shared array, so that two workers do not write one cache line).
 template <class MakeState, class Solve, class Refuse>
 void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeState& make_state,
                     const Solve& solve, const Refuse& refuse, std::size_t min_block = 1) {
@@ -80,7 +86,8 @@ void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeStat
   std::optional<InvalidArgument> refused;
   std::exception_ptr unexpected;
   std::atomic<bool> broken{false};
-  auto work = [&](int /*worker*/) {
+  // Blocks until none is left, calling after_block() after each.
+  auto work = [&](const auto& after_block) {
     try {
       auto state = make_state();
       for (;;) {
@@ -100,15 +107,22 @@ void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeStat
             return;
           }
         }
+        after_block(end - begin);
       }
     } catch (...) {  // not expected; kept so that no worker ends the program
       if (!broken.exchange(true)) unexpected = std::current_exception();
     }
   };
   std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(n - 1));
-  for (int t = 1; t < n; ++t) pool.emplace_back(work, t);
-  work(0);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t unclocked = 0;  // items since the clock was last read (37 ns a read)
+  work([&](std::size_t items) {
+    if (static_cast<int>(pool.size()) + 1 >= n || (unclocked += items) < 4) return;
+    unclocked = 0;
+    if (std::chrono::steady_clock::now() - start < kHelpersAfter) return;
+    pool.reserve(static_cast<std::size_t>(n - 1));
+    for (int t = 1; t < n; ++t) pool.emplace_back([&] { work([](std::size_t) {}); });
+  });
   for (auto& t : pool) t.join();
   if (unexpected) std::rethrow_exception(unexpected);
   if (refused) refuse(first_bad.load(), *refused);

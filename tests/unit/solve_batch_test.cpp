@@ -55,6 +55,32 @@ TEST(SolveBatch, EachResultIsSolveImpactsToTheLastBitOnOneOrTwoThreads) {
   }
 }
 
+// A batch long enough (milliseconds) that the other workers start beside the calling thread and
+// share its blocks: every answer is still the one-thread batch's, and the first invalid problem
+// by index is named, though a later one may be met first by another worker.
+TEST(SolveBatch, ALongBatchSharedAmongWorkersGivesTheSameAnswersAndErrors) {
+  const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 1.0);
+  std::vector<SmallImpactProblem> problems;
+  for (const ImpactProblem& p : bars(6000, false)) problems.push_back(to_small(p));
+  const std::vector<SmallImpactResult> one = solve_batch(problems, law, {}, {1});
+  for (int threads : {2, 5}) {
+    const std::vector<SmallImpactResult> shared = solve_batch(problems, law, {}, {threads});
+    ASSERT_EQ(shared.size(), one.size());
+    for (std::size_t i = 0; i < one.size(); ++i)
+      expect_identical(to_dynamic(shared[i]), to_dynamic(one[i]), static_cast<int>(i));
+  }
+  problems[5900].M(0, 0) = NAN;
+  problems[4100].M(2, 2) = -1.0;  // the first by index
+  for (int threads : {1, 2}) {
+    try {
+      (void)solve_batch(problems, law, {}, {threads});
+      FAIL() << "an invalid problem was solved";
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.name(), "problems[4100].M") << e.what();
+    }
+  }
+}
+
 TEST(SolveBatch, SmallProblemsGiveTheSameAnswersWithoutHeapResults) {
   const ImpactLaw law = ImpactLaw::newton_coulomb(0.9, 1.0);
   const std::vector<ImpactProblem> problems = bars(200, true);
