@@ -63,14 +63,16 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
   detail::solve_impact_into(pb, law, options, out);
 }
 
-// How long the calling thread solves alone before it starts the other workers: starting a
-// thread and waking an idle core takes 50 µs to a few hundred here, so a shorter batch (a fit's
-// evaluation on a few dozen measured impacts) costs more to share than to solve.
-constexpr std::chrono::microseconds kHelpersAfter{200};
+// Starting a worker costs the calling thread about 35 µs and the worker 25 to 60 µs more before it
+// runs (this project's 2-core machine), more than a short batch (a fit's evaluation on a few dozen
+// measured impacts) takes to solve. The other workers start once the work left, estimated from
+// the calling thread's pace over at least kPaceAfter, exceeds kWorthSharing.
+constexpr double kPaceAfter = 20e-6;      // s
+constexpr double kWorthSharing = 200e-6;  // s
 
 /// solve(state, i) for every i < count on the batch's workers, each with its own state from
-/// make_state(). The calling thread solves first; the other workers start once it has solved for
-/// kHelpersAfter with problems left. Workers take contiguous blocks in order from a shared counter
+/// make_state(). The calling thread solves first; the other workers start once the work left is
+/// worth sharing (kWorthSharing). Workers take contiguous blocks in order from a shared counter
 /// as they become free, so one that starts late or meets a run of hard problems (NLopt) leaves its
 /// share to the others. The first InvalidArgument by index is handed to refuse(i, e), which
 /// throws, once every item before it has been tried. `min_block`: items a block at least (64
@@ -115,11 +117,18 @@ void run_on_workers(std::size_t count, const BatchOptions& batch, const MakeStat
   };
   std::vector<std::thread> pool;
   const auto start = std::chrono::steady_clock::now();
-  std::size_t unclocked = 0;  // items since the clock was last read (37 ns a read)
+  std::size_t solved = 0, unclocked = 0;  // items solved; since the clock was read (37 ns a read)
   work([&](std::size_t items) {
-    if (static_cast<int>(pool.size()) + 1 >= n || (unclocked += items) < 4) return;
+    if (static_cast<int>(pool.size()) + 1 >= n) return;
+    solved += items;
+    if ((unclocked += items) < 4) return;
     unclocked = 0;
-    if (std::chrono::steady_clock::now() - start < kHelpersAfter) return;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::size_t left = count - std::min(next_block.load(std::memory_order_relaxed), count);
+    if (elapsed < kPaceAfter ||
+        elapsed * static_cast<double>(left) < kWorthSharing * static_cast<double>(solved))
+      return;
     pool.reserve(static_cast<std::size_t>(n - 1));
     for (int t = 1; t < n; ++t) pool.emplace_back([&] { work([](std::size_t) {}); });
   });

@@ -17,7 +17,7 @@ namespace fremond {
 struct BatchOptions {
   /// Worker threads: 0 for one per core (std::thread::hardware_concurrency), else at least 1.
   /// Never more threads than problems; the calling thread is one of them, and the others start
-  /// only once it has solved for 0.2 ms (docs/solvers.md#batches).
+  /// only where the work left is worth sharing (docs/solvers.md#batches).
   int threads = 0;
   /// Throws InvalidArgument naming `threads` when it is negative.
   void validate() const;
