@@ -20,14 +20,6 @@
 namespace fremond {
 
 namespace {
-/// No answer to judge: the law has none on the contacts held, or the chain found none. A
-/// separating contact's reaction, with Coulomb's friction, can make one where the approaching
-/// contacts alone have none (a jam: its friction drives it shut).
-template <int N, int C>
-bool no_answer(const ImpactResultT<N, C>& r) {
-  return r.solver.status == SolverStatus::no_solution || r.solver.status == SolverStatus::failed;
-}
-
 /// A chain that logs no attempt of its own (the classical laws') gets its answer's method as one.
 template <int N, int C>
 void log_answer_if_unlogged(ImpactResultT<N, C>& out) {
@@ -82,8 +74,7 @@ void detail::solve_on_contact_space(const ImpactProblemT<N, C>& pb, const Impact
     // Every contact takes part (separating_contacts.hpp): where the answer without the separating
     // ones drives one of them into its obstacle, or where the approaching contacts alone have no
     // answer, the impact is solved again on every contact, by independent groups there too.
-    if (cs.active < cs.contacts &&
-        (no_answer(out) || detail::drives_a_separating_contact(pb, out, options))) {
+    if (cs.active < cs.contacts && detail::needs_every_contact(pb, out, options)) {
       const ImpactLaw every = detail::law_of_every_contact(law, cs.D_N);
       build_contact_space(pb, detail::tangential_rows(law), cs, detail::HeldContacts::every);
       clear_result(out);
@@ -204,7 +195,7 @@ std::vector<ImpactResultT<N, C>> solve_all_in(const ImpactProblemT<N, C>& pb, co
     D_N(i) = detail::contact_velocity(pb.W_N.col(i), pb.qdot_A, pb.w_N.size() ? pb.w_N(i) : 0.0);
     separating = separating || D_N(i) > 0.0;
   }
-  bool drives = separating && (all.empty() || (all.size() == 1 && no_answer(all.front())));
+  bool drives = separating && (all.empty() || (all.size() == 1 && detail::no_answer(all.front())));
   for (const auto& r : all) drives = drives || detail::drives_a_separating_contact(pb, r, options);
   if (drives) {
     const ImpactLaw every = detail::law_of_every_contact(law, D_N);

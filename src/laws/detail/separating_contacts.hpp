@@ -15,6 +15,7 @@
 #include "fremond/potentials/power.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
+#include "fremond/solvers/solver_status.hpp"
 
 namespace fremond::detail {
 
@@ -65,6 +66,22 @@ bool drives_a_separating_contact(const ImpactProblemT<N, C>& pb, const ImpactRes
       return true;
   }
   return false;
+}
+
+/// No answer to judge: the law has none on the contacts held, or the chain found none. A
+/// separating contact's reaction, with Coulomb's friction, can make one where the approaching
+/// contacts alone have none (a jam: its friction drives it shut).
+template <int N, int C>
+bool no_answer(const ImpactResultT<N, C>& r) {
+  return r.solver.status == SolverStatus::no_solution || r.solver.status == SolverStatus::failed;
+}
+
+/// True when an impact solved on its approaching contacts must be solved again on every contact:
+/// that answer is none, or it drives a separating contact into its obstacle.
+template <int N, int C>
+bool needs_every_contact(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r,
+                         const SolverOptions& options) {
+  return no_answer(r) || drives_a_separating_contact(pb, r, options);
 }
 
 }  // namespace fremond::detail

@@ -242,9 +242,7 @@ template <int N, int C>
       // where there is none, under the law its separating contacts and the lifted ones obey.
       build_contact_space_like(sub, tangential_rows(law), cs, approaching);
       solve_law_stage(sub, approaching, law, options, r, ws);
-      const SolverStatus first = r.solver.status;
-      if (first == SolverStatus::no_solution || first == SolverStatus::failed ||
-          drives_a_separating_contact(sub, r, options)) {
+      if (needs_every_contact(sub, r, options)) {
         clear_result(r);
         solve_law_stage(sub, gcs, law_of_every_contact(law, gcs.D_N), options, r, ws);
       }
