@@ -11,6 +11,7 @@
 #include "core/detail/small_lu.hpp"
 #include "fremond/admissibility/admissibility.hpp"
 #include "fremond/potentials/power.hpp"
+#include "laws/detail/as_power.hpp"
 #include "laws/detail/residuals.hpp"
 #include "laws/detail/separating_contacts.hpp"
 #include "solvers/detail/chain.hpp"
@@ -204,7 +205,7 @@ int one_contact_coulomb_modes(const FremondRowsT<N, C>& rows, std::array<Contact
   const auto& cs = *rows.cs;
   const int i = rows.contact(0);
   const Potential& normal = rows.law->normal[i];
-  const auto* phi = dynamic_cast<const PowerPotential*>(&normal);
+  const auto* phi = as_power(normal);
   const double mu = rows.law->mu[i];
   const double gN = cs.G(0, 0), gNT = cs.G(0, 1), gT = cs.G(1, 1);
   const double DN = cs.D_A(0), DT = cs.D_A(1);
@@ -562,7 +563,7 @@ bool split_normal_percussions(const FremondRowsT<N, C>& rows, Rows<N, C>& P,
     const int i = rows.contact(j);
     if (out.P_N_reaction(i) > 0.0) continue;
     const Potential& phi = rows.law->normal[i];
-    const auto* power = dynamic_cast<const PowerPotential*>(&phi);
+    const auto* power = as_power(phi);
     if (!power || !(power->p() > 1.0) || !(power->k() > 0.0)) return false;
     F(m) = j;
     k(m) = power->k();

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fremond/potentials/power.hpp"
+#include "laws/detail/as_power.hpp"
 #include "solvers/detail/fremond.hpp"
 
 namespace fremond::detail {
@@ -46,7 +47,7 @@ class CoulombModes {
                   !rows.fixed_normal && !rows.fixed_signs;
     for (int j = 0; j < a_ && applicable_; ++j) {
       const int i = rows.contact(j);
-      const auto* power = dynamic_cast<const PowerPotential*>(&rows.law->normal[i]);
+      const auto* power = as_power(rows.law->normal[i]);
       applicable_ = power && power->p() > 1.0 && power->k() > 0.0 && std::isfinite(power->k());
       if (!applicable_) break;
       k_(j) = power->k();
