@@ -144,8 +144,8 @@ bool solve_in_velocities(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, 
     return false;
   // The expansion's increments (x = P_N − (1 + e) P_NC, t = P_T − P_TC) carried over to the
   // compression just solved, whose P_NC moved by its cond(M) ε: read around the new compression,
-  // an expansion at x = 0 exactly (open, P_NE = e P_NC) read as closed, and its mode had no
-  // answer (stress poisson_coulomb #36 of seed 23: cond(M) = 7.7e10, e = 1).
+  // an expansion at x = 0 exactly (open, P_NE = e P_NC) would read as closed, and its mode have
+  // no answer (cond(M) near 1e11).
   classical::ModeOffsets<N, C> found_around = off;
   classical::hold_compression(cs, law, P_C, found_around);
   classical::hold_compression(cs, law, PC, off);
@@ -542,9 +542,9 @@ bool solve_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT
 // tangential rows differ by 1e-11 in the rotation) make G singular to rounding, and contact space
 // answers in a mode the exact problem does not have: both ends sticking, which needs the rotation
 // to stop, while Newton's normal law keeps it turning, so the rows' velocities differ by 2e-12 of
-// the scale, far above their rounding. The exact answer slides at one end (stress newton_coulomb
-// #2481 of seed 23), with the velocities the same to 2e-12 and the percussions 10 times larger,
-// opposed. True, with the answer in `alt`, only when that converges.
+// the scale, far above their rounding. The exact answer slides at one end, with the velocities the
+// same to 2e-12 and the percussions 10 times larger, opposed. True, with the answer in `alt`, only
+// when that converges.
 template <int N, int C>
 bool stalled_in_velocity_modes(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                                const RestitutionLaw& law, const SolverOptions& options,

@@ -497,8 +497,8 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
     if (!law.is<FremondLaw>()) {
       // The classical laws by their contact modes: every mode's equations must be regular for the
       // list to be complete (G singular: a continuum the enumeration cannot list, and
-      // newton_frictionless, which skips a singular active set, can miss the only solution: three
-      // contacts on two dofs, newton #90835 of seed 23).
+      // newton_frictionless, which skips a singular active set, can miss the only solution, as on
+      // three contacts on two dofs).
       ref::QVec e, mu;
       const bool newton = law.name() == "newton" || law.name() == "newton_coulomb";
       for (int i = 0; i < c; ++i)
@@ -527,9 +527,7 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           // The modes' pivot test is on G = WᵀM⁻¹W, which inherits cond(M): a sticking contact
           // of a body with cond(M) = 7e11 has a relative pivot of 5e-14, below 2^-40, while its
           // velocities are fixed by W alone (W_Nᵀq̇_E = −e D_NA, W_Tᵀq̇_E = 0) and are well
-          // conditioned (newton_coulomb #7773 of seed 23: the exact answer of the double data
-          // sticks with P_N = 6.39e9, to 17 digits whether the data are read as their decimals
-          // or as the doubles). Those modes are solved again at a pivot of 2^-64, still 2^9
+          // conditioned. Those modes are solved again at a pivot of 2^-64, still 2^9
           // above quad's rounding of G at cond(M) = 1e12; where that finds solutions, the
           // library's answer is compared with them.
           const auto fine = ref::classical_modes(
@@ -549,9 +547,8 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           // read in quad precision, where the law (each of Poisson's phases) is one equation set in
           // them. Poisson's compression can be a continuum that the modes' linear program, on G
           // rounded in quad, cannot see: cond(M) = 8e11 and percussions 1e14 times the velocities
-          // carry G's rounding to 3e-11 of the program's right-hand side, beyond its 2^-50
-          // (poisson_coulomb #1176 of seed 23: the body stops in both phases, on a ray of
-          // compression percussions that 80-digit arithmetic confirms).
+          // carry G's rounding to 3e-11 of the program's right-hand side, beyond its 2^-50 (a body
+          // that stops in both phases, on a ray of compression percussions).
           const std::string missed = classical_answer_violation(pb, law, r);
           if (missed.empty() && !std::isfinite(best)) {
             out.line(
@@ -646,7 +643,7 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           // lying flat whose lever cos(π/2) L rounds to 3e-17) move its contact velocities by less
           // than the rounding of their other terms, and can decide the mode: with them, two
           // contacts 6e-17 apart in lever both close, and the only exact solution stops the
-          // rotation (fremond_coulomb #1460 of seed 43, velocities 1e-9). Where the answer is the
+          // rotation. Where the answer is the
           // exact solution of the data with those entries zeroed, a perturbation of W below ε
           // normwise, it is backward stable, and it is compared with that solution.
           ref::Problem qz = q;
@@ -670,9 +667,8 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
           if (!sz.ok) {
             // G inherits cond(M): beyond 1e8 its double-precision entries are off by 1e-8 of
             // their size, enough to move a contact across the edge of its mode, where the exact
-            // data have no solution near the answer (fremond_coulomb #6690 of seed 20261207:
-            // cond(M) = 1.9e10, 4 contacts, the law met to 9e-7). The answer is then held to the
-            // law itself, in quad precision.
+            // data have no solution near the answer. The answer is then held to the law itself, in
+            // quad precision.
             const double cond = mass_condition(pb.M);
             const std::string missed =
                 cond > 1e8 ? fremond_coulomb_answer_violation(pb, law, r, normal, cond)
@@ -905,8 +901,7 @@ void groups_check(const ImpactProblem& pb, const ImpactLaw& law, const ImpactRes
     const Eigen::VectorXd mine = rb.qdot_E.segment(b * n, n);
     // The scale of q̇_E is that of the terms it is summed from, q̇_A + M⁻¹W P: where the
     // percussions are many times the velocities (a potential nearly linear, P_N ≈ k whatever z),
-    // q̇_E is their cancellation and known to ε of them only (fremond_coulomb #2913 of seed
-    // 20261207: p − 1 = 1e-5, terms 1.6e8 times q̇_E).
+    // q̇_E is their cancellation and known to ε of them only.
     const ImpactProblem& own = b == 0 ? pb : slow;
     const double scale =
         std::max(part.qdot_E.cwiseAbs().maxCoeff(), velocity_terms(own, part.P_N, part.P_T));

@@ -126,11 +126,9 @@ bool closed_guess(const Phase<C>& ph, const Tolerances& tol, const Factored<C>& 
   if (norm) *norm = GuessNorm{};
   if (fg.regular) return all_closed_guess(ph, tol, fg, true, u) || one_of_two_closed(ph, u);
   // On a singular G only with friction and without a fixed bound b0 (Newton's phase, Poisson's
-  // compression). Without friction Lemke's LCP is symmetric semidefinite and cheap; and from
-  // Poisson's expansion (b0 = μ e P_NC) the guess's answer, within its own test, led the law to
-  // `stalled` where Lemke's and the enumeration's converged (stress poisson_coulomb seed 23,
-  // #616: cond(M) ~ 1e9). Restricted so, stress seed 23 against the library without the guess:
-  // newton, poisson and newton_coulomb statuses identical, poisson_coulomb 2 fewer stalled.
+  // compression). Without friction Lemke's LCP is symmetric semidefinite and cheap; from Poisson's
+  // expansion (b0 = μ e P_NC) on an ill-conditioned M the guess's answer, within its own test, can
+  // leave the law stalled where Lemke's and the enumeration's converge.
   return !frictionless(ph) && ph.b0.isZero(0.0) && closed_sticking_semidefinite(ph, tol, u, norm);
 }
 
@@ -398,11 +396,11 @@ bool extended_delassus(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>
 /// answer, solved again by its modes with G in extended precision. Where M is ill-conditioned
 /// (cond(M) from 4e8 to 1e12) a mode's equations can have singular values from 1e-15 to 1e-14 of
 /// their largest: in double, below what rounding resolves (G is accurate to ε of its entries), so
-/// the mode was refused as singular and inconsistent and the law said `no_solution` where the quad
-/// reference's modes have an answer, with percussions 1e13 times the velocities they make (stress
-/// newton_coulomb #9756 of seed 23). In extended precision those singular values stand 1e4 above
-/// rounding and the mode is decided. An answer found so is known only to the precision of the
-/// data's double rounding, and is judged by the law's residual like any other.
+/// the mode would be refused as singular and inconsistent, and the law say `no_solution` where the
+/// exact modes have an answer (with percussions 1e13 times the velocities they make). In extended
+/// precision those singular values stand 1e4 above rounding and the mode is decided. An answer
+/// found so is known only to the precision of the data's double rounding, and is judged by the
+/// law's residual like any other.
 template <int N, int C>
 void decide_in_extended_precision(const ImpactProblemT<N, C>& pb, const ContactSpaceT<N, C>& cs,
                                   const Phase<C>& ph, const Tolerances& tol, PhaseOutcome<C>& out) {
