@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/detail/impact_problem.hpp"
+#include "core/detail/sized_vector.hpp"
 #include "core/detail/validate.hpp"
 #include "fremond/core/error.hpp"
 
@@ -35,33 +36,54 @@ double non_finite_probe(const Eigen::PlainObjectBase<Derived>& m) {
   return probe;
 }
 
+/// W's column `col` (n entries from `col`) dotted with q, plus w: a contact velocity as the
+/// validation computes it, in index order (K: n where fixed), the same sum in the quick test and
+/// in the test that names the failure, so that both judge an overflow alike.
+template <int K>
+double validation_dot(const double* col, const double* q, Eigen::Index n, double w) {
+  if constexpr (K != Eigen::Dynamic) n = K;
+  double d = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) d += col[k] * q[k];
+  return d + w;
+}
+
 /// plainly_valid's tests of q̇_A, for a configuration already validated: its size, its entries
-/// finite, and the kinetic energy and contact velocities it makes finite.
-template <int N, int C>
-bool plainly_valid_velocity(const ImpactProblemT<N, C>& pb) {
-  const auto c = pb.W_N.cols();
-  if (pb.qdot_A.size() != pb.M.rows() || non_finite_probe(pb.qdot_A) != 0.0) return false;
+/// finite, and the kinetic energy and contact velocities it makes finite. K: the dofs where fixed.
+template <int K, int N, int C>
+bool plainly_valid_velocity_sized(const ImpactProblemT<N, C>& pb) {
+  const Eigen::Index n = pb.M.rows(), c = pb.W_N.cols();
+  if (pb.qdot_A.size() != n || non_finite_probe(pb.qdot_A) != 0.0) return false;
   // The same expressions as the tests below, so that an overflow is judged identically.
   if (!std::isfinite(detail::kinetic_energy(pb.M, pb.qdot_A))) return false;
+  const double* const q = pb.qdot_A.data();
+  const bool has_WT = pb.W_T.cols() != 0;
   for (Eigen::Index i = 0; i < c; ++i) {
-    if (!std::isfinite(pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0)))
+    if (!std::isfinite(
+            validation_dot<K>(pb.W_N.data() + n * i, q, n, pb.w_N.size() ? pb.w_N(i) : 0.0)))
       return false;
-    if (pb.W_T.cols() != 0 &&
-        !std::isfinite(pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0)))
+    if (has_WT && !std::isfinite(validation_dot<K>(pb.W_T.data() + n * i, q, n,
+                                                   pb.w_T.size() ? pb.w_T(i) : 0.0)))
       return false;
   }
   return true;
+}
+template <int N, int C>
+bool plainly_valid_velocity(const ImpactProblemT<N, C>& pb) {
+  return detail::with_size<N>(static_cast<int>(pb.M.rows()), [&](auto size) {
+    return plainly_valid_velocity_sized<decltype(size)::value>(pb);
+  });
 }
 
 /// True only when validate_shapes' tests below all pass, in one pass over the data without
 /// building any message: every solve validates its problem, and on a planar body the test by test
 /// path (each its own loop) costs as much as a third of the law's own solve. False sends the caller
 /// through those tests, which then name the first failure; false where they would all pass costs
-/// only time.
-template <int N, int C>
-bool plainly_valid(const ImpactProblemT<N, C>& pb) {
-  const auto n = pb.M.rows(), c = pb.W_N.cols();
-  if (n == 0 || pb.M.cols() != n || pb.W_N.rows() != n || pb.qdot_A.size() != n) return false;
+/// only time. K: the dofs where fixed (with_size), so that the loops over M unroll.
+template <int K, int N, int C>
+bool plainly_valid_sized(const ImpactProblemT<N, C>& pb) {
+  const Eigen::Index n = K == Eigen::Dynamic ? pb.M.rows() : K, c = pb.W_N.cols();
+  if (n == 0 || pb.M.rows() != n || pb.M.cols() != n || pb.W_N.rows() != n || pb.qdot_A.size() != n)
+    return false;
   const bool has_WT = pb.W_T.size() != 0 || pb.W_T.cols() != 0;
   if (has_WT && (pb.W_T.rows() != n || pb.W_T.cols() != c)) return false;
   if (pb.w_N.size() != 0 && pb.w_N.size() != c) return false;
@@ -75,8 +97,14 @@ bool plainly_valid(const ImpactProblemT<N, C>& pb) {
   for (Eigen::Index k = 0; k < n * n; ++k) scale = std::max(scale, std::fabs(m[k]));
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = i + 1; j < n; ++j)
-      if (std::fabs(pb.M(i, j) - pb.M(j, i)) > 1e-12 * scale) return false;
-  return plainly_valid_velocity(pb);
+      if (std::fabs(m[i + n * j] - m[j + n * i]) > 1e-12 * scale) return false;
+  return plainly_valid_velocity_sized<K>(pb);
+}
+template <int N, int C>
+bool plainly_valid(const ImpactProblemT<N, C>& pb) {
+  return detail::with_size<N>(static_cast<int>(pb.M.rows()), [&](auto size) {
+    return plainly_valid_sized<decltype(size)::value>(pb);
+  });
 }
 }  // namespace
 
@@ -150,13 +178,15 @@ void detail::validate_velocity(const ImpactProblemT<N, C>& pb) {
                               ", max |M| = " + detail::format_number(pb.M.cwiseAbs().maxCoeff()) +
                               "); express the problem in other units");
   for (Eigen::Index i = 0; i < c; ++i) {
-    const double dn = pb.W_N.col(i).dot(pb.qdot_A) + (pb.w_N.size() ? pb.w_N(i) : 0.0);
+    const double dn = validation_dot<Eigen::Dynamic>(pb.W_N.data() + n * i, pb.qdot_A.data(), n,
+                                                     pb.w_N.size() ? pb.w_N(i) : 0.0);
     if (!std::isfinite(dn))
       throw InvalidArgument("W_N", "contact " + std::to_string(i) +
                                        ": the normal velocity D_NA = W_N^T qdot_A + w_N overflows "
                                        "double precision; express the problem in other units");
     if (pb.W_T.cols() == 0) continue;
-    const double dt = pb.W_T.col(i).dot(pb.qdot_A) + (pb.w_T.size() ? pb.w_T(i) : 0.0);
+    const double dt = validation_dot<Eigen::Dynamic>(pb.W_T.data() + n * i, pb.qdot_A.data(), n,
+                                                     pb.w_T.size() ? pb.w_T(i) : 0.0);
     if (!std::isfinite(dt))
       throw InvalidArgument("W_T", "contact " + std::to_string(i) +
                                        ": the tangential velocity D_TA = W_T^T qdot_A + w_T "
