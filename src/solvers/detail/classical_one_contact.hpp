@@ -144,13 +144,13 @@ bool settle_one_contact_sized(const ImpactProblemT<N, C>& pb, const ContactSpace
   out.P_T.resize(1);
   out.P_N(0) = P[0];
   out.P_T(0) = P[1];
-  out.D_NA = cs.D_N;
+  // Entry by entry: Eigen's assignment of a run-time-size vector is a call and a loop.
+  out.D_NA.resize(1);
+  out.D_NA(0) = cs.D_N(0);
   out.D_NE.resize(1);
   out.D_NE(0) = D_NE;
-  if (tangential)
-    out.D_TA = cs.D_T;
-  else
-    out.D_TA.setZero(1);
+  out.D_TA.resize(1);
+  out.D_TA(0) = tangential ? cs.D_T(0) : 0.0;
   out.D_TE.resize(1);
   out.D_TE(0) = D_TE;
   out.takes_part.resize(1);
