@@ -53,6 +53,7 @@ load() { cut -d' ' -f1-3 /proc/loadavg; }
   echo "compiler:  $(${CXX:-c++} --version | head -n1)"
   echo "commit:    $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo ' (with local changes)')"
   echo "mode:      $([ $quick = 1 ] && echo 'quick (short timings: not for publication)' || echo 'full')"
+  echo "timing:    $([ $quick = 1 ] && echo 'one run of each benchmark, at least 0.01 s' || echo 'the median of 9 repetitions of at least 0.1 s, in random order within each program')"
   echo "load avg:  $(load) before the runs"
 } > "$out/machine.txt"
 
@@ -60,8 +61,11 @@ if [ $quick = 1 ]; then
   gb=(--benchmark_min_time=0.01)
   wp=(--quick)
 else
-  # The median of 5 repetitions, each at least 0.2 s: robust to a stray context switch.
-  gb=(--benchmark_min_time=0.2 --benchmark_repetitions=5 --benchmark_report_aggregates_only=true)
+  # The median of 9 repetitions of at least 0.1 s each, run in random order among the program's
+  # other benchmarks: a slow stretch of the machine then falls on ours and on the Siconos peers
+  # of the same program alike, instead of on whichever ran during it.
+  gb=(--benchmark_min_time=0.1 --benchmark_repetitions=9 --benchmark_enable_random_interleaving=true
+      --benchmark_report_aggregates_only=true)
   wp=()
 fi
 
