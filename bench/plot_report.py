@@ -839,13 +839,15 @@ def sparse_runs(runs):
         name = b["name"]
         if name.startswith("BM_Sparse_ReadFile"):
             continue
-        ours = name.startswith("BM_Sparse_")
+        # BM_Dense_Pile/<law>/...: the same pile handed to the dense solve_impact, ours too.
+        dense = name.startswith("BM_Dense_")
+        ours = name.startswith("BM_Sparse_") or dense
         # The file's part of the name; Google Benchmark appends "/iterations:N" to a fixed count.
         parts = [w for w in name.split("/") if not re.match(r"^(iterations|repeats):\d+$", w)]
         what = ("pile" if "Pile" in name else "bed" if "Bed" in name
                 else parts[-1].replace(".dat", ""))
-        solver = "ours: nsgs" if ours else "Siconos: " + words(b.get("label", "")).get(
-            "solver", "?").replace("fc2d_", "")
+        solver = (f"ours: dense solve_impact, {parts[1]}" if dense else "ours: nsgs" if ours
+                  else "Siconos: " + words(b.get("label", "")).get("solver", "?").replace("fc2d_", ""))
         status = b.get("label", "").split(" ")[0] if ours else "converged"
         out.append(dict(what=what, solver=solver, status=status, contacts=int(b.get("contacts", 0)),
                         ms=cpu_ns(b) / 1e6,
@@ -948,7 +950,11 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   "ours is the law's scaled residual (docs/solvers.md). Each time is the median "
                   "of the repetitions named under Machine; ± is the ratio's standard error from "
                   "the two times' spread over them (√(π/2) cv/√n each), so a ratio within two of "
-                  "it of 1 is a tie on this machine.", "",
+                  "it of 1 is a tie on this machine. The plates' and random bodies' Siconos peers "
+                  "run interleaved with ours in one program (scaling_bench); the small bodies' "
+                  "run in their own (siconos_numerics_bench), minutes apart from ours, so a "
+                  "change of the machine's pace between the two programs moves those ratios "
+                  "beyond ±.", "",
                   md_table(["problem / law", "ours: prepared", "ratio", "ours: solve_impact",
                             "ratio", "Siconos, fastest from the data", "time", "its err",
                             "our err"], urows), ""]
@@ -1061,7 +1067,10 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   "converged to the file's digits, docs/sparse.md#numbers-as-printed). `residual`: "
                   "every answer measured by our residual "
                   "(contact_residual). Siconos's 2-D driver takes G dense, so its sweep costs "
-                  "contacts² where ours costs G's non-zeros.", "",
+                  "contacts² where ours costs G's non-zeros. `dense solve_impact`: the small "
+                  "piles handed to our dense solver as dense M and W (its default tolerance, "
+                  "1e-9; Frémond + Coulomb with p = 2, k = 1), what a user of the dense form "
+                  "pays beside the sparse one.", "",
                   md_table(["problem", "contacts", "solver", "CPU ms", "sweeps / iterations",
                             "residual"], table), ""]
         if slope_rows:
