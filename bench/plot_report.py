@@ -662,6 +662,23 @@ def user_rows(runs, pairs):
     return rows, ratios
 
 
+def noise_control(runs):
+    """Pairs of benchmarks that time the same work: solve_impact on one contact with and without
+    check_uniqueness (one contact's modes are settled in closed form either way), as
+    (problem / law, faster ns, slower ns); what this run's timing alone makes of identical work."""
+    medians = {b["name"]: cpu_ns(b) for b in runs
+               if b["name"].startswith("BM_Classical_SolveImpact/") and not b.get("error_occurred")}
+    out = []
+    for name, t in sorted(medians.items()):
+        if not name.endswith("/checked"):
+            continue
+        other = medians.get(name[:-len("checked")] + "unchecked")
+        problem, law = name.split("/")[1:3]
+        if other and problem in ("bar_first_impact", "point_mass"):
+            out.append((f"{problem} / {law}", min(t, other), max(t, other)))
+    return out
+
+
 def batch_rows(runs, ratios):
     """Impacts per second of solve_batch on 1 and 2 threads, and the gain of the second core;
     Siconos's one-core rate from its fastest bar solve beside the Newton + Coulomb rows."""
@@ -958,6 +975,17 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   md_table(["problem / law", "ours: prepared", "ratio", "ours: solve_impact",
                             "ratio", "Siconos, fastest from the data", "time", "its err",
                             "our err"], urows), ""]
+        control = noise_control(runs)
+        if control:
+            worst = max(control, key=lambda c: c[2] / c[1])
+            spread = [c[2] / c[1] - 1 for c in control]
+            lines += [f"A control: {len(control)} pairs of benchmarks in this run time the same "
+                      "work, solve_impact on one contact with and without check_uniqueness (one "
+                      "contact's modes are settled in closed form either way). Their medians "
+                      f"differed by {100 * min(spread):.0f} to {100 * max(spread):.0f} % "
+                      f"({worst[0]}: {fmt_ns(worst[1])} and {fmt_ns(worst[2])}): a ratio "
+                      "closer than that to its target is not settled by one run on this "
+                      "machine.", ""]
         if brows:
             lines += ["Batches (`solve_batch`): 4,096 bar impacts at random angles and velocities, "
                       "each certified, on 1 and 2 threads; `small`: the stack-stored problems and "
