@@ -967,11 +967,10 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   "ours is the law's scaled residual (docs/solvers.md). Each time is the median "
                   "of the repetitions named under Machine; ± is the ratio's standard error from "
                   "the two times' spread over them (√(π/2) cv/√n each), so a ratio within two of "
-                  "it of 1 is a tie on this machine. The plates' and random bodies' Siconos peers "
-                  "run interleaved with ours in one program (scaling_bench); the small bodies' "
-                  "run in their own (siconos_numerics_bench), minutes apart from ours, so a "
-                  "change of the machine's pace between the two programs moves those ratios "
-                  "beyond ±.", "",
+                  "it of 1 is a tie on this machine. Each Siconos peer runs interleaved with ours "
+                  "in one program (small_problems_bench for the small bodies, scaling_bench for "
+                  "the plates and random bodies): run as separate programs, the machine's pace "
+                  "differed by up to 1.7× between them.", "",
                   md_table(["problem / law", "ours: prepared", "ratio", "ours: solve_impact",
                             "ratio", "Siconos, fastest from the data", "time", "its err",
                             "our err"], urows), ""]

@@ -40,8 +40,10 @@ rm -f "$out"/*_bench.json
 
 echo "== build ($build, Release)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DFREMOND_BUILD_BENCHMARKS=ON >/dev/null
-benches=(fremond_bench classical_bench batch_bench siconos_numerics_bench simulation_bench
-         siconos_moreau_jean_bench scaling_bench sparse_bench scene_bench)
+# small_problems_bench: fremond_bench, classical_bench and siconos_numerics_bench in one program,
+# so that ours and Siconos's small problems are timed interleaved, in the same process.
+benches=(small_problems_bench batch_bench simulation_bench siconos_moreau_jean_bench scaling_bench
+         sparse_bench scene_bench)
 cmake --build "$build" -j"$jobs" --target "${benches[@]}" work_precision
 
 load() { cut -d' ' -f1-3 /proc/loadavg; }
