@@ -1,11 +1,15 @@
 #!/usr/bin/python3
 """Siconos / fremond time ratios from Google Benchmark's JSON output.
 
-Run the benchmarks with JSON output, then this script on every file:
+Run the benchmarks with JSON output, then this script on every file, e.g. the small problems'
+program, which holds ours and Siconos's peers (timed interleaved, as scripts/perf-report.sh runs it):
 
-    build/bench/siconos_numerics_bench --benchmark_out=siconos.json --benchmark_out_format=json
-    build/bench/classical_bench --benchmark_out=ours.json --benchmark_out_format=json
-    /usr/bin/python3 bench/compare.py siconos.json ours.json
+    build/bench/small_problems_bench --benchmark_enable_random_interleaving=true \
+        --benchmark_repetitions=9 --benchmark_out=small.json --benchmark_out_format=json
+    /usr/bin/python3 bench/compare.py small.json
+
+or any programs run apart (siconos_numerics_bench, classical_bench: their ratios then also hold
+the machine's change of pace between the two runs).
 
 Benchmarks are paired by the "problem=... law=..." words of their label (bench_label() in
 bench/problems.hpp; further words, e.g. "stage=solve_impact", only describe the benchmark): every
