@@ -969,8 +969,8 @@ def write_report(outdir, runs, contexts, wp, sim, pairs, cases):
                   "the two times' spread over them (√(π/2) cv/√n each), so a ratio within two of "
                   "it of 1 is a tie on this machine. Each Siconos peer runs interleaved with ours "
                   "in one program (small_problems_bench for the small bodies, scaling_bench for "
-                  "the plates and random bodies): run as separate programs, the machine's pace "
-                  "differed by up to 1.7× between them.", "",
+                  "the plates and random bodies), so that a change of the machine's pace between "
+                  "programs does not enter the ratios.", "",
                   md_table(["problem / law", "ours: prepared", "ratio", "ours: solve_impact",
                             "ratio", "Siconos, fastest from the data", "time", "its err",
                             "our err"], urows), ""]
