@@ -147,14 +147,17 @@ void require_results(std::size_t results, std::size_t count, const char* per) {
                                          std::to_string(results));
 }
 
-/// to = from, where the answer has it; NaN where it has none (a method the law does not support
-/// leaves the result's vectors empty).
-template <class To, class From>
-void put(To&& to, const From& from) {
-  if (from.size() == to.size())
-    to = from;
+/// Column k of `to` = from, where the answer has it; NaN where it has none (a method the law does
+/// not support leaves the result's vectors empty). Entry by entry on the raw column: Eigen's
+/// assignment of a block costs more than the bar's five copies of one to three numbers.
+template <class From>
+void put(Eigen::MatrixXd& to, Eigen::Index k, const From& from) {
+  const Eigen::Index rows = to.rows();
+  double* const col = to.data() + k * rows;
+  if (from.size() == rows)
+    for (Eigen::Index i = 0; i < rows; ++i) col[i] = from(i);
   else
-    to.setConstant(std::numeric_limits<double>::quiet_NaN());
+    std::fill(col, col + rows, std::numeric_limits<double>::quiet_NaN());
 }
 
 /// The velocities of a batch of one configuration: n rows, one per degree of freedom of the
@@ -234,11 +237,11 @@ void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen
         const auto k = static_cast<Eigen::Index>(i);
         w.solver.solve_into(qdot_A.col(k), w.result);
         const ImpactResultT<N, C>& r = w.result;
-        put(answers.qdot_E.col(k), r.qdot_E);
-        put(answers.P_N.col(k), r.P_N);
-        put(answers.P_T.col(k), r.P_T);
-        put(answers.D_NE.col(k), r.D_NE);
-        put(answers.D_TE.col(k), r.D_TE);
+        put(answers.qdot_E, k, r.qdot_E);
+        put(answers.P_N, k, r.P_N);
+        put(answers.P_T, k, r.P_T);
+        put(answers.D_NE, k, r.D_NE);
+        put(answers.D_TE, k, r.D_TE);
         answers.energy_change(k) = r.energy_change;
         answers.residual(k) = r.solver.residual;
         answers.status[i] = r.solver.status;
