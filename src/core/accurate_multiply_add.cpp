@@ -64,6 +64,11 @@ template <bool Fma>
                                        std::ptrdiff_t incy, Eigen::Index n, double extra) {
   return dot2(x, incx, y, incy, n, extra);
 }
+// The loop with unit strides known: no index products (the same operations, in the same order).
+[[gnu::target("fma")]] double dot2_fma_contiguous(const double* x, const double* y, Eigen::Index n,
+                                                  double extra) {
+  return dot2(x, 1, y, 1, n, extra);
+}
 #endif
 
 }  // namespace
@@ -87,6 +92,13 @@ double accurate_dot_strided(const double* x, std::ptrdiff_t incx, const double* 
   if (__builtin_cpu_supports("fma")) return dot2_fma(x, incx, y, incy, n, extra);
 #endif
   return dot2(x, incx, y, incy, n, extra);
+}
+
+double accurate_dot_contiguous(const double* x, const double* y, Eigen::Index n, double extra) {
+#ifdef FREMOND_FMA_AT_RUN_TIME
+  if (__builtin_cpu_supports("fma")) return dot2_fma_contiguous(x, y, n, extra);
+#endif
+  return dot2(x, 1, y, 1, n, extra);
 }
 
 void accurate_multiply_add_portable(const double* M, std::ptrdiff_t ld, int n, int m,

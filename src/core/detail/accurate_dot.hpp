@@ -24,6 +24,9 @@ namespace fremond::detail {
 double accurate_dot_strided(const double* x, std::ptrdiff_t incx, const double* y,
                             std::ptrdiff_t incy, Eigen::Index n, double extra);
 
+/// accurate_dot_strided with unit strides (the same bits), for vectors and columns.
+double accurate_dot_contiguous(const double* x, const double* y, Eigen::Index n, double extra);
+
 /// x·y + extra, with the products and the sum error-free transformed (TwoProduct by fma, TwoSum):
 /// accurate_dot_strided on two Eigen vectors of the same size whose doubles lie in memory
 /// (columns, rows, vectors, maps).
@@ -34,8 +37,12 @@ double accurate_dot(const X& x, const Y& y, double extra = 0.0) {
                     std::is_same_v<typename X::Scalar, double> &&
                     std::is_same_v<typename Y::Scalar, double>,
                 "accurate_dot reads doubles in memory: evaluate an expression first");
-  return accurate_dot_strided(x.data(), x.innerStride(), y.data(), y.innerStride(), x.size(),
-                              extra);
+  if constexpr (Eigen::internal::inner_stride_at_compile_time<X>::ret == 1 &&
+                Eigen::internal::inner_stride_at_compile_time<Y>::ret == 1)
+    return accurate_dot_contiguous(x.data(), y.data(), x.size(), extra);
+  else
+    return accurate_dot_strided(x.data(), x.innerStride(), y.data(), y.innerStride(), x.size(),
+                                extra);
 }
 
 /// The rounding error of the product p = a·b (p + e = a·b exactly, barring underflow). With an
