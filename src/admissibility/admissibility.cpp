@@ -150,7 +150,7 @@ bool not_a_pseudo_potential(const Potential& phi, double z) {
 
 namespace {
 /// One row's share of velocity_rounding: Σ_k |G_jk||P_k| (GP) and the row's rounding
-/// 16ε (|D_A,j| + κ GP + |W_j|ᵀ|q̇_E|) (d, without the last term where q̇_E is not `stored`),
+/// 16ε (|D_A,j| + κ GP + |W_j|ᵀ|q̇_E|) (d, without the last term where q̇_E is null),
 /// summed in row order over loops of K = the dofs where fixed. P: the rows' percussions by index.
 struct RowRounding {
   double GP, d;
@@ -167,13 +167,13 @@ bool filled(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r) {
 }
 template <int K, int N, int C, class Percussion>
 RowRounding row_rounding(const ContactSpaceT<N, C>& cs, int j, const Percussion& P,
-                         const ImpactResultT<N, C>& r, bool stored) {
+                         const double* qdot_E) {
   double GP = 0.0, WqE = 0.0;
   for (int k = 0; k < cs.rows(); ++k) GP += std::fabs(cs.G(j, k)) * std::fabs(P(k));
-  if (stored) {
+  if (qdot_E) {
     const int n = sized<K>(cs.dofs);
     const double* w = cs.W.data() + static_cast<std::ptrdiff_t>(cs.W.rows()) * j;
-    for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(r.qdot_E(k));
+    for (int k = 0; k < n; ++k) WqE += std::fabs(w[k]) * std::fabs(qdot_E[k]);
   }
   return {GP, 16 * std::numeric_limits<double>::epsilon() *
                   (std::fabs(cs.D_A(j)) + cs.condition() * GP + WqE)};
@@ -196,11 +196,11 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
   // And q̇_E = q̇_A + M⁻¹WP is itself stored in doubles, each component to ε|q̇_E|: the contact
   // velocity of the answer returned is known to no better than ε |W_j|ᵀ|q̇_E|, which for a touching
   // contact (D_A exact and far below |W||q̇|, accurate_dot.hpp) is the whole of what is known.
-  const bool stored = r.qdot_E.size() == cs.dofs;
+  const double* stored = r.qdot_E.size() == cs.dofs ? r.qdot_E.data() : nullptr;
   const double g_max = percussion ? delassus_max(cs) : 0.0;
   with_size<N>(cs.dofs, [&](auto size) {
     for (int j = 0; j < rows; ++j) {
-      const RowRounding row = row_rounding<decltype(size)::value>(cs, j, P, r, stored);
+      const RowRounding row = row_rounding<decltype(size)::value>(cs, j, P, stored);
       const int i = cs.index(j < cs.active ? j : j - cs.active);
       out(i) = std::max(out(i), row.d);
       if (percussion) {
@@ -218,15 +218,15 @@ VecT<C> velocity_rounding(const ContactSpaceT<N, C>& cs, const ImpactResultT<N, 
 /// ε cond(M) times its terms, cond(M) estimated from M's Cholesky factor, as velocity_rounding
 /// does; −1 where M cannot say.
 template <int N, int C>
-double velocity_energy_allowance(const ImpactProblemT<N, C>& pb, const ImpactResultT<N, C>& r,
+double velocity_energy_allowance(const ImpactProblemT<N, C>& pb, const double* qdot_E,
                                  double base_allowed) {
   if (pb.M.rows() != pb.dofs() || pb.qdot_A.size() != pb.dofs()) return -1.0;
   double terms = 0.0;
   for (int i = 0; i < pb.dofs(); ++i) {
     double row = 0.0;
     for (int j = 0; j < pb.dofs(); ++j)
-      row += std::fabs(pb.M(i, j)) * (std::fabs(r.qdot_E(j)) + std::fabs(pb.qdot_A(j)));
-    terms += std::fabs(r.qdot_E(i) - pb.qdot_A(i)) * row;
+      row += std::fabs(pb.M(i, j)) * (std::fabs(qdot_E[j]) + std::fabs(pb.qdot_A(j)));
+    terms += std::fabs(qdot_E[i] - pb.qdot_A(i)) * row;
   }
   const detail::CholeskyT<N> llt(pb.M);  // stack storage for the small sizes
   const double kappa = llt.info() == Eigen::Success ? condition_estimate(llt) : 0.0;
@@ -235,21 +235,16 @@ double velocity_energy_allowance(const ImpactProblemT<N, C>& pb, const ImpactRes
 }
 
 template <int N, int C>
-AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
-                                          const ImpactResultT<N, C>& r,
-                                          const SolverOptions& options,
-                                          const ContactSpaceT<N, C>& cs) {
+AdmissibilityReportT<C> certify_one_contact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                            const OneContactFacts& r, const SolverOptions& options,
+                                            const ContactSpaceT<N, C>& cs) {
   AdmissibilityReportT<C> rep;
-  if (!filled(pb, r)) {
-    rep.per_contact.setZero(1);
-    return rep;
-  }
   // velocity_rounding's sums for the contact's rows, in its order, with the percussion's floor
   // where the law has terms of its own.
   const int rows = cs.rows();
   const bool own = law.visit([](const auto& l) { return has_certificate_terms(l); });
   const double g_max = own ? delassus_max(cs) : 0.0;
-  const double P[2] = {r.P_N(0), cs.tangential ? r.P_T(0) : 0.0};
+  const double P[2] = {r.P_N, cs.tangential ? r.P_T : 0.0};
   const auto p = [&](int k) { return P[k]; };
   struct Sums {
     double rounding = 0.0, percussion_floor = 0.0;
@@ -258,7 +253,7 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
     return with_size<N>(cs.dofs, [&](auto size) {
       Sums s;
       for (int j = 0; j < rows; ++j) {
-        const RowRounding row = row_rounding<decltype(size)::value>(cs, j, p, r, true);
+        const RowRounding row = row_rounding<decltype(size)::value>(cs, j, p, r.qdot_E);
         s.rounding = std::max(s.rounding, row.d);
         if constexpr (decltype(own_terms)::value) {
           const double tau = row_tau(cs.G(j, j), g_max);
@@ -272,17 +267,17 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
   const Sums rows_sums = own ? sums(std::true_type{}) : sums(std::false_type{});
   const double rounding = rows_sums.rounding, percussion_floor = rows_sums.percussion_floor;
   // check_admissibility's steps on the one contact.
-  CertificateFrame f(law, options, r.solver.method, kinetic_energy(pb.M, pb.qdot_A));
-  f.add_scales(r.takes_part(0) != 0, r.D_NA(0), r.D_TA(0), r.P_N(0), r.P_T(0));
+  CertificateFrame f(law, options, r.method, kinetic_energy(pb.M, pb.qdot_A));
+  f.add_scales(r.takes_part, r.D_NA, r.D_TA, r.P_N, r.P_T);
   CertificateTally t;
-  const CertificateInput a{.takes_part = r.takes_part(0) != 0,
-                           .P_N = r.P_N(0),
-                           .P_T = r.P_T(0),
-                           .D_NA = r.D_NA(0),
-                           .D_TA = r.D_TA(0),
-                           .D_NE = r.D_NE(0),
-                           .D_TE = r.D_TE(0),
-                           .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
+  const CertificateInput a{.takes_part = r.takes_part,
+                           .P_N = r.P_N,
+                           .P_T = r.P_T,
+                           .D_NA = r.D_NA,
+                           .D_TA = r.D_TA,
+                           .D_NE = r.D_NE,
+                           .D_TE = r.D_TE,
+                           .P_N_reaction = r.P_N_reaction,
                            .rounding = rounding,
                            .percussion_floor = percussion_floor,
                            .w_N = pb.w_N.size() ? pb.w_N(0) : 0.0,
@@ -293,9 +288,35 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
   rep.total = std::isnan(rep.per_contact(0)) ? -std::numeric_limits<double>::infinity()
                                              : rep.per_contact(0);
   finish_certificate(
-      f, t, r.energy_change, [&](double base) { return velocity_energy_allowance(pb, r, base); },
-      rep);
+      f, t, r.energy_change,
+      [&](double base) { return velocity_energy_allowance(pb, r.qdot_E, base); }, rep);
   return rep;
+}
+
+template <int N, int C>
+AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const ImpactLaw& law,
+                                          const ImpactResultT<N, C>& r,
+                                          const SolverOptions& options,
+                                          const ContactSpaceT<N, C>& cs) {
+  if (!filled(pb, r)) {
+    AdmissibilityReportT<C> rep;
+    rep.per_contact.setZero(1);
+    return rep;
+  }
+  return certify_one_contact(
+      pb, law,
+      OneContactFacts{.qdot_E = r.qdot_E.data(),
+                      .takes_part = r.takes_part(0) != 0,
+                      .P_N = r.P_N(0),
+                      .P_T = r.P_T(0),
+                      .D_NA = r.D_NA(0),
+                      .D_TA = r.D_TA(0),
+                      .D_NE = r.D_NE(0),
+                      .D_TE = r.D_TE(0),
+                      .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
+                      .energy_change = r.energy_change,
+                      .method = r.solver.method},
+      options, cs);
 }
 
 template <int N, int C>
@@ -339,7 +360,9 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
     rep.total = rep.per_contact.allFinite()
                     ? std::ldexp((std::ldexp(1.0, -60) * rep.per_contact).sum(), 60)
                     : -std::numeric_limits<double>::infinity();
-  auto energy_allowance = [&](double base) { return velocity_energy_allowance(pb, r, base); };
+  auto energy_allowance = [&](double base) {
+    return velocity_energy_allowance(pb, r.qdot_E.data(), base);
+  };
   finish_certificate(f, t, r.energy_change, energy_allowance, rep);
   return rep;
 }
@@ -385,17 +408,20 @@ AdmissibilityReportT<C> check_admissibility(const ImpactProblemT<N, C>& pb, cons
   return detail::check_admissibility(pb, law, r, options, rounding, g_max, &percussion);
 }
 
-#define FREMOND_INSTANTIATE(N, C)                                                   \
-  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&,    \
-                                             const ImpactResultT<N, C>&, VecT<C>*); \
-  template AdmissibilityReportT<C> detail::check_admissibility(                     \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
-      const SolverOptions&, const VecT<C>&, double, const VecT<C>*);                \
-  template AdmissibilityReportT<C> detail::check_one_contact(                       \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
-      const SolverOptions&, const detail::ContactSpaceT<N, C>&);                    \
-  template AdmissibilityReportT<C> check_admissibility(                             \
-      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,    \
+#define FREMOND_INSTANTIATE(N, C)                                                    \
+  template VecT<C> detail::velocity_rounding(const detail::ContactSpaceT<N, C>&,     \
+                                             const ImpactResultT<N, C>&, VecT<C>*);  \
+  template AdmissibilityReportT<C> detail::check_admissibility(                      \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,     \
+      const SolverOptions&, const VecT<C>&, double, const VecT<C>*);                 \
+  template AdmissibilityReportT<C> detail::check_one_contact(                        \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,     \
+      const SolverOptions&, const detail::ContactSpaceT<N, C>&);                     \
+  template AdmissibilityReportT<C> detail::certify_one_contact(                      \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const detail::OneContactFacts&, \
+      const SolverOptions&, const detail::ContactSpaceT<N, C>&);                     \
+  template AdmissibilityReportT<C> check_admissibility(                              \
+      const ImpactProblemT<N, C>&, const ImpactLaw&, const ImpactResultT<N, C>&,     \
       const SolverOptions&);
 FREMOND_INSTANTIATE(kSmallDofs, kSmallContacts)
 FREMOND_INSTANTIATE(Dynamic, Dynamic)

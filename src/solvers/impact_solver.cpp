@@ -5,9 +5,12 @@
 #include <string>
 #include <utility>
 
+#include "admissibility/detail/admissibility.hpp"
 #include "contact_space/contact_space.hpp"
 #include "core/detail/impact_problem.hpp"
 #include "fremond/core/error.hpp"
+#include "laws/detail/plugins.hpp"
+#include "solvers/detail/batch_columns.hpp"
 #include "solvers/detail/chain_workspace.hpp"
 #include "solvers/detail/independent_groups.hpp"
 #include "solvers/detail/result_copy.hpp"
@@ -72,6 +75,48 @@ struct PreparedStage {
     clear_result(into);
     solve_on_contact_space(pb, law, options, cs, into, ws);
   }
+
+  /// solve() into column k of `answers`, through `scratch` (a result of earlier solves). Where
+  /// the law's lane answers the one contact (solve_on_contact_space's first stage), its numbers
+  /// and their certificate go into the column without the rest of a result (its attempt log, its
+  /// report) being cleared or written; the whole solve otherwise, or where a dissipative law's
+  /// certificate refuses the lane's answer (solve_impact then calls it stalled). The same numbers
+  /// either way.
+  void solve_into_column(const ImpactLaw& law, const SolverOptions& options, BatchAnswers& answers,
+                         Eigen::Index k, ImpactResultT<N, C>& scratch) {
+    if (!update_velocities(pb, cs)) build_contact_space(pb, tangential_rows(law), cs);
+    if (cs.contacts == 1) {
+      scratch.P_N_reaction.resize(0);  // the lane writes none; the certificate reads it
+      const bool lane = law.visit(
+          [&](const auto& l) { return solve_one_contact_lane(pb, cs, l, options, scratch); });
+      if (lane) {
+        const bool admissible =
+            certify_one_contact(pb, law, facts_of(scratch), options, cs).admissible;
+        if (admissible || !law.dissipative()) {
+          put_answer(scratch, admissible, answers, k);
+          return;
+        }
+      }
+    }
+    clear_result(scratch);
+    solve_on_contact_space(pb, law, options, cs, scratch, ws);
+    put_answer(scratch, scratch.admissibility.admissible, answers, k);
+  }
+
+  /// A one-contact answer as check_one_contact reads it.
+  static OneContactFacts facts_of(const ImpactResultT<N, C>& r) {
+    return {.qdot_E = r.qdot_E.data(),
+            .takes_part = r.takes_part(0) != 0,
+            .P_N = r.P_N(0),
+            .P_T = r.P_T(0),
+            .D_NA = r.D_NA(0),
+            .D_TA = r.D_TA(0),
+            .D_NE = r.D_NE(0),
+            .D_TE = r.D_TE(0),
+            .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
+            .energy_change = r.energy_change,
+            .method = r.solver.method};
+  }
 };
 
 template <int N, int C>
@@ -93,6 +138,12 @@ struct PreparedWorkspace {
   void solve_into(const ImpactLaw& law, const SolverOptions& options, ImpactResultT<N, C>& into) {
     stage.solve(law, options, into);
   }
+  void solve_into(const ImpactLaw& law, const SolverOptions& options, BatchAnswers& answers,
+                  Eigen::Index k) {
+    stage.solve_into_column(law, options, answers, k, scratch);
+  }
+
+  ImpactResultT<N, C> scratch;  // solve_into's column answers pass through it
 };
 
 /// The heap-stored solver: a problem that fits the small form is solved in it, as solve_impact
@@ -139,6 +190,16 @@ struct PreparedWorkspace<Dynamic, Dynamic> {
       stage.solve(law, options, into);
     }
   }
+  void solve_into(const ImpactLaw& law, const SolverOptions& options, BatchAnswers& answers,
+                  Eigen::Index k) {
+    if (small)
+      small_stage.solve_into_column(law, options, answers, k, small_scratch);
+    else
+      stage.solve_into_column(law, options, answers, k, scratch);
+  }
+
+  SmallImpactResult small_scratch;  // solve_into's column answers pass through them
+  ImpactResult scratch;
 };
 
 }  // namespace detail
@@ -193,6 +254,30 @@ template <int N, int C>
 void ImpactSolverT<N, C>::solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A, Result& out) {
   work_->set_velocity(qdot_A);
   work_->solve_into(law_, options_, out);
+}
+
+template <int N, int C>
+void ImpactSolverT<N, C>::solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A,
+                                     BatchAnswers& answers, Eigen::Index column) {
+  const Problem& pb = work_->problem();
+  const Eigen::Index n = pb.dofs(), c = pb.contacts(), count = answers.size();
+  const auto sized = [&](const Eigen::MatrixXd& m, Eigen::Index rows) {
+    return m.rows() == rows && m.cols() == count;
+  };
+  if (!sized(answers.qdot_E, n) || !sized(answers.P_N, c) || !sized(answers.P_T, c) ||
+      !sized(answers.D_NE, c) || !sized(answers.D_TE, c) || answers.residual.size() != count ||
+      answers.status.size() != static_cast<std::size_t>(count) ||
+      answers.admissible.size() != static_cast<std::size_t>(count) ||
+      answers.unique.size() != static_cast<std::size_t>(count))
+    throw InvalidArgument("answers", "must be sized for " + std::to_string(n) +
+                                         " degrees of freedom and " + std::to_string(c) +
+                                         " contacts (answers.resize(" + std::to_string(n) + ", " +
+                                         std::to_string(c) + ", count))");
+  if (column < 0 || column >= count)
+    throw InvalidArgument(
+        "column", "must be in [0, " + std::to_string(count) + "), got " + std::to_string(column));
+  work_->set_velocity(qdot_A);
+  work_->solve_into(law_, options_, answers, column);
 }
 
 template <int N, int C>

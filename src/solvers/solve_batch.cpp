@@ -147,19 +147,6 @@ void require_results(std::size_t results, std::size_t count, const char* per) {
                                          std::to_string(results));
 }
 
-/// Column k of `to` = from, where the answer has it; NaN where it has none (a method the law does
-/// not support leaves the result's vectors empty). Entry by entry on the raw column: Eigen's
-/// assignment of a block costs more than the bar's five copies of one to three numbers.
-template <class From>
-void put(Eigen::MatrixXd& to, Eigen::Index k, const From& from) {
-  const Eigen::Index rows = to.rows();
-  double* const col = to.data() + k * rows;
-  if (from.size() == rows)
-    for (Eigen::Index i = 0; i < rows; ++i) col[i] = from(i);
-  else
-    std::fill(col, col + rows, std::numeric_limits<double>::quiet_NaN());
-}
-
 /// The velocities of a batch of one configuration: n rows, one per degree of freedom of the
 /// solver; their count.
 template <int N, int C>
@@ -223,30 +210,12 @@ void solve_batch(const ImpactSolverT<N, C>& solver, const Eigen::Ref<const Eigen
   const std::size_t count = velocities_of(solver, qdot_A);
   answers.resize(solver.problem().dofs(), solver.problem().contacts(),
                  static_cast<Eigen::Index>(count));
-  // A worker's own solver and the result it solves into, which stays in its cache.
-  struct Worker {
-    ImpactSolverT<N, C> solver;
-    ImpactResultT<N, C> result;
-  };
+  // A worker's own solver, which writes each answer into its column.
   run_on_workers(
-      count, batch,
-      [&] {
-        return Worker{solver, {}};
-      },
-      [&](Worker& w, std::size_t i) {
+      count, batch, [&] { return ImpactSolverT<N, C>(solver); },
+      [&](ImpactSolverT<N, C>& own, std::size_t i) {
         const auto k = static_cast<Eigen::Index>(i);
-        w.solver.solve_into(qdot_A.col(k), w.result);
-        const ImpactResultT<N, C>& r = w.result;
-        put(answers.qdot_E, k, r.qdot_E);
-        put(answers.P_N, k, r.P_N);
-        put(answers.P_T, k, r.P_T);
-        put(answers.D_NE, k, r.D_NE);
-        put(answers.D_TE, k, r.D_TE);
-        answers.energy_change(k) = r.energy_change;
-        answers.residual(k) = r.solver.residual;
-        answers.status[i] = r.solver.status;
-        answers.admissible[i] = r.admissibility.admissible ? 1 : 0;
-        answers.unique[i] = r.unique ? 1 : 0;
+        own.solve_into(qdot_A.col(k), answers, k);
       },
       refuse_velocity, 64);
 }

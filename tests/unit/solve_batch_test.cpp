@@ -177,49 +177,96 @@ Eigen::MatrixXd velocities(int count) {
   return v;
 }
 
+// The bar on one contact (the laws' one-contact lanes, whose columns skip the whole result) and
+// on two; its velocities approach or separate.
 TEST(SolveBatch, OneConfigurationManyVelocitiesGivesSolveImpactsAnswers) {
-  const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), true);
   const Eigen::MatrixXd v = velocities(300);
-  for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.9, 1.0), ImpactLaw::poisson(0.5),
-                               ImpactLaw::fremond_coulomb(PowerPotential(4.0, 3.0), 0.3)}) {
-    SCOPED_TRACE(law.describe());
-    std::vector<ImpactResult> alone;
-    for (int i = 0; i < v.cols(); ++i) {
-      ImpactProblem p = bar;
-      p.qdot_A = v.col(i);
-      alone.push_back(solve_impact(p, law));
-    }
-    const ImpactSolver heap(bar, law);
-    const SmallImpactSolver small(to_small(bar), law);
-    for (int threads : {1, 2, 5}) {
-      const std::vector<ImpactResult> a = solve_batch(heap, v, {threads});
-      const std::vector<SmallImpactResult> b = solve_batch(small, v, {threads});
-      BatchAnswers columns;
-      solve_batch(small, v, columns, {threads});
-      ASSERT_EQ(a.size(), alone.size());
-      ASSERT_EQ(b.size(), alone.size());
-      ASSERT_EQ(columns.size(), v.cols());
-      for (std::size_t i = 0; i < alone.size(); ++i) {
-        const ImpactResult& r = alone[i];
-        expect_identical(a[i], r, static_cast<int>(i));
-        expect_identical(to_dynamic(b[i]), r, static_cast<int>(i));
-        EXPECT_EQ(a[i].D_NE, r.D_NE);
-        EXPECT_EQ(a[i].admissibility.total, r.admissibility.total);
-        const auto k = static_cast<Eigen::Index>(i);
-        EXPECT_TRUE(columns.qdot_E.col(k) == r.qdot_E && columns.P_N.col(k) == r.P_N &&
-                    columns.P_T.col(k) == r.P_T && columns.D_NE.col(k) == r.D_NE &&
-                    columns.D_TE.col(k) == r.D_TE)
-            << "impact " << i;
-        EXPECT_EQ(columns.energy_change(k), r.energy_change) << i;
-        EXPECT_EQ(columns.residual(k), r.solver.residual) << i;
-        EXPECT_EQ(columns.status[i], r.solver.status) << i;
-        EXPECT_EQ(columns.admissible[i], r.admissibility.admissible ? 1 : 0) << i;
-        EXPECT_EQ(columns.unique[i], r.unique ? 1 : 0) << i;
+  for (const bool both_ends : {false, true})
+    for (const ImpactLaw& law : {ImpactLaw::newton_coulomb(0.9, 1.0), ImpactLaw::poisson(0.5),
+                                 ImpactLaw::poisson_coulomb(0.5, 0.3),
+                                 ImpactLaw::fremond_coulomb(PowerPotential(4.0, 3.0), 0.3)}) {
+      SCOPED_TRACE(law.describe() + (both_ends ? ", both ends" : ", one end"));
+      const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.0, -1.0, 0.0), both_ends);
+      std::vector<ImpactResult> alone;
+      for (int i = 0; i < v.cols(); ++i) {
+        ImpactProblem p = bar;
+        p.qdot_A = v.col(i);
+        alone.push_back(solve_impact(p, law));
       }
+      const ImpactSolver heap(bar, law);
+      const SmallImpactSolver small(to_small(bar), law);
+      for (int threads : {1, 2, 5}) {
+        const std::vector<ImpactResult> a = solve_batch(heap, v, {threads});
+        const std::vector<SmallImpactResult> b = solve_batch(small, v, {threads});
+        BatchAnswers columns, heap_columns;
+        solve_batch(small, v, columns, {threads});
+        solve_batch(heap, v, heap_columns, {threads});
+        ASSERT_EQ(a.size(), alone.size());
+        ASSERT_EQ(b.size(), alone.size());
+        for (const BatchAnswers* c : {&columns, &heap_columns}) {
+          ASSERT_EQ(c->size(), v.cols());
+          for (std::size_t i = 0; i < alone.size(); ++i) {
+            const ImpactResult& r = alone[i];
+            const auto k = static_cast<Eigen::Index>(i);
+            EXPECT_TRUE(c->qdot_E.col(k) == r.qdot_E && c->P_N.col(k) == r.P_N &&
+                        c->P_T.col(k) == r.P_T && c->D_NE.col(k) == r.D_NE &&
+                        c->D_TE.col(k) == r.D_TE)
+                << "impact " << i;
+            EXPECT_EQ(c->energy_change(k), r.energy_change) << i;
+            EXPECT_EQ(c->residual(k), r.solver.residual) << i;
+            EXPECT_EQ(c->status[i], r.solver.status) << i;
+            EXPECT_EQ(c->admissible[i], r.admissibility.admissible ? 1 : 0) << i;
+            EXPECT_EQ(c->unique[i], r.unique ? 1 : 0) << i;
+          }
+        }
+        for (std::size_t i = 0; i < alone.size(); ++i) {
+          const ImpactResult& r = alone[i];
+          expect_identical(a[i], r, static_cast<int>(i));
+          expect_identical(to_dynamic(b[i]), r, static_cast<int>(i));
+          EXPECT_EQ(a[i].D_NE, r.D_NE);
+          EXPECT_EQ(a[i].admissibility.total, r.admissibility.total);
+        }
+      }
+      // The solver given is left as it was: nothing solved on it.
+      EXPECT_EQ(heap.result().solver.status, SolverStatus::not_run);
     }
-    // The solver given is left as it was: nothing solved on it.
-    EXPECT_EQ(heap.result().solver.status, SolverStatus::not_run);
-  }
+}
+
+// A solve into a column of the caller's answers: the column is the solve's answer, the solver's
+// own result stays as the last solve() left it, and answers of other sizes or a column outside
+// them are refused, named, before anything is solved.
+TEST(SolveBatch, ASolveIntoAColumnLeavesTheSolversResultAndNamesBadColumns) {
+  const ImpactProblem bar = fixtures::bar(0.7, Eigen::Vector3d(0.3, -1.0, 0.2));
+  SmallImpactSolver solver(to_small(bar), ImpactLaw::newton_coulomb(0.9, 1.0));
+  const Eigen::Vector3d first(0.3, -1.0, 0.2), second(-0.4, -2.0, 1.0);
+  const SmallImpactResult kept = solver.solve(first);
+  BatchAnswers answers;
+  answers.resize(3, 1, 4);
+  solver.solve_into(second, answers, 2);
+  ImpactProblem at_second = bar;
+  at_second.qdot_A = second;
+  const ImpactResult r = solve_impact(at_second, ImpactLaw::newton_coulomb(0.9, 1.0));
+  EXPECT_TRUE(answers.qdot_E.col(2) == r.qdot_E);
+  EXPECT_EQ(answers.P_N(0, 2), r.P_N(0));
+  EXPECT_EQ(answers.residual(2), r.solver.residual);
+  EXPECT_EQ(answers.admissible[2], r.admissibility.admissible ? 1 : 0);
+  EXPECT_TRUE(solver.result().qdot_E == kept.qdot_E);
+  EXPECT_TRUE(Eigen::VectorXd(solver.problem().qdot_A) == Eigen::VectorXd(second));
+  auto name_of = [&](BatchAnswers& a, Eigen::Index column) {
+    try {
+      solver.solve_into(first, a, column);
+    } catch (const InvalidArgument& e) {
+      return e.name();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(name_of(answers, 4), "column");
+  EXPECT_EQ(name_of(answers, -1), "column");
+  BatchAnswers other;
+  other.resize(3, 2, 4);
+  EXPECT_EQ(name_of(other, 0), "answers");
+  EXPECT_TRUE(Eigen::VectorXd(solver.problem().qdot_A) == Eigen::VectorXd(second));
+  EXPECT_EQ(name_of(answers, 3), "accepted");
 }
 
 // A method the law does not solve (Stronge's law has no Lemke) answers `unsupported` with no

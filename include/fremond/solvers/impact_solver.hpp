@@ -7,6 +7,7 @@
 
 #include "fremond/core/impact_problem.hpp"
 #include "fremond/laws/impact_law.hpp"
+#include "fremond/solvers/batch_answers.hpp"
 #include "fremond/solvers/impact_result.hpp"
 #include "fremond/solvers/solver_options.hpp"
 
@@ -53,6 +54,15 @@ class ImpactSolverT {
   /// solver's own result(), which stays as it was; the solver's q̇_A becomes qdot_A. The same
   /// answer to the last bit, without a copy: what a batch of velocities keeps (solve_batch).
   void solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A, Result& out);
+  /// solve(qdot_A) with the answer written into column `column` of `answers` (BatchAnswers, sized
+  /// for this solver's dofs and contacts) instead of result(), which stays as it was; the
+  /// solver's q̇_A becomes qdot_A. The same numbers to the last bit, without a whole result where
+  /// the law answers one contact on scalars: what solve_batch does for each velocity, and what a
+  /// loop of your own (your threads, one solver each) can do. Throws InvalidArgument naming
+  /// `answers` (of other sizes) or `column` (outside them) before solving, as solve() names a bad
+  /// `qdot_A`.
+  void solve_into(const Eigen::Ref<const Eigen::VectorXd>& qdot_A, BatchAnswers& answers,
+                  Eigen::Index column);
 
   /// A new configuration (as a simulation has between impacts): M, W_N, W_T and the obstacles'
   /// velocity terms w_N, w_T (empty: zero), the number of degrees of freedom and contacts

@@ -75,6 +75,25 @@ AdmissibilityReportT<MaxContacts> check_admissibility(
     const ImpactResultT<MaxDofs, MaxContacts>& result, const SolverOptions& options,
     const VecT<MaxContacts>& rounding, double g_max, const VecT<MaxContacts>* percussion = nullptr);
 
+/// An answer to a problem of one contact as its certificate reads it: its scalars, and q̇_E (the
+/// problem's dofs entries).
+struct OneContactFacts {
+  const double* qdot_E = nullptr;
+  bool takes_part = true;
+  double P_N = 0.0, P_T = 0.0, D_NA = 0.0, D_TA = 0.0, D_NE = 0.0, D_TE = 0.0;
+  double P_N_reaction = 0.0;  ///< the reaction part of P_N (0 where the law has none)
+  double energy_change = 0.0;
+  SolverMethod method = SolverMethod::automatic;  ///< the method that answered
+};
+
+/// check_one_contact on an answer's scalars (a filled one), to the same bits: what a caller that
+/// keeps no result certifies with (solve_batch's columns).
+template <int MaxDofs, int MaxContacts>
+AdmissibilityReportT<MaxContacts> certify_one_contact(
+    const ImpactProblemT<MaxDofs, MaxContacts>& problem, const ImpactLaw& law,
+    const OneContactFacts& facts, const SolverOptions& options,
+    const ContactSpaceT<MaxDofs, MaxContacts>& cs);
+
 /// check_admissibility of an answer to a problem of one contact, computed as velocity_rounding and
 /// check_admissibility compute it, to the same bits, from its scalars (the law's own terms
 /// included), with `cs` the contact space it was solved on.
