@@ -86,19 +86,32 @@ void accurate_multiply_add(const double* M, std::ptrdiff_t ld, int n, int m, con
 #endif
 }
 
+namespace {
+// The portable loops out of line, so that the dispatchers below are a test and a jump each (with
+// a loop inlined beside the test, every call paid for saving the loop's registers first).
+[[gnu::noinline]] double dot2_portable(const double* x, std::ptrdiff_t incx, const double* y,
+                                       std::ptrdiff_t incy, Eigen::Index n, double extra) {
+  return dot2(x, incx, y, incy, n, extra);
+}
+[[gnu::noinline]] double dot2_portable_contiguous(const double* x, const double* y, Eigen::Index n,
+                                                  double extra) {
+  return dot2(x, 1, y, 1, n, extra);
+}
+}  // namespace
+
 double accurate_dot_strided(const double* x, std::ptrdiff_t incx, const double* y,
                             std::ptrdiff_t incy, Eigen::Index n, double extra) {
 #ifdef FREMOND_FMA_AT_RUN_TIME
   if (__builtin_cpu_supports("fma")) return dot2_fma(x, incx, y, incy, n, extra);
 #endif
-  return dot2(x, incx, y, incy, n, extra);
+  return dot2_portable(x, incx, y, incy, n, extra);
 }
 
 double accurate_dot_contiguous(const double* x, const double* y, Eigen::Index n, double extra) {
 #ifdef FREMOND_FMA_AT_RUN_TIME
   if (__builtin_cpu_supports("fma")) return dot2_fma_contiguous(x, y, n, extra);
 #endif
-  return dot2(x, 1, y, 1, n, extra);
+  return dot2_portable_contiguous(x, y, n, extra);
 }
 
 void accurate_multiply_add_portable(const double* M, std::ptrdiff_t ld, int n, int m,
