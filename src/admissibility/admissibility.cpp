@@ -303,20 +303,7 @@ AdmissibilityReportT<C> check_one_contact(const ImpactProblemT<N, C>& pb, const 
     rep.per_contact.setZero(1);
     return rep;
   }
-  return certify_one_contact(
-      pb, law,
-      OneContactFacts{.qdot_E = r.qdot_E.data(),
-                      .takes_part = r.takes_part(0) != 0,
-                      .P_N = r.P_N(0),
-                      .P_T = r.P_T(0),
-                      .D_NA = r.D_NA(0),
-                      .D_TA = r.D_TA(0),
-                      .D_NE = r.D_NE(0),
-                      .D_TE = r.D_TE(0),
-                      .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
-                      .energy_change = r.energy_change,
-                      .method = r.solver.method},
-      options, cs);
+  return certify_one_contact(pb, law, one_contact_facts(r), options, cs);
 }
 
 template <int N, int C>

@@ -91,7 +91,7 @@ struct PreparedStage {
           [&](const auto& l) { return solve_one_contact_lane(pb, cs, l, options, scratch); });
       if (lane) {
         const bool admissible =
-            certify_one_contact(pb, law, facts_of(scratch), options, cs).admissible;
+            certify_one_contact(pb, law, one_contact_facts(scratch), options, cs).admissible;
         if (admissible || !law.dissipative()) {
           put_answer(scratch, admissible, answers, k);
           return;
@@ -101,21 +101,6 @@ struct PreparedStage {
     clear_result(scratch);
     solve_on_contact_space(pb, law, options, cs, scratch, ws);
     put_answer(scratch, scratch.admissibility.admissible, answers, k);
-  }
-
-  /// A one-contact answer as check_one_contact reads it.
-  static OneContactFacts facts_of(const ImpactResultT<N, C>& r) {
-    return {.qdot_E = r.qdot_E.data(),
-            .takes_part = r.takes_part(0) != 0,
-            .P_N = r.P_N(0),
-            .P_T = r.P_T(0),
-            .D_NA = r.D_NA(0),
-            .D_TA = r.D_TA(0),
-            .D_NE = r.D_NE(0),
-            .D_TE = r.D_TE(0),
-            .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
-            .energy_change = r.energy_change,
-            .method = r.solver.method};
   }
 };
 

@@ -86,6 +86,22 @@ struct OneContactFacts {
   SolverMethod method = SolverMethod::automatic;  ///< the method that answered
 };
 
+/// The facts of a filled one-contact result (check_one_contact's reading of it).
+template <int MaxDofs, int MaxContacts>
+OneContactFacts one_contact_facts(const ImpactResultT<MaxDofs, MaxContacts>& r) {
+  return {.qdot_E = r.qdot_E.data(),
+          .takes_part = r.takes_part(0) != 0,
+          .P_N = r.P_N(0),
+          .P_T = r.P_T(0),
+          .D_NA = r.D_NA(0),
+          .D_TA = r.D_TA(0),
+          .D_NE = r.D_NE(0),
+          .D_TE = r.D_TE(0),
+          .P_N_reaction = r.P_N_reaction.size() == 1 ? r.P_N_reaction(0) : 0.0,
+          .energy_change = r.energy_change,
+          .method = r.solver.method};
+}
+
 /// check_one_contact on an answer's scalars (a filled one), to the same bits: what a caller that
 /// keeps no result certifies with (solve_batch's columns).
 template <int MaxDofs, int MaxContacts>
