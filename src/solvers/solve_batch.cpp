@@ -63,10 +63,11 @@ void solve_into(const ImpactProblemT<N, C>& pb, const ImpactLaw& law, const Solv
   detail::solve_impact_into(pb, law, options, out);
 }
 
-// Starting a worker costs the calling thread about 35 µs and the worker 25 to 60 µs more before it
-// runs (this project's 2-core machine), more than a short batch (a fit's evaluation on a few dozen
-// measured impacts) takes to solve. The other workers start once the work left, estimated from
-// the calling thread's pace over at least kPaceAfter, exceeds kWorthSharing.
+// Starting a worker costs the calling thread 13 to 35 µs and the worker 19 to 60 µs more before
+// it runs (this project's 2-core machine, measured on different days), more than a short batch (a
+// fit's evaluation on a few dozen measured impacts) takes to solve. The other workers start once
+// the work left, estimated from the calling thread's pace over at least kPaceAfter, exceeds
+// kWorthSharing.
 constexpr double kPaceAfter = 20e-6;      // s
 constexpr double kWorthSharing = 200e-6;  // s
 
