@@ -71,6 +71,8 @@ def test_targets_say_when_within_two_standard_errors():
     assert rows["plate_c32, Newton + Coulomb, solve_impact"][3] == \
         "met (within two standard errors)"
     assert rows["random_n12_c6, Newton + Coulomb, solve_impact"][2:] == ["–", "–"]
+    # The frictionless law has the same many-contact target.
+    assert rows["plate_c8, Newton, solve_impact"][1:] == ["≥ 1× Siconos", "–", "–"]
 
 
 def test_control_pairs_identical_work_on_one_contact():
