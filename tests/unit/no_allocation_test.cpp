@@ -32,10 +32,12 @@
 namespace {
 
 thread_local bool t_counting = false;
-thread_local bool t_in_hook = false;
 thread_local long t_count = 0;
 thread_local int t_frames = 0;
 thread_local void* t_stack[24];
+
+#if FREMOND_COUNT_ALLOCATIONS  // the counting wrappers below are its only callers
+thread_local bool t_in_hook = false;
 
 void note_allocation() {
   if (!t_counting || t_in_hook) return;
@@ -43,6 +45,7 @@ void note_allocation() {
   if (t_count++ == 0) t_frames = backtrace(t_stack, 24);
   t_in_hook = false;
 }
+#endif
 
 }  // namespace
 
