@@ -938,7 +938,10 @@ inline Resolvent resolvent(const Row& row, quad s) {
   };
   const quad edge = sgn(s) * row.tl.r;
   const quad z = find_root(g, edge, s, g(edge).value, g(s).value);
-  const quad fp = df_tangent(row.tl, z);
+  // f_T' on the branch beyond the edge, also where the root rounds onto the edge itself (q near
+  // 1: |z| − r far below quad's ulp of r), whose limit there is ∞ for q < 2: J' = 0, not 1.
+  const quad out = fmaxq(fabsq(z) - row.tl.r, quad(0));
+  const quad fp = row.tl.k * (row.tl.q - 1) * pow_abs(out, row.tl.q - 2);
   return {z, finite(fp) ? 1 / (1 + fp / row.c) : quad(0), false};
 }
 
