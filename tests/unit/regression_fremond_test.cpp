@@ -1680,6 +1680,32 @@ TEST(RegressionFremond, DISABLED_TangentParallelToTheNormalWithHugeFrictionIsNea
   EXPECT_LE(std::sqrt(d.dot(M * d) / qA.dot(M * qA)), 1e-9);
 }
 
+// The bar nearly vertical on both ends (its normals' lever arms ±2.9e-9), a normal law steep at
+// z_N = 0 (p = 1.14, k = 16789), μ = 0.041. The library answers converged, by Coulomb's modes,
+// with P_N = (47.75, −47.43): bounds μ|P_N| that normal percussions of rounding-size z_N
+// (±8e-19) hold up, and no exact solution lies near that answer, each contact mode it lies near
+// solved in quad precision. Open; fremond_coulomb stress case 870 of the default seed.
+TEST(RegressionFremond, DISABLED_NearlyVerticalBarOnBothEndsIsNearAnExactSolution) {
+  Eigen::MatrixXd M(3, 3), WN(3, 2), WT(3, 2);
+  M << 1.9426432352441112, 0, 0, 0, 1.9426432352441112, 0, 0, 0, 0.16188693627034259;
+  WN << 0, 0, 1, 1, -2.9368441318584564e-09, 2.9368441318584564e-09;
+  WT << 1, 1, 0, 0, 0.5, -0.5;
+  const Eigen::Vector3d qA(0.83989499118715849, -0.084166954799443958, -0.95984476554026876);
+  const double k = 16788.607347385099, p = 1.1406387716647695, mu = 0.040955764271284154;
+  const ImpactResult r =
+      solve_impact(make(M, WN, WT, qA), ImpactLaw::fremond_coulomb(PowerPotential(k, p), mu));
+  ASSERT_TRUE(r.ok()) << why(r);
+  namespace ref = fremond_reference;
+  const ref::QVec PN{r.P_N(0), r.P_N(1)}, PT{r.P_T(0), r.P_T(1)}, muq{mu, mu};
+  const std::vector<ref::PowerLaw> normal(2, ref::PowerLaw{ref::quad(k), ref::quad(p)});
+  const ref::Solution exact =
+      ref::fremond_coulomb_near(ref::problem_from(M, WN, WT, qA), normal, muq, PN, PT);
+  ASSERT_TRUE(exact.ok) << exact.mode;
+  Eigen::Vector3d d;
+  for (int i = 0; i < 3; ++i) d(i) = r.qdot_E(i) - ref::to_double(exact.qdot_E[i]);
+  EXPECT_LE(std::sqrt(d.dot(M * d) / qA.dot(M * qA)), 1e-9);
+}
+
 // One dof, four contacts (three approaching), Frémond with p = 1.0022 (nearly k|z|), solved beside
 // a copy of itself at 1e-9 of its velocities in one block-diagonal problem: the copy alone stops
 // (q̇_E 1.7e-19, unique), its separating contact driven, so solved on every contact. The joint
