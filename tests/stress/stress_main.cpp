@@ -721,11 +721,22 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
                   parallel || (a > 0 && b > 0 &&
                                std::fabs(pb.W_N.col(i).dot(pb.W_T.col(i))) >= (1 - 1e-12) * a * b);
             }
+            // So are two contacts whose normals are parallel to rounding (the bar nearly
+            // vertical on both ends), where only the normals' difference sees how P_N is split.
+            bool normals = false;
+            for (int i = 0; i < c; ++i)
+              for (int j = i + 1; j < c; ++j) {
+                const double a = pb.W_N.col(i).norm(), b = pb.W_N.col(j).norm();
+                normals =
+                    normals || (a > 0 && b > 0 &&
+                                std::fabs(pb.W_N.col(i).dot(pb.W_N.col(j))) >= (1 - 1e-12) * a * b);
+              }
             out.line(
                 "R mismatch 0\tno exact solution of Frémond + Coulomb near the library's answer "
                 "(each contact mode it lies near solved in quad precision)" +
                 (cond > 1e8 ? std::string(", and the answer misses the law: ") + missed
                             : std::string()) +
+                (normals ? ", with the normals of two contacts parallel" : "") +
                 (parallel ? ", with W_T parallel to W_N at a contact" : ""));
             return;
           }
