@@ -714,23 +714,19 @@ void reference_check(const ImpactProblem& pb, const ImpactLaw& law, const Impact
             }
             // A contact whose W_T is parallel to W_N (its z_T and z_N one velocity) is named, so
             // that a known issue of that degenerate shape does not stand for every other.
+            auto parallel_columns = [](const auto& x, const auto& y) {
+              const double a = x.norm(), b = y.norm();
+              return a > 0 && b > 0 && std::fabs(x.dot(y)) >= (1 - 1e-12) * a * b;
+            };
             bool parallel = false;
-            for (int i = 0; i < c && pb.has_tangential(); ++i) {
-              const double a = pb.W_N.col(i).norm(), b = pb.W_T.col(i).norm();
-              parallel =
-                  parallel || (a > 0 && b > 0 &&
-                               std::fabs(pb.W_N.col(i).dot(pb.W_T.col(i))) >= (1 - 1e-12) * a * b);
-            }
+            for (int i = 0; i < c && pb.has_tangential(); ++i)
+              parallel = parallel || parallel_columns(pb.W_N.col(i), pb.W_T.col(i));
             // So are two contacts whose normals are parallel to rounding (the bar nearly
             // vertical on both ends), where only the normals' difference sees how P_N is split.
             bool normals = false;
             for (int i = 0; i < c; ++i)
-              for (int j = i + 1; j < c; ++j) {
-                const double a = pb.W_N.col(i).norm(), b = pb.W_N.col(j).norm();
-                normals =
-                    normals || (a > 0 && b > 0 &&
-                                std::fabs(pb.W_N.col(i).dot(pb.W_N.col(j))) >= (1 - 1e-12) * a * b);
-              }
+              for (int j = i + 1; j < c; ++j)
+                normals = normals || parallel_columns(pb.W_N.col(i), pb.W_N.col(j));
             out.line(
                 "R mismatch 0\tno exact solution of Frémond + Coulomb near the library's answer "
                 "(each contact mode it lies near solved in quad precision)" +
